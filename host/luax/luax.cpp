@@ -1,0 +1,240 @@
+#include "luax/luax.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+#include <string_view>
+
+namespace smi::lua {
+
+namespace {
+
+/// Message handler for call(): the message plus a traceback; non-string errors are described.
+int traceback_handler(lua_State* L) {
+  const char* msg = lua_tostring(L, 1);
+  if (!msg) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+    msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  }
+  luaL_traceback(L, L, msg, 1);
+  return 1;
+}
+
+/// __index closure: upvalue 1 = methods table, upvalue 2 = light getter pointer or nil.
+int index_dispatch(lua_State* L) {
+  // stack: [self, key]
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  lua_pop(L, 1);
+  if (lua_type(L, lua_upvalueindex(2)) == LUA_TLIGHTUSERDATA) {
+    auto getter = reinterpret_cast<FieldGetter>(lua_touserdata(L, lua_upvalueindex(2)));
+    lua_settop(L, 2);
+    if (getter(L) > 0) return 1;
+  }
+  return 0;  // nil, as for a missing table field
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+}  // namespace
+
+void call(lua_State* L, int nargs, int nresults) {
+  const int base = lua_gettop(L) - nargs;  // index of the function
+  lua_pushcfunction(L, traceback_handler);
+  lua_insert(L, base);
+  const int status = lua_pcall(L, nargs, nresults, base);
+  lua_remove(L, base);
+  if (status != LUA_OK) {
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error without message)";
+    lua_pop(L, 1);
+    throw LuaError(msg);
+  }
+}
+
+void register_type_raw(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods,
+                       lua_CFunction gc, FieldGetter getter) {
+  luaL_newmetatable(L, type);  // sets __name, used by luaL_typeerror and tostring
+  lua_newtable(L);
+  if (methods) luaL_setfuncs(L, methods, 0);
+  if (getter)
+    lua_pushlightuserdata(L, reinterpret_cast<void*>(getter));
+  else
+    lua_pushnil(L);
+  lua_pushcclosure(L, index_dispatch, 2);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, gc);
+  lua_setfield(L, -2, "__gc");
+  lua_pushcfunction(L, gc);
+  lua_setfield(L, -2, "__close");
+  if (metamethods) luaL_setfuncs(L, metamethods, 0);
+  lua_pop(L, 1);
+}
+
+std::vector<std::string> to_strings(lua_State* L, int idx, const char* what) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx)) luaL_error(L, "%s must be a table of strings, got %s", what, luaL_typename(L, idx));
+  const lua_Integer n = luaL_len(L, idx);
+  std::vector<std::string> out;
+  out.reserve(static_cast<std::size_t>(n));
+  for (lua_Integer i = 1; i <= n; ++i) {
+    if (lua_rawgeti(L, idx, i) != LUA_TSTRING)
+      luaL_error(L, "%s[%d] must be a string, got %s", what, static_cast<int>(i), luaL_typename(L, -1));
+    out.emplace_back(lua_tostring(L, -1));
+    lua_pop(L, 1);
+  }
+  return out;
+}
+
+void push_named_vectors(lua_State* L, const std::vector<std::string>& names, const Eigen::MatrixXd& columns) {
+  lua_createtable(L, 0, static_cast<int>(names.size()));
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    push_vec(L, columns.col(static_cast<Eigen::Index>(j)));
+    lua_setfield(L, -2, names[j].c_str());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Options
+
+Options::Options(lua_State* L, int idx, const char* fname) : L_(L), idx_(0), fname_(fname) {
+  if (lua_isnoneornil(L, idx)) return;
+  if (!lua_istable(L, idx))
+    luaL_error(L, "%s: options must be a table, got %s", fname, luaL_typename(L, idx));
+  idx_ = lua_absindex(L, idx);
+}
+
+int Options::push(const char* key) const {
+  if (!idx_) {
+    lua_pushnil(L_);
+    return LUA_TNIL;
+  }
+  return lua_getfield(L_, idx_, key);
+}
+
+bool Options::has(const char* key) const {
+  const bool present = push(key) != LUA_TNIL;
+  lua_pop(L_, 1);
+  return present;
+}
+
+void Options::type_error(const char* key, const char* expected) const {
+  luaL_error(L_, "%s: option '%s' must be %s, got %s", fname_, key, expected, luaL_typename(L_, -1));
+  std::abort();  // not reached: luaL_error does not return
+}
+
+std::optional<double> Options::number(const char* key) const {
+  const int t = push(key);
+  std::optional<double> out;
+  if (t == LUA_TNUMBER)
+    out = lua_tonumber(L_, -1);
+  else if (t != LUA_TNIL)
+    type_error(key, "a number");
+  lua_pop(L_, 1);
+  return out;
+}
+
+double Options::number(const char* key, double def) const { return number(key).value_or(def); }
+
+std::optional<lua_Integer> Options::integer(const char* key) const {
+  const int t = push(key);
+  std::optional<lua_Integer> out;
+  if (t == LUA_TNUMBER) {
+    int isint = 0;
+    const lua_Integer v = lua_tointegerx(L_, -1, &isint);
+    if (!isint) type_error(key, "an integer");
+    out = v;
+  } else if (t != LUA_TNIL) {
+    type_error(key, "an integer");
+  }
+  lua_pop(L_, 1);
+  return out;
+}
+
+lua_Integer Options::integer(const char* key, lua_Integer def) const { return integer(key).value_or(def); }
+
+std::optional<std::string> Options::string(const char* key) const {
+  const int t = push(key);
+  std::optional<std::string> out;
+  if (t == LUA_TSTRING)
+    out = lua_tostring(L_, -1);
+  else if (t != LUA_TNIL)
+    type_error(key, "a string");
+  lua_pop(L_, 1);
+  return out;
+}
+
+std::string Options::string(const char* key, const std::string& def) const { return string(key).value_or(def); }
+
+bool Options::boolean(const char* key, bool def) const {
+  const int t = push(key);
+  bool out = def;
+  if (t == LUA_TBOOLEAN)
+    out = lua_toboolean(L_, -1);
+  else if (t != LUA_TNIL)
+    type_error(key, "a boolean");
+  lua_pop(L_, 1);
+  return out;
+}
+
+void Options::check_known(std::initializer_list<const char*> known) const {
+  if (!idx_) return;
+  lua_pushnil(L_);
+  while (lua_next(L_, idx_)) {
+    lua_pop(L_, 1);  // keep the key
+    if (lua_type(L_, -1) != LUA_TSTRING) continue;  // positional entries are the caller's business
+    const char* key = lua_tostring(L_, -1);
+    bool ok = false;
+    const char* best = nullptr;
+    std::size_t best_d = 1000;
+    for (const char* k : known) {
+      if (std::strcmp(k, key) == 0) ok = true;
+      const std::size_t d = edit_distance(k, key);
+      if (d < best_d) best_d = d, best = k;
+    }
+    if (!ok) {
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      if (best && best_d <= 2)
+        luaL_error(L_, "%s: unknown option '%s' (did you mean '%s'?)", fname_, key, best);
+      luaL_error(L_, "%s: unknown option '%s'; known options: %s", fname_, key, list.c_str());
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Result setters
+
+void set_number(lua_State* L, const char* key, double v) {
+  lua_pushnumber(L, v);
+  lua_setfield(L, -2, key);
+}
+void set_integer(lua_State* L, const char* key, lua_Integer v) {
+  lua_pushinteger(L, v);
+  lua_setfield(L, -2, key);
+}
+void set_string(lua_State* L, const char* key, const std::string& v) {
+  lua_pushlstring(L, v.data(), v.size());
+  lua_setfield(L, -2, key);
+}
+void set_boolean(lua_State* L, const char* key, bool v) {
+  lua_pushboolean(L, v);
+  lua_setfield(L, -2, key);
+}
+void set_vec(lua_State* L, const char* key, Eigen::VectorXd v) {
+  push_vec(L, std::move(v));
+  lua_setfield(L, -2, key);
+}
+void set_funcs(lua_State* L, const luaL_Reg* funcs) { luaL_setfuncs(L, funcs, 0); }
+
+}  // namespace smi::lua
