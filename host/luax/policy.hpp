@@ -26,6 +26,9 @@ struct Policy {
   std::uint64_t seed = 20200214;                   // --seed
   bool quiet = false;                              // --quiet or stdout/stderr not a terminal
   bool unrestricted = false;                       // no sandbox (tests of the kernels only)
+  std::string store_path;                          // --store PATH: evaluation store to use (issue 5)
+  bool dry_run = false;                            // --dry-run: count solver runs, launch none
+  std::string script_path;                         // the study being run ("" for -e / REPL)
 
   /// Resolves `path` (relative to the working directory; "..", symlinks) and returns it if it
   /// lies under a read root (write roots are readable too); throws SandboxDenied otherwise.
