@@ -1,0 +1,104 @@
+// smi.dist: the common Lua object of every distribution and density estimate.
+#include "stats/dist_box.hpp"
+
+#include "luax/luax.hpp"
+
+namespace smi::bind {
+namespace {
+
+using Ptr = DistributionPtr;
+
+const Distribution& self(lua_State* L) { return *lua::check_box<Ptr>(L, 1, kDistType); }
+
+/// d:pdf(x), d:cdf(x), d:quantile(p): x a number (-> number) or a vec/table (-> vec).
+int dist_pdf(lua_State* L) {
+  const Distribution& d = self(L);
+  return lua::push_mapped(L, 2, "dist:pdf", [&](const Eigen::VectorXd& x) { return d.pdf(x); });
+}
+int dist_cdf(lua_State* L) {
+  const Distribution& d = self(L);
+  return lua::push_mapped(L, 2, "dist:cdf", [&](const Eigen::VectorXd& x) { return d.cdf(x); });
+}
+int dist_quantile(lua_State* L) {
+  const Distribution& d = self(L);
+  return lua::push_mapped(L, 2, "dist:quantile", [&](const Eigen::VectorXd& p) {
+    for (Eigen::Index i = 0; i < p.size(); ++i)
+      if (!(p[i] > 0.0 && p[i] < 1.0) && !(p[i] == 0.0 || p[i] == 1.0))
+        throw InvalidArgument("probability must be in [0, 1], got " + std::to_string(p[i]));
+    return d.quantile(p);
+  });
+}
+/// d:sample(n, seed_or_rng): n draws; the generator is explicit (an integer seed or an smi.rng).
+int dist_sample(lua_State* L) {
+  const Distribution& d = self(L);
+  const lua_Integer n = luaL_checkinteger(L, 2);
+  luaL_argcheck(L, n >= 0, 2, "count must be >= 0");
+  Rng* rng = lua::test_box<Rng>(L, 3, "smi.rng");
+  Rng local(0);
+  if (!rng) {
+    if (!lua_isinteger(L, 3)) return luaL_error(L, "dist:sample: argument 3 must be an integer seed or an smi.rng");
+    local = Rng(static_cast<std::uint64_t>(lua_tointeger(L, 3)));
+    rng = &local;
+  }
+  return lua::protect(L, "dist:sample", [&] {
+    lua::push_vec(L, d.sample(*rng, static_cast<Eigen::Index>(n)));
+    return 1;
+  });
+}
+int dist_mean(lua_State* L) {
+  lua_pushnumber(L, self(L).mean());
+  return 1;
+}
+int dist_std(lua_State* L) {
+  lua_pushnumber(L, self(L).stddev());
+  return 1;
+}
+int dist_support(lua_State* L) {
+  const auto s = self(L).support();
+  lua_pushnumber(L, s.first);
+  lua_pushnumber(L, s.second);
+  return 2;
+}
+int dist_tostring(lua_State* L) {
+  const std::string s = self(L).describe();
+  lua_pushlstring(L, s.data(), s.size());
+  return 1;
+}
+/// d.family, and the numeric fields of the subtype (Distribution::field).
+int dist_field(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return 0;
+  const std::string key = lua_tostring(L, 2);
+  if (key == "family") {
+    lua_pushstring(L, self(L).family().c_str());
+    return 1;
+  }
+  if (const auto v = self(L).field(key)) {
+    lua_pushnumber(L, *v);
+    return 1;
+  }
+  return 0;
+}
+
+const luaL_Reg kMethods[] = {{"pdf", dist_pdf},   {"cdf", dist_cdf}, {"quantile", dist_quantile},
+                             {"sample", dist_sample}, {"mean", dist_mean}, {"std", dist_std},
+                             {"support", dist_support}, {nullptr, nullptr}};
+const luaL_Reg kMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
+
+}  // namespace
+
+void push_distribution(lua_State* L, DistributionPtr d) { lua::push_box<Ptr>(L, kDistType, std::move(d)); }
+
+DistributionPtr test_distribution(lua_State* L, int idx) {
+  Ptr* p = lua::test_box<Ptr>(L, idx, kDistType);
+  return p ? *p : nullptr;
+}
+
+DistributionPtr to_distribution(lua_State* L, int idx, const char* what) {
+  if (Ptr* p = lua::test_box<Ptr>(L, idx, kDistType)) return *p;
+  luaL_error(L, "%s must be a distribution (smi.dist), got %s", what, luaL_typename(L, idx));
+  return nullptr;
+}
+
+void register_distribution_type(lua_State* L) { lua::register_type<Ptr>(L, kDistType, kMethods, kMeta, dist_field); }
+
+}  // namespace smi::bind
