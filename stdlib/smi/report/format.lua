@@ -1,0 +1,71 @@
+--- smi.report.format: numbers as people read them in tables and on charts.
+local M = {}
+
+local floor, abs = math.floor, math.abs
+
+--- `x` with `digits` significant digits (default 4), trailing zeros dropped; integers
+-- (Lua integers, or floats that are whole and below 1e15 when `digits` covers them) as integers;
+-- scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf".
+function M.num(x, digits)
+  digits = digits or 4
+  if type(x) ~= "number" then return tostring(x) end
+  if x ~= x then return "NaN" end
+  if x == math.huge then return "inf" end
+  if x == -math.huge then return "-inf" end
+  if math.type(x) == "integer" then return ("%d"):format(x) end
+  if x == 0 then return "0" end
+  local ax = abs(x)
+  local e = floor(math.log(ax, 10))
+  if ax >= 1e6 or ax < 1e-3 then
+    local s = ("%." .. (digits - 1) .. "e"):format(x)
+    local mant, exp = s:match("^(.-)e(.*)$")
+    if mant:find("%.") then mant = mant:gsub("0+$", ""):gsub("%.$", "") end
+    return mant .. "e" .. tonumber(exp)
+  end
+  local dec = math.max(0, digits - 1 - e)
+  local s = ("%." .. dec .. "f"):format(x)
+  if s:find("%.") then s = s:gsub("0+$", ""):gsub("%.$", "") end
+  if s == "-0" then s = "0" end
+  return s
+end
+
+--- A formatter for a table column: one number of decimals for the whole column, so that the
+-- decimal points line up, chosen to give the largest magnitude `digits` significant digits.
+-- Columns spanning below 1e-3 or from 1e6 on, or over more than a factor 100, fall back to
+-- M.num for each value.
+function M.column(values, digits)
+  digits = digits or 4
+  local big, small, all_int = 0, math.huge, true
+  for _, x in ipairs(values) do
+    if type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge then
+      local ax = abs(x)
+      if ax > big then big = ax end
+      if ax > 0 and ax < small then small = ax end
+      if math.type(x) ~= "integer" then all_int = false end
+    end
+  end
+  if all_int then return function(x) return M.num(x, digits) end end
+  -- columns mixing magnitudes (rows in different units) read better value by value
+  if big >= 1e6 or (small < 1e-3 and small ~= math.huge) or big == 0 or big / small > 100 then
+    return function(x) return M.num(x, digits) end
+  end
+  local dec = math.max(0, digits - 1 - floor(math.log(big, 10)))
+  -- the smallest value keeps at least two significant digits
+  dec = math.max(dec, math.min(6, 1 - floor(math.log(small, 10))))
+  local pattern = "%." .. dec .. "f"
+  return function(x)
+    if type(x) ~= "number" or x ~= x or x == math.huge or x == -math.huge then return M.num(x, digits) end
+    local s = pattern:format(x)
+    if s:match("^%-0%.?0*$") then s = s:sub(2) end
+    return s
+  end
+end
+
+--- A duration in seconds as "0.8 ms", "0.42 s", "31.2 s", "2 min 05 s".
+function M.seconds(t)
+  if t < 0.1 then return ("%.1f ms"):format(t * 1000) end
+  if t < 60 then return ("%.2f s"):format(t) end
+  return ("%d min %02d s"):format(floor(t / 60), floor(t % 60))
+end
+
+return M

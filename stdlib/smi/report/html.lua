@@ -1,0 +1,192 @@
+--- smi.report.html: turns a report's content (built by smi.report) into one self-contained
+-- HTML page: inline CSS and SVG, no script, no network. The markup is also well-formed XML
+-- (every element closed, every attribute quoted), so tests can check it with a plain parser.
+local xml = require "smi.report.xml"
+local fmt = require "smi.report.format"
+local style = require "smi.report.style"
+
+local M = {}
+local esc = xml.escape
+
+local STATUS_TEXT = { pass = "PASS", fail = "FAIL", warn = "WARNING", info = "INFO" }
+
+function M.badge(status)
+  return ('<span class="badge %s">%s</span>'):format(status, STATUS_TEXT[status])
+end
+
+-- Paragraphs: blank lines separate them; text is escaped (no markup from callers).
+local function paragraphs(s)
+  local out = {}
+  s = tostring(s):gsub("\r\n", "\n")
+  for para in (s .. "\n\n"):gmatch("(.-)\n%s*\n") do
+    if para:match("%S") then out[#out + 1] = "<p>" .. esc(para) .. "</p>" end
+  end
+  return table.concat(out, "\n")
+end
+
+local function cell_html(v, col, default_digits)
+  if type(v) == "table" and v.status then
+    return ('<td>%s%s</td>'):format(M.badge(v.status), esc(v.text or ""))
+  end
+  if type(v) == "number" then
+    local s
+    if type(col.format) == "function" then s = col.format(v)
+    elseif type(col.format) == "string" then s = col.format:format(v)
+    elseif col.formatter then s = col.formatter(v)
+    else s = fmt.num(v, col.digits or default_digits) end
+    return ('<td class="num">%s</td>'):format(esc(s))
+  end
+  if type(v) == "boolean" then return ("<td>%s</td>"):format(v and "yes" or "no") end
+  if v == nil then return "<td></td>" end
+  return ("<td>%s</td>"):format(esc(v))
+end
+
+local function table_html(t)
+  local out = { '<table class="data" id="' .. esc(t.id) .. '">' }
+  out[#out + 1] = ("<caption><b>Table %d.</b> %s</caption>"):format(t.number, esc(t.caption or ""))
+  local head = {}
+  for j, col in ipairs(t.columns) do
+    local numeric = false
+    for _, row in ipairs(t.rows) do
+      local v = row[j] ~= nil and row[j] or (col.key and row[col.key])
+      if type(v) == "number" then numeric = true break end
+    end
+    col.numeric = numeric
+    if numeric and not col.format and col.align_decimals ~= false then
+      local values = {}
+      for _, row in ipairs(t.rows) do
+        local v = row[j]
+        if v == nil and col.key then v = row[col.key] end
+        values[#values + 1] = v
+      end
+      col.formatter = fmt.column(values, col.digits or t.digits)
+    end
+    head[#head + 1] = ("<th%s>%s</th>"):format(numeric and ' class="num"' or "", esc(col.title))
+  end
+  out[#out + 1] = "<thead><tr>" .. table.concat(head) .. "</tr></thead><tbody>"
+  for _, row in ipairs(t.rows) do
+    local cells = {}
+    for j, col in ipairs(t.columns) do
+      local v = row[j]
+      if v == nil and col.key then v = row[col.key] end
+      cells[#cells + 1] = cell_html(v, col, t.digits)
+    end
+    out[#out + 1] = "<tr>" .. table.concat(cells) .. "</tr>"
+  end
+  out[#out + 1] = "</tbody></table>"
+  return table.concat(out, "\n")
+end
+
+local function verdict_html(v)
+  local out = { ('<div class="verdict %s" id="%s">'):format(v.status, esc(v.id)) }
+  out[#out + 1] = M.badge(v.status) .. '<span class="name">' .. esc(v.name) .. "</span>"
+  if v.detail then out[#out + 1] = '<div class="detail">' .. esc(v.detail) .. "</div>" end
+  out[#out + 1] = "</div>"
+  return table.concat(out)
+end
+
+local function figure_html(f)
+  return ('<figure id="%s"><div class="chart">%s</div><figcaption><b>Figure %d.</b> %s</figcaption></figure>')
+    :format(esc(f.id), f.svg, f.number, esc(f.caption or ""))
+end
+
+local function item_html(it)
+  if it.kind == "section" then
+    local tag = it.level == 1 and "h2" or "h3"
+    return ('<%s id="%s"><span class="num">%s</span>%s</%s>'):format(tag, esc(it.id), esc(it.number), esc(it.title), tag)
+  elseif it.kind == "text" then return paragraphs(it.text)
+  elseif it.kind == "table" then return table_html(it)
+  elseif it.kind == "figure" then return figure_html(it)
+  elseif it.kind == "figrow" then
+    local parts = {}
+    for _, f in ipairs(it.figures) do parts[#parts + 1] = figure_html(f) end
+    return '<div class="figrow">' .. table.concat(parts) .. "</div>"
+  elseif it.kind == "verdict" then return verdict_html(it)
+  elseif it.kind == "callout" then
+    return ('<div class="callout %s">%s<span>%s</span></div>'):format(it.status, M.badge(it.status), esc(it.text))
+  end
+  error("smi.report.html: unknown item kind " .. tostring(it.kind))
+end
+
+local function toc_html(items)
+  -- two levels: sections, and their subsections (a subsection before any section is a section)
+  local top = {}
+  for _, it in ipairs(items) do
+    if it.kind == "section" then
+      if it.level == 1 or #top == 0 then top[#top + 1] = { it = it, subs = {} }
+      else table.insert(top[#top].subs, it) end
+    end
+  end
+  local function link(it) return ('<a href="#%s">%s</a>'):format(esc(it.id), esc(it.title)) end
+  local out = { '<nav class="toc"><h2>Contents</h2><ol>' }
+  for _, e in ipairs(top) do
+    local subs = ""
+    if #e.subs > 0 then
+      local li = {}
+      for i, sub in ipairs(e.subs) do li[i] = "<li>" .. link(sub) .. "</li>" end
+      subs = "<ol>" .. table.concat(li) .. "</ol>"
+    end
+    out[#out + 1] = "<li>" .. link(e.it) .. subs .. "</li>"
+  end
+  out[#out + 1] = '<li><a href="#provenance">Provenance</a></li></ol></nav>'
+  return table.concat(out, "\n")
+end
+
+local function summary_html(items)
+  local out = {}
+  for _, it in ipairs(items) do
+    if it.kind == "verdict" then
+      out[#out + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge(it.status), esc(it.id), esc(it.name))
+    end
+  end
+  if #out == 0 then return "" end
+  return '<section class="summary"><h2>Verdicts</h2><ul>' .. table.concat(out) .. "</ul></section>"
+end
+
+-- Provenance: ordered groups of key/value pairs; nested tables are flattened "a.b".
+local function prov_html(groups)
+  local out = { '<h2 id="provenance">Provenance</h2>' }
+  if #groups == 0 then
+    out[#out + 1] = "<p>No provenance was recorded.</p>"
+    return table.concat(out)
+  end
+  out[#out + 1] = '<dl class="prov">'
+  for _, kv in ipairs(groups) do
+    local v = kv[2]
+    if type(v) == "number" then v = fmt.num(v, 17) end
+    out[#out + 1] = ("<dt>%s</dt><dd>%s</dd>"):format(esc(kv[1]), esc(v))
+  end
+  out[#out + 1] = "</dl>"
+  return table.concat(out)
+end
+
+--- The page for `doc` = {title, subtitle, meta = {lines}, items = {...}, provenance = {{key, value}}}.
+function M.render(doc)
+  local out = {
+    "<!DOCTYPE html>",
+    '<html lang="en" xmlns="http://www.w3.org/1999/xhtml">',
+    '<head><meta charset="utf-8"/><meta name="viewport" content="width=device-width, initial-scale=1"/>',
+    "<title>" .. esc(doc.title) .. "</title>",
+    "<style>" .. style .. "</style></head>",
+    "<body>",
+    '<header class="title-block"><h1>' .. esc(doc.title) .. "</h1>",
+  }
+  if doc.subtitle then out[#out + 1] = '<p class="subtitle">' .. esc(doc.subtitle) .. "</p>" end
+  if doc.meta and #doc.meta > 0 then
+    local m = {}
+    for i, s in ipairs(doc.meta) do m[i] = esc(s) end
+    out[#out + 1] = '<p class="meta">' .. table.concat(m, " · ") .. "</p>"
+  end
+  out[#out + 1] = "</header>"
+  out[#out + 1] = summary_html(doc.items)
+  out[#out + 1] = toc_html(doc.items)
+  out[#out + 1] = "<main>"
+  for _, it in ipairs(doc.items) do out[#out + 1] = item_html(it) end
+  out[#out + 1] = "</main>"
+  out[#out + 1] = prov_html(doc.provenance or {})
+  out[#out + 1] = "<footer>" .. esc(doc.footer or "Generated by smi-lua. Self-contained: no scripts, no network resources.") .. "</footer>"
+  out[#out + 1] = "</body></html>\n"
+  return table.concat(out, "\n")
+end
+
+return M

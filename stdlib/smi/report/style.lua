@@ -1,0 +1,71 @@
+--- smi.report.style: the report's CSS, inlined in the page so the file stands alone (no network).
+return [[
+:root { --ink: #1f2933; --muted: #52606d; --line: #d9dee4; --accent: #0b4f8a; --bg: #f5f7fa;
+        --pass: #1b7f3b; --pass-bg: #e3f4e8; --fail: #b42318; --fail-bg: #fde8e6;
+        --warn: #8a5a00; --warn-bg: #fff4d6; --info: #3e4c59; --info-bg: #eef1f4; }
+* { box-sizing: border-box; }
+html { background: var(--bg); }
+body { margin: 0 auto; max-width: 1000px; padding: 0 28px 40px; background: #ffffff; color: var(--ink);
+       font: 15px/1.55 "DejaVu Sans", "Liberation Sans", Helvetica, Arial, sans-serif;
+       box-shadow: 0 0 0 1px var(--line); min-height: 100vh; }
+header.title-block { margin: 0 -28px 24px; padding: 28px 28px 20px; background: var(--accent); color: #ffffff; }
+header.title-block h1 { margin: 0 0 6px; font-size: 26px; line-height: 1.25; font-weight: 700; }
+header.title-block .subtitle { margin: 0 0 10px; font-size: 16px; color: #d6e4f0; }
+header.title-block .meta { margin: 0; font-size: 13px; color: #b9cde0; }
+h2 { font-size: 20px; margin: 34px 0 10px; padding-bottom: 4px; border-bottom: 2px solid var(--line); }
+h3 { font-size: 16px; margin: 24px 0 8px; color: var(--accent); }
+h2 .num, h3 .num { color: var(--muted); font-weight: 400; margin-right: 6px; }
+p { margin: 8px 0; }
+a { color: var(--accent); text-decoration: none; }
+a:hover { text-decoration: underline; }
+.summary { border: 1px solid var(--line); border-radius: 6px; padding: 12px 16px; margin: 0 0 18px; background: #fbfcfd; }
+.summary h2 { margin: 0 0 8px; border: 0; font-size: 17px; }
+.summary ul { list-style: none; margin: 0; padding: 0; }
+.summary li { padding: 4px 0; border-top: 1px solid #edf0f3; }
+.summary li:first-child { border-top: 0; }
+nav.toc { border-left: 3px solid var(--accent); padding: 4px 14px; margin: 0 0 10px; font-size: 14px; }
+nav.toc h2 { margin: 0 0 4px; border: 0; font-size: 15px; }
+nav.toc ol { margin: 0; padding-left: 20px; }
+nav.toc ol ol { padding-left: 18px; }
+.badge { display: inline-block; min-width: 52px; padding: 1px 8px; border-radius: 10px; font-size: 12px; font-weight: 700;
+         text-align: center; letter-spacing: 0.04em; margin-right: 8px; vertical-align: 1px; }
+.badge.pass { background: var(--pass-bg); color: var(--pass); border: 1px solid var(--pass); }
+.badge.fail { background: var(--fail-bg); color: var(--fail); border: 1px solid var(--fail); }
+.badge.warn { background: var(--warn-bg); color: var(--warn); border: 1px solid var(--warn); }
+.badge.info { background: var(--info-bg); color: var(--info); border: 1px solid var(--info); }
+.verdict { border: 1px solid var(--line); border-left-width: 5px; border-radius: 4px; padding: 8px 12px; margin: 12px 0; }
+.verdict.pass { border-left-color: var(--pass); }
+.verdict.fail { border-left-color: var(--fail); background: #fffafa; }
+.verdict.warn { border-left-color: var(--warn); }
+.verdict.info { border-left-color: var(--info); }
+.verdict .name { font-weight: 700; }
+.verdict .detail { color: var(--muted); font-size: 14px; margin-top: 2px; }
+.callout { border-radius: 4px; padding: 8px 12px; margin: 12px 0; font-size: 14px; }
+.callout.warn { background: var(--warn-bg); color: var(--warn); }
+.callout.info { background: var(--info-bg); color: var(--info); }
+.callout.fail { background: var(--fail-bg); color: var(--fail); }
+table.data { border-collapse: collapse; margin: 12px 0 18px; font-size: 13.5px; min-width: 50%; }
+table.data caption { caption-side: top; text-align: left; color: var(--muted); font-size: 13px; padding-bottom: 6px; }
+table.data th { text-align: left; background: #eef2f6; border-bottom: 2px solid #c5ced8; padding: 5px 10px; font-weight: 600; }
+table.data td { border-bottom: 1px solid #e6eaee; padding: 4px 10px; }
+table.data tr:nth-child(even) td { background: #fafbfc; }
+table.data .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+table.data th.num { text-align: right; }
+figure { margin: 16px 0 22px; }
+figure .chart { border: 1px solid var(--line); border-radius: 4px; padding: 6px; display: inline-block; max-width: 100%; background: #ffffff; }
+figure svg { display: block; max-width: 100%; height: auto; }
+figcaption { color: var(--muted); font-size: 13.5px; margin-top: 6px; max-width: 700px; }
+.figrow { display: flex; flex-wrap: wrap; gap: 12px; }
+.figrow figure { flex: 1 1 440px; margin: 8px 0; }
+dl.prov { display: grid; grid-template-columns: max-content 1fr; gap: 4px 18px; font-size: 13.5px; margin: 8px 0; }
+dl.prov dt { color: var(--muted); font-weight: 600; }
+dl.prov dd { margin: 0; font-family: "DejaVu Sans Mono", monospace; font-size: 12.5px; word-break: break-all; }
+footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line); color: var(--muted); font-size: 12px; }
+@media print {
+  html { background: #ffffff; }
+  body { box-shadow: none; max-width: none; }
+  header.title-block { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  figure, table.data, .verdict { break-inside: avoid; }
+  h2, h3 { break-after: avoid; }
+}
+]]

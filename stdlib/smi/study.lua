@@ -1,0 +1,287 @@
+--- smi.study: a study as named steps that run in order, are timed, report progress, and save
+-- their results to results.json, so that any step can be re-run alone later.
+--
+--   local study = require "smi.study"
+--   local s = study.new{name = "beam", out = smi.out_dir, report = {title = "Beam study"}}
+--   s:step("data", function(ctx) return {n = 9, mean = 12.5} end)
+--   s:step("fit", function(ctx)
+--     local d = ctx.results.data             -- a previous step's results (this run or results.json)
+--     ctx:log("fitting %d points", d.n)      -- a progress line on stderr (unless quiet)
+--     ctx.report:section("Fit")              -- when the study has a report
+--     return {slope = 0.3}                   -- this step's results (or ctx:set("slope", 0.3))
+--   end)
+--   s:run()                                  -- all steps; writes results.json (+ report.html)
+--   s:run{only = "fit"}                      -- "data" comes from the saved results.json
+--   s:run(study.parse_args(arg))             -- --only NAME[,NAME] --from NAME --quiet
+--
+-- results.json: {study=, seed=, order={...}, steps={name={status=, seconds=, result={...}}}}.
+-- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
+-- same run, are left out of the file, and are listed under the step's "not_saved".
+local json = require "smi.report.json"
+local fmt = require "smi.report.format"
+
+local M = {}
+
+local Study = {}
+Study.__index = Study
+
+local function now()
+  -- wall time when the host offers it (a solver's child processes use no CPU time of ours)
+  if type(smi) == "table" and type(smi.now) == "function" then return smi.now(), "wall" end
+  return os.clock(), "cpu"
+end
+
+--- opts: name (required), out (folder for results.json/report.html; default smi.out_dir or "."),
+-- results (path of results.json, default <out>/results.json), quiet, seed (recorded; default
+-- smi.seed), report ({title=, subtitle=, ...}: creates ctx.report, written at the end of run).
+function M.new(opts)
+  if type(opts) ~= "table" or type(opts.name) ~= "string" or opts.name == "" then
+    error("smi.study.new: expects {name = \"...\", out = folder}; 'name' is missing", 2)
+  end
+  local out = opts.out or (type(smi) == "table" and smi.out_dir) or "."
+  out = tostring(out):gsub("/+$", "")
+  if out == "" then out = "/" end
+  local s = setmetatable({
+    name = opts.name, out = out, steps = {}, by_name = {},
+    results_path = opts.results or (out .. "/results.json"),
+    quiet = opts.quiet, seed = opts.seed or (type(smi) == "table" and smi.seed) or nil,
+    report_opts = opts.report,
+  }, Study)
+  return s
+end
+
+--- Adds a step: s:step(name, fn) or s:step(name, {description = ...}, fn). fn(ctx) returns a
+-- table of results (or nil, using ctx:set).
+function Study:step(name, opts, fn)
+  if fn == nil then opts, fn = {}, opts end
+  if type(name) ~= "string" or name == "" then error("study:step: the step name must be a non-empty string", 2) end
+  if type(fn) ~= "function" then error(("study:step '%s': expects a function(ctx)"):format(name), 2) end
+  if self.by_name[name] then error(("study:step: a step named '%s' already exists (step names must be unique)"):format(name), 2) end
+  local st = { name = name, fn = fn, opts = opts or {}, index = #self.steps + 1 }
+  self.steps[#self.steps + 1] = st
+  self.by_name[name] = st
+  return self
+end
+
+function Study:_quiet()
+  if self.quiet ~= nil then return self.quiet end
+  return type(smi) == "table" and smi.quiet == true
+end
+
+function Study:_say(fmt_, ...)
+  if self:_quiet() then return end
+  io.stderr:write(("[%s] " .. fmt_ .. "\n"):format(self.name, ...))
+  io.stderr:flush()
+end
+
+--- The saved results.json as a table, or nil and the reason.
+function Study:load()
+  local f, err = io.open(self.results_path, "rb")
+  if not f then return nil, "cannot read " .. self.results_path .. ": " .. tostring(err) end
+  local text = f:read("a")
+  f:close()
+  local ok, data = pcall(json.lua_decode, text)
+  if not ok then error(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data), 0) end
+  if type(data) ~= "table" or type(data.steps) ~= "table" then
+    error(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path), 0)
+  end
+  return data
+end
+
+function Study:_save(saved)
+  local text = json.lua_encode(saved, { indent = "  ", root = "results" })
+  local f, err = io.open(self.results_path, "wb")
+  if not f then
+    error(("study '%s': cannot write %s: %s (does the folder exist and is it under --out?)"):format(self.name, self.results_path, tostring(err)), 0)
+  end
+  f:write(text, "\n")
+  f:close()
+end
+
+-- Which steps to run, from run{only=..., from=...}.
+function Study:_selection(opts)
+  local selected = {}
+  local function need(name, what)
+    if not self.by_name[name] then
+      local names = {}
+      for i, st in ipairs(self.steps) do names[i] = st.name end
+      error(("study '%s': %s names an unknown step '%s' (steps: %s)"):format(self.name, what, tostring(name), table.concat(names, ", ")), 0)
+    end
+    return self.by_name[name]
+  end
+  if opts.only ~= nil and opts.from ~= nil then error(("study '%s': give 'only' or 'from', not both"):format(self.name), 0) end
+  if opts.only ~= nil then
+    local list = type(opts.only) == "table" and opts.only or { opts.only }
+    for _, n in ipairs(list) do selected[need(n, "only").name] = true end
+  elseif opts.from ~= nil then
+    local first = need(opts.from, "from").index
+    for i = first, #self.steps do selected[self.steps[i].name] = true end
+  else
+    for _, st in ipairs(self.steps) do selected[st.name] = true end
+  end
+  return selected
+end
+
+--- Runs the steps (all, or opts.only = name | {names}, or opts.from = name) and returns the
+-- results by step name. Steps not run keep their saved results; results.json is rewritten
+-- after every step, so a failure keeps what was done.
+function Study:run(opts)
+  opts = opts or {}
+  if opts.quiet ~= nil then self.quiet = opts.quiet end
+  if #self.steps == 0 then error(("study '%s': no steps; add some with study:step(name, fn)"):format(self.name), 2) end
+  local selected = self:_selection(opts)
+  local partial = false
+  for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
+
+  local saved = { study = self.name, seed = self.seed, order = {}, steps = {} }
+  if partial then
+    local old, why = self:load()
+    if old then saved.steps = old.steps else self.load_problem = why end
+  end
+  for i, st in ipairs(self.steps) do saved.order[i] = st.name end
+
+  local live = {} -- results of this run, with values JSON cannot hold
+  local study = self
+  local results = setmetatable({}, {
+    __index = function(_, name)
+      if live[name] ~= nil then return live[name] end
+      local s = saved.steps[name]
+      if s and s.status == "ok" and s.result ~= nil then return s.result end
+      local why = not study.by_name[name] and "there is no such step"
+        or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
+        or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
+      error(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why), 2)
+    end,
+    __newindex = function() error("study: ctx.results is read-only; return a table from the step instead", 2) end,
+  })
+
+  if self.report_opts then -- a fresh report for every run
+    local report = require "smi.report"
+    local ro = {}
+    for k, v in pairs(self.report_opts) do ro[k] = v end
+    ro.title = ro.title or self.name
+    ro.out = ro.out or self.out
+    self.report = report.new(ro)
+  end
+
+  local nsel, k = 0, 0
+  for _, st in ipairs(self.steps) do if selected[st.name] then nsel = nsel + 1 end end
+  local t_start = now()
+  self.timings = {}
+  for _, st in ipairs(self.steps) do
+    if selected[st.name] then
+      k = k + 1
+      self:_say("step %d/%d %s ...", k, nsel, st.name)
+      local ctx = {
+        name = st.name, study = self, results = results, out = self.out, seed = self.seed,
+        report = self.report, result = {},
+      }
+      function ctx.log(c, fmt_, ...)
+        if c ~= ctx then return ctx:log(c, fmt_, ...) end -- allow ctx.log("...") too
+        if not study:_quiet() then
+          io.stderr:write(("[%s]   %s: %s\n"):format(study.name, st.name, fmt_:format(...)))
+          io.stderr:flush()
+        end
+      end
+      function ctx.set(c, key, value) c.result[key] = value end
+      local t0, clock = now()
+      local trace
+      local ok, ret = xpcall(st.fn, function(e)
+        trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e)
+        return e
+      end, ctx)
+      local dt = now() - t0
+      if ok then
+        if ret ~= nil and type(ret) ~= "table" then
+          ok, ret = false, ("step returned a %s; return a table of results (or nil and use ctx:set)"):format(type(ret))
+        end
+      end
+      if not ok then
+        saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace }
+        self.timings[#self.timings + 1] = { st.name, "failed", dt }
+        pcall(self._save, self, saved)
+        self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
+        error(("study '%s': step '%s' failed: %s"):format(self.name, st.name, tostring(ret)), 0)
+      end
+      local result = ctx.result
+      for key, v in pairs(ret or {}) do result[key] = v end
+      live[st.name] = result
+      -- keep only what JSON can hold in the file
+      local skipped = {}
+      local text = json.lua_encode(result, { skip = true, skipped = skipped, root = st.name })
+      saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.lua_decode(text),
+                               not_saved = #skipped > 0 and skipped or nil }
+      self.timings[#self.timings + 1] = { st.name, "ok", dt }
+      self:_save(saved)
+      self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
+        #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+    end
+  end
+  local total = now() - t_start
+  self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
+  for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
+  if self.report then self:_finish_report(partial, selected, total) end
+
+  local out = {}
+  for _, st in ipairs(self.steps) do
+    local ok, v = pcall(function() return results[st.name] end)
+    if ok then out[st.name] = v end
+  end
+  return out
+end
+
+-- Appends the step timings and the provenance, then writes report.html next to results.json
+-- (report-partial.html after a run of only some steps).
+function Study:_finish_report(partial, selected, total)
+  local r = self.report
+  if partial then
+    local names = {}
+    for _, st in ipairs(self.steps) do if selected[st.name] then names[#names + 1] = st.name end end
+    r:callout("Partial run: only " .. table.concat(names, ", ") .. "; the other steps' results were read from " .. self.results_path .. ".", "info")
+  end
+  r:section("Study steps")
+  local rows = {}
+  for _, t in ipairs(self.timings) do rows[#rows + 1] = { t[1], { status = t[2] == "ok" and "pass" or "fail" }, t[3] } end
+  r:table{ caption = ("Steps run, %s in total."):format(fmt.seconds(total)), columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
+  r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
+  -- a partial run must not overwrite the full report
+  self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
+  self:_say("report: %s", self.report_path)
+  -- the verdicts are the study's answer, not progress: printed on stdout even when quiet
+  for _, it in ipairs(r.items) do
+    if it.kind == "verdict" then
+      io.stdout:write(("%-7s %s%s\n"):format(it.status:upper(), it.name, it.detail and (": " .. it.detail) or ""))
+    end
+  end
+end
+
+--- Splits command-line arguments: --only NAME[,NAME...] (repeatable), --from NAME, --quiet;
+-- everything else is kept, in order, in .rest (for the study's own options).
+function M.parse_args(argv)
+  local o, rest = {}, {}
+  local i = 1
+  argv = argv or {}
+  while i <= #argv do
+    local a = argv[i]
+    if a == "--only" or a == "--from" then
+      local v = argv[i + 1]
+      if not v or v:sub(1, 2) == "--" then error(("study: %s needs a step name"):format(a), 0) end
+      if a == "--from" then o.from = v else
+        o.only = o.only or {}
+        for name in v:gmatch("[^,]+") do o.only[#o.only + 1] = name end
+      end
+      i = i + 2
+    elseif a == "--quiet" then
+      o.quiet = true
+      i = i + 1
+    else
+      rest[#rest + 1] = a
+      i = i + 1
+    end
+  end
+  o.rest = rest
+  return o
+end
+
+if type(smi) == "table" and smi.study == nil then smi.study = M end
+return M
