@@ -1,8 +1,19 @@
-// Entry point of the improve binding area (see modules.hpp).
+// Entry point of the improve binding area (see modules.hpp): smi.calibrate and smi.refine.
+#include "improve/calibrate.hpp"
+#include "improve/decision_matrix_binding.hpp"
 #include "modules.hpp"
 
 namespace smi::bind {
 
-void open_improve(lua_State* /*L*/) {}
+void open_improve(lua_State* L) {
+  // stack: [smi]
+  lua_pushcfunction(L, improve::calibrate);
+  lua_setfield(L, -2, "calibrate");
+  improve::register_decision_meta(L);
+  lua_newtable(L);
+  lua_pushcfunction(L, improve::decision_matrix);
+  lua_setfield(L, -2, "decision_matrix");
+  lua_setfield(L, -2, "refine");
+}
 
 }  // namespace smi::bind

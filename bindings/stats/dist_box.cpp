@@ -1,7 +1,11 @@
 // smi.dist: the common Lua object of every distribution and density estimate.
 #include "stats/dist_box.hpp"
 
+#include <cmath>
+
 #include "luax/luax.hpp"
+#include "stats/ecdf.hpp"
+#include "stats/kde.hpp"
 
 namespace smi::bind {
 namespace {
@@ -59,6 +63,39 @@ int dist_support(lua_State* L) {
   lua_pushnumber(L, s.second);
   return 2;
 }
+/// d:curve([n = 401]) -> {x =, pdf =, cdf =}: plot series over the bulk of the distribution
+/// (a KDE: data range ± 4h; otherwise the 1e-4 and 1 − 1e-4 quantiles, or finite support ends).
+/// An ECDF gives its steps {x =, cdf =} instead.
+int dist_curve(lua_State* L) {
+  const Distribution& d = self(L);
+  const lua_Integer n = luaL_optinteger(L, 2, 401);
+  luaL_argcheck(L, n >= 2 && n <= 10000000, 2, "number of points must be in 2..1e7");
+  return lua::protect(L, "dist:curve", [&] {
+    if (const auto* e = dynamic_cast<const Ecdf*>(&d)) {
+      Eigen::VectorXd x, y;
+      e->steps(x, y);
+      lua_createtable(L, 0, 2);
+      lua::set_vec(L, "x", x);
+      lua::set_vec(L, "cdf", y);
+      return 1;
+    }
+    double lo, hi;
+    if (const auto* k = dynamic_cast<const Kde*>(&d)) {
+      lo = k->data()[0] - 4 * k->bandwidth();
+      hi = k->data()[k->data().size() - 1] + 4 * k->bandwidth();
+    } else {
+      const auto s = d.support();
+      lo = std::isfinite(s.first) ? s.first : d.quantile(1e-4);
+      hi = std::isfinite(s.second) ? s.second : d.quantile(1 - 1e-4);
+    }
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(static_cast<Eigen::Index>(n), lo, hi);
+    lua_createtable(L, 0, 3);
+    lua::set_vec(L, "x", x);
+    lua::set_vec(L, "pdf", d.pdf(x));
+    lua::set_vec(L, "cdf", d.cdf(x));
+    return 1;
+  });
+}
 int dist_tostring(lua_State* L) {
   const std::string s = self(L).describe();
   lua_pushlstring(L, s.data(), s.size());
@@ -81,7 +118,7 @@ int dist_field(lua_State* L) {
 
 const luaL_Reg kMethods[] = {{"pdf", dist_pdf},   {"cdf", dist_cdf}, {"quantile", dist_quantile},
                              {"sample", dist_sample}, {"mean", dist_mean}, {"std", dist_std},
-                             {"support", dist_support}, {nullptr, nullptr}};
+                             {"support", dist_support}, {"curve", dist_curve}, {nullptr, nullptr}};
 const luaL_Reg kMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
 
 }  // namespace

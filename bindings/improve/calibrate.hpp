@@ -1,0 +1,34 @@
+#pragma once
+// smi.calibrate{...}: running a calibration described by a CalibrateSpec and pushing its result.
+#include <lua.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "improve/bootstrap.hpp"
+#include "improve/bounded_optimizer.hpp"
+#include "improve/calibrate_spec.hpp"
+#include "improve/identifiability.hpp"
+#include "improve/statistical_objective.hpp"
+
+namespace smi::bind::improve {
+
+struct CalibrationOutcome {
+  smi::improve::OptimizationResult opt;
+  std::vector<std::string> part_names;  ///< labels of Evaluation::parts (responses)
+  std::optional<smi::improve::IdentifiabilityResult> ident;
+  std::optional<smi::improve::BootstrapResult> boot;
+  std::optional<smi::improve::StatisticalObjective> stat;
+  std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included
+};
+
+/// Runs optimisation and diagnostics. Calls back into Lua through the spec's slots.
+CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s);
+/// Pushes the result table. Stack: [] -> [result].
+void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out);
+
+/// The Lua function smi.calibrate.
+int calibrate(lua_State* L);
+
+}  // namespace smi::bind::improve

@@ -1,0 +1,421 @@
+#include "improve/calibrate_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "improve/lua_values.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "stats/dist_box.hpp"
+
+namespace smi::bind::improve {
+
+using namespace smi::improve;
+
+namespace {
+
+/// A string field value at the top of the stack, or `def` for nil.
+std::string read_string(lua_State* L, const std::string& what, const char* def) {
+  if (lua_isnil(L, -1)) return def;
+  if (lua_type(L, -1) != LUA_TSTRING) throw InvalidArgument(fmt::format("{} must be a string, got {}", what, luaL_typename(L, -1)));
+  return lua_tostring(L, -1);
+}
+
+/// t[key] or t[pos] (positional fallback); pushes the value. Stack: [] -> [v].
+int field_or_index(lua_State* L, int t, const char* key, int pos) {
+  if (lua_getfield(L, t, key) != LUA_TNIL) return lua_type(L, -1);
+  lua_pop(L, 1);
+  return lua_rawgeti(L, t, pos);
+}
+
+/// A {lower, upper, start} range (named or positional) at the top of the stack -> a parameter.
+Parameter read_range(lua_State* L, const std::string& name, const std::string& where) {
+  const int t = lua_absindex(L, -1);
+  Parameter p;
+  p.name = name;
+  field_or_index(L, t, "lower", 1);
+  p.lower = read_number(L, -1, where + ".lower");
+  lua_pop(L, 1);
+  field_or_index(L, t, "upper", 2);
+  p.upper = read_number(L, -1, where + ".upper");
+  lua_pop(L, 1);
+  if (field_or_index(L, t, "start", 3) == LUA_TNIL)
+    p.start = 0.5 * (p.lower + p.upper);
+  else
+    p.start = read_number(L, -1, where + ".start");
+  lua_pop(L, 1);
+  return p;
+}
+
+void read_parameters(lua_State* L, int spec, CalibrateSpec& s) {
+  if (lua_getfield(L, spec, "parameters") != LUA_TTABLE)
+    throw InvalidArgument("parameters must be a list of {name = ..., lower = ..., upper = ..., start = ...}");
+  const int t = lua_absindex(L, -1);
+  const auto n = static_cast<int>(lua_rawlen(L, t));
+  if (n == 0) throw InvalidArgument("parameters is empty: give at least one {name, lower, upper, start}");
+  for (int i = 1; i <= n; ++i) {
+    lua_rawgeti(L, t, i);
+    const std::string where = fmt::format("parameters[{}]", i);
+    if (!lua_istable(L, -1)) throw InvalidArgument(where + " must be a table {name = ..., lower = ..., upper = ..., start = ...}");
+    const int e = lua_absindex(L, -1);
+    if (field_or_index(L, e, "name", 1) != LUA_TSTRING) throw InvalidArgument(where + ".name (or [1]) must be a string");
+    const std::string name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    // Named fields, or {lower, upper, start} positionally after the name.
+    if (lua_getfield(L, e, "lower") == LUA_TNIL) {
+      lua_pop(L, 1);
+      lua_createtable(L, 3, 0);
+      for (int k = 0; k < 3; ++k) {
+        lua_rawgeti(L, e, k + 2);
+        lua_rawseti(L, -2, k + 1);
+      }
+    } else {
+      lua_pop(L, 1);
+      lua_pushvalue(L, e);
+    }
+    s.params.push_back(read_range(L, name, where));
+    lua_pop(L, 2);
+  }
+  lua_pop(L, 1);
+}
+
+/// mean/std of an input: a number (fixed) or a range (calibrated, named "<input>.<moment>").
+void read_moment(lua_State* L, int in, const char* key, const std::string& input, double& fixed, int& param, CalibrateSpec& s) {
+  const std::string where = fmt::format("inputs.{}.{}", input, key);
+  const int t = lua_getfield(L, in, key);
+  if (t == LUA_TNUMBER) {
+    fixed = lua_tonumber(L, -1);
+  } else if (t == LUA_TTABLE) {
+    param = static_cast<int>(s.params.size());
+    s.params.push_back(read_range(L, input + "." + key, where));
+  } else {
+    throw InvalidArgument(fmt::format("{} must be a number (fixed) or {{lower, upper, start}} (calibrated), got {}", where,
+                                      lua_typename(L, t)));
+  }
+  lua_pop(L, 1);
+}
+
+void read_inputs(lua_State* L, int spec, CalibrateSpec& s) {
+  if (lua_getfield(L, spec, "inputs") != LUA_TTABLE)
+    throw InvalidArgument("inputs must be a table {name = {dist = \"normal\", mean = ..., std = ...}, ...}");
+  const int t = lua_absindex(L, -1);
+  // Column order: a list of {name = ...} keeps its order; a name-keyed table is sorted by name,
+  // unless `order` lists the names.
+  std::vector<std::string> names;
+  const bool list = lua_rawlen(L, t) > 0;
+  if (list) {
+    for (int i = 1; i <= static_cast<int>(lua_rawlen(L, t)); ++i) {
+      lua_rawgeti(L, t, i);
+      if (!lua_istable(L, -1) || lua_getfield(L, -1, "name") != LUA_TSTRING)
+        throw InvalidArgument(fmt::format("inputs[{}] must be a table with a string name", i));
+      names.emplace_back(lua_tostring(L, -1));
+      lua_pop(L, 2);
+    }
+  } else if (lua_getfield(L, spec, "order") == LUA_TTABLE) {
+    names = lua::to_strings(L, -1, "order");
+    lua_pop(L, 1);
+  } else {
+    lua_pop(L, 1);
+    // A model object that knows its input order (a surrogate) fixes the columns; else by name.
+    names = s.model_input_order.empty() ? sorted_keys(L, t) : s.model_input_order;
+  }
+  if (!list) {
+    const auto keys = sorted_keys(L, t);
+    auto sorted_names = names;
+    std::sort(sorted_names.begin(), sorted_names.end());
+    if (keys != sorted_names) {
+      std::string k, n;
+      for (const auto& x : keys) k += (k.empty() ? "" : ", ") + x;
+      for (const auto& x : names) n += (n.empty() ? "" : ", ") + x;
+      throw InvalidArgument(fmt::format("inputs ({}) and the column order ({}) name different inputs: describe every model input once",
+                                        k, n));
+    }
+  }
+  if (names.empty()) throw InvalidArgument("inputs is empty: describe at least one input");
+  if (!s.model_input_order.empty() && names != s.model_input_order) {
+    std::string a, b;
+    for (const auto& x : names) a += (a.empty() ? "" : ", ") + x;
+    for (const auto& x : s.model_input_order) b += (b.empty() ? "" : ", ") + x;
+    throw InvalidArgument(fmt::format("the inputs are given in the order ({}) but the model takes ({}): follow the model's order", a, b));
+  }
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    if (list)
+      lua_rawgeti(L, t, static_cast<lua_Integer>(i + 1));
+    else if (lua_getfield(L, t, name.c_str()) != LUA_TTABLE)
+      throw InvalidArgument(fmt::format("inputs.{} must be a table {{dist = ..., mean = ..., std = ...}} (is it listed in order?)", name));
+    const int in = lua_absindex(L, -1);
+    InputSpec spec_in;
+    spec_in.name = name;
+    lua_getfield(L, in, "dist");
+    spec_in.family = parse_family(read_string(L, fmt::format("inputs.{}.dist", name), "normal"), fmt::format("inputs.{}.dist", name));
+    lua_pop(L, 1);
+    if (spec_in.family == InputFamily::constant) {
+      if (lua_getfield(L, in, "value") == LUA_TNUMBER) {
+        spec_in.mean = lua_tonumber(L, -1);
+        lua_pop(L, 1);
+      } else {
+        lua_pop(L, 1);
+        read_moment(L, in, "mean", name, spec_in.mean, spec_in.mean_param, s);
+      }
+    } else {
+      read_moment(L, in, "mean", name, spec_in.mean, spec_in.mean_param, s);
+      read_moment(L, in, "std", name, spec_in.std, spec_in.std_param, s);
+    }
+    s.inputs.push_back(spec_in);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  lua_createtable(L, static_cast<int>(names.size()), 0);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    lua_pushstring(L, names[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  s.input_names_slot = lua_gettop(L);  // stays on the stack for the model calls
+}
+
+void read_data(lua_State* L, int spec, CalibrateSpec& s) {
+  if (lua_getfield(L, spec, "data") != LUA_TTABLE)
+    throw InvalidArgument("data must be a table {response = vec of experimental data, ...}");
+  s.data_slot = lua_gettop(L);  // stays on the stack (the custom metric receives it)
+  const auto names = sorted_keys(L, s.data_slot);
+  if (names.empty()) throw InvalidArgument("data is empty: give {response = vec, ...}");
+  for (const std::string& r : names) {
+    ResponseSpec rs;
+    rs.name = r;
+    lua_getfield(L, s.data_slot, r.c_str());
+    if (auto d = test_distribution(L, -1))
+      rs.f_exp = d;  // an experimental PDF (KDE-ebd, ...) instead of raw data
+    else
+      rs.data = read_vector(L, -1, "data." + r);
+    lua_pop(L, 1);
+    s.responses.push_back(std::move(rs));
+  }
+}
+
+/// {input = {lower, upper}, ...} at d.
+void read_design_table(lua_State* L, int d, CalibrateSpec& s, const std::string& what) {
+  for (const std::string& name : sorted_keys(L, d)) {
+    lua_getfield(L, d, name.c_str());
+    if (!lua_istable(L, -1)) throw InvalidArgument(fmt::format("{}.{} must be {{lower, upper}}", what, name));
+    lua_rawgeti(L, -1, 1);
+    lua_rawgeti(L, -2, 2);
+    s.design.push_back({name, read_number(L, -2, what + "." + name + "[1]"), read_number(L, -1, what + "." + name + "[2]")});
+    lua_pop(L, 3);
+  }
+}
+
+/// For an object model at `self` (table or userdata with :evaluate): pushes its evaluate method
+/// and records a part; reads its input order (model.input_names or model.inputs: a list, or a
+/// method returning one) and design ranges (model.design_bounds) when it has them.
+void read_model_object(lua_State* L, int self, const std::string& output, bool explicit_design, CalibrateSpec& s) {
+  const std::string who = output.empty() ? std::string("model") : "model." + output;
+  if (lua_getfield(L, self, "evaluate") != LUA_TFUNCTION)
+    throw InvalidArgument(fmt::format("{} has no evaluate method: give a function(X, names) or an object with m:evaluate(X)", who));
+  s.model_parts.push_back({output, lua_gettop(L), self});
+  std::vector<std::string> order;
+  for (const char* key : {"input_names", "inputs"}) {
+    if (lua_getfield(L, self, key) == LUA_TFUNCTION) {
+      lua_pushvalue(L, self);
+      lua_call(L, 1, 1);
+    }
+    if (lua_istable(L, -1) && lua_rawlen(L, -1) > 0 && order.empty()) order = lua::to_strings(L, -1, (who + "." + key).c_str());
+    lua_pop(L, 1);
+  }
+  if (!order.empty()) {
+    if (!s.model_input_order.empty() && s.model_input_order != order)
+      throw InvalidArgument(fmt::format("{} takes its inputs in another order than the other parts of the model", who));
+    s.model_input_order = order;
+  }
+  if (!explicit_design) {
+    if (lua_getfield(L, self, "design_bounds") == LUA_TFUNCTION) {
+      lua_pushvalue(L, self);
+      lua_call(L, 1, 1);
+    }
+    if (lua_istable(L, -1)) read_design_table(L, lua_gettop(L), s, who + ":design_bounds()");
+    lua_pop(L, 1);
+  }
+}
+
+void read_model(lua_State* L, int spec, CalibrateSpec& s) {
+  lua_getfield(L, spec, "design_bounds");
+  const bool explicit_design = !lua_isnil(L, -1);
+  lua_pop(L, 1);
+  const int t = lua_getfield(L, spec, "model");
+  const int slot = lua_gettop(L);
+  if (t == LUA_TFUNCTION) {
+    s.model_parts.push_back({"", slot, 0});
+    return;
+  }
+  bool has_evaluate = t == LUA_TUSERDATA;
+  if (t == LUA_TTABLE) {
+    has_evaluate = lua_getfield(L, slot, "evaluate") != LUA_TNIL;
+    lua_pop(L, 1);
+  }
+  if (has_evaluate) {
+    read_model_object(L, slot, "", explicit_design, s);
+    return;
+  }
+  if (t == LUA_TTABLE) {  // {response = model object, ...}: one model per response
+    const auto keys = sorted_keys(L, slot);
+    if (keys.empty()) throw InvalidArgument("model is an empty table: give a function, an object with :evaluate, or {response = model}");
+    for (const auto& k : keys) {
+      lua_getfield(L, slot, k.c_str());
+      const int part = lua_gettop(L);
+      if (lua_type(L, part) != LUA_TTABLE && lua_type(L, part) != LUA_TUSERDATA)
+        throw InvalidArgument(fmt::format("model.{} must be an object with :evaluate (a surrogate), got {}", k, luaL_typename(L, part)));
+      read_model_object(L, part, k, explicit_design, s);
+    }
+    return;
+  }
+  throw InvalidArgument(fmt::format("model must be a function(X, names), an object with m:evaluate(X) or {{response = model}}, got {}",
+                                    lua_typename(L, t)));
+}
+
+void read_design(lua_State* L, int spec, CalibrateSpec& s) {
+  const int t = lua_getfield(L, spec, "design_bounds");
+  if (t == LUA_TTABLE) read_design_table(L, lua_gettop(L), s, "design_bounds");
+  else if (t != LUA_TNIL) throw InvalidArgument("design_bounds must be a table {input = {lower, upper}, ...}");
+  lua_pop(L, 1);
+}
+
+void read_grid(lua_State* L, int spec, CalibrateSpec& s) {
+  if (lua_getfield(L, spec, "grid") == LUA_TTABLE) {
+    const int g = lua_absindex(L, -1);
+    auto read_one = [&](int idx, const std::string& where) {
+      lua_rawgeti(L, idx, 1);
+      lua_rawgeti(L, idx, 2);
+      lua_rawgeti(L, idx, 3);
+      Grid grid{read_number(L, -3, where + "[1] (lower)"), read_number(L, -2, where + "[2] (upper)"),
+                lua_isnil(L, -1) ? s.stat.grid_nodes : static_cast<Eigen::Index>(read_number(L, -1, where + "[3] (nodes)"))};
+      lua_pop(L, 3);
+      grid.validate();
+      return grid;
+    };
+    if (lua_rawlen(L, g) > 0) {
+      const Grid one = read_one(g, "grid");
+      for (auto& r : s.responses) r.grid = one;
+    } else {
+      for (auto& r : s.responses)
+        if (lua_getfield(L, g, r.name.c_str()) == LUA_TTABLE) {
+          r.grid = read_one(lua_absindex(L, -1), "grid." + r.name);
+          lua_pop(L, 1);
+        } else {
+          lua_pop(L, 1);
+        }
+    }
+  }
+  lua_pop(L, 1);
+}
+
+}  // namespace
+
+CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  lua::Options o(L, idx, "smi.calibrate");
+  o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
+                 "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress"});
+  CalibrateSpec s;
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  s.optimizer.method = parse_method(o.string("method", "slsqp"));
+  s.optimizer.multistart = static_cast<int>(o.integer("multistart", 1));
+  s.optimizer.maxeval = static_cast<int>(o.integer("maxeval", 500));
+  s.optimizer.xtol_rel = o.number("xtol_rel", 1e-6);
+  s.optimizer.ftol_abs = o.number("ftol_abs", 1e-8);
+  s.optimizer.fd_step = o.number("fd_step", 1e-4);
+  s.optimizer.initial_step = o.number("initial_step", 0.1);
+  s.optimizer.seed = seed;
+
+  const bool has_objective = o.has("objective"), has_model = o.has("model");
+  if (has_objective == has_model)
+    throw InvalidArgument("give either objective = function(theta) ... end with parameters, or model with inputs and data");
+  if (has_objective) {
+    if (o.has("inputs") || o.has("data") || o.has("metric"))
+      throw InvalidArgument("inputs/data/metric belong to the model form; with objective = ... give parameters only");
+    read_parameters(L, idx, s);
+    if (lua_getfield(L, idx, "objective") != LUA_TFUNCTION) throw InvalidArgument("objective must be a function(theta) returning a number");
+    s.objective_slot = lua_gettop(L);
+  } else {
+    if (o.has("parameters"))
+      throw InvalidArgument("with a model, the calibrated parameters are the input ranges: give mean/std as {lower, upper, start}");
+    s.statistical = true;
+    s.stat.n = static_cast<Eigen::Index>(o.integer("n", 2000));
+    s.stat.seed = seed;
+    const std::string crn = o.string("crn", "random");
+    if (crn == "random") s.stat.crn = CrnKind::random;
+    else if (crn == "quantiles") s.stat.crn = CrnKind::quantiles;
+    else throw InvalidArgument(fmt::format("crn must be \"random\" or \"quantiles\", got \"{}\"", crn));
+    s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", 4001));
+    s.stat.bandwidth = o.string("bandwidth", "silverman");
+    s.stat.threads = static_cast<int>(o.integer("threads", 1));
+    read_model(L, idx, s);
+    read_inputs(L, idx, s);
+    read_data(L, idx, s);
+    read_grid(L, idx, s);
+    read_design(L, idx, s);
+    const int mt = lua_getfield(L, idx, "metric");
+    if (mt == LUA_TFUNCTION) {
+      s.stat.metric = MetricKind::custom;
+      s.metric_slot = lua_gettop(L);
+    } else {
+      s.stat.metric = parse_metric(read_string(L, "metric", "pr"));
+      lua_pop(L, 1);
+    }
+    for (const auto& r : s.responses)
+      if (!r.f_exp_from_data && r.f_exp && r.data.size() == 0 && s.stat.metric == MetricKind::loglik)
+        throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));
+  }
+
+  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =};
+  // bootstrap = replicates | {replicates =, level =, seed =}.
+  const int it = lua_getfield(L, idx, "identifiability");
+  if (it == LUA_TBOOLEAN) {
+    s.identifiability = lua_toboolean(L, -1);
+  } else if (it == LUA_TTABLE) {
+    lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
+    io.check_known({"points", "rel_tol", "abs_tol"});
+    s.ident.points = static_cast<int>(io.integer("points", 11));
+    s.ident.rel_tol = io.number("rel_tol", 0.01);
+    s.ident.abs_tol = io.number("abs_tol", 0.0);
+  } else if (it != LUA_TNIL) {
+    throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =}");
+  }
+  // PR is unit-free (range [0, 2] per response): a change below 1e-3 over a whole range is noise.
+  if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = 1e-3;
+  lua_pop(L, 1);
+  const int bt = lua_getfield(L, idx, "bootstrap");
+  if (bt == LUA_TNUMBER || bt == LUA_TTABLE) {
+    BootstrapOptions b;
+    b.seed = seed;
+    if (bt == LUA_TNUMBER) {
+      if (!lua_isinteger(L, -1)) throw InvalidArgument("bootstrap must be an integer number of replicates");
+      b.replicates = static_cast<int>(lua_tointeger(L, -1));
+    } else {
+      lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
+      bo.check_known({"replicates", "level", "seed", "maxeval"});
+      b.replicates = static_cast<int>(bo.integer("replicates", 100));
+      b.level = bo.number("level", 0.95);
+      b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
+      b.optimizer = s.optimizer;
+      b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
+    }
+    if (!s.statistical) throw InvalidArgument("bootstrap needs experimental data: use the model form (model, inputs, data)");
+    if (bt == LUA_TNUMBER) b.optimizer = s.optimizer;
+    s.bootstrap = b;
+  } else if (bt != LUA_TNIL && !(bt == LUA_TBOOLEAN && !lua_toboolean(L, -1))) {
+    throw InvalidArgument("bootstrap must be a number of replicates or {replicates =, level =, seed =}");
+  }
+  lua_pop(L, 1);
+  const int pt = lua_getfield(L, idx, "progress");
+  if (pt == LUA_TFUNCTION) s.progress_slot = lua_gettop(L);
+  else if (pt == LUA_TNIL) lua_pop(L, 1);
+  else throw InvalidArgument("progress must be a function(row) called after each optimiser step");
+  validate_parameters(s.params);
+  return s;
+}
+
+}  // namespace smi::bind::improve

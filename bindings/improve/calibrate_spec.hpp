@@ -1,0 +1,50 @@
+#pragma once
+// Reading the table given to smi.calibrate{...} into kernel structures. Runs before any
+// optimisation, inside protect(): errors name the field ("inputs.k.mean: ...") and the fix.
+// Lua values the calibration calls back (objective, model, metric) are pushed onto the stack
+// and their absolute slots recorded, so the callbacks never look anything up by name.
+#include <lua.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "improve/bootstrap.hpp"
+#include "improve/bounded_optimizer.hpp"
+#include "improve/design_bounds.hpp"
+#include "improve/identifiability.hpp"
+#include "improve/lua_callbacks.hpp"
+#include "improve/statistical_objective.hpp"
+
+namespace smi::bind::improve {
+
+struct CalibrateSpec {
+  smi::improve::OptimizerOptions optimizer;
+  std::vector<smi::improve::Parameter> params;
+  bool statistical = false;
+
+  // Objective form.
+  int objective_slot = 0;
+
+  // Statistical form.
+  std::vector<smi::improve::InputSpec> inputs;
+  std::vector<smi::improve::ResponseSpec> responses;
+  smi::improve::StatisticalOptions stat;
+  std::vector<ModelPart> model_parts;  ///< one part, or one per output for {output = model, ...}
+  int input_names_slot = 0;   ///< {input names} in column order (second argument of a model function)
+  std::vector<std::string> model_input_order;  ///< from model.input_names, when the model object has one
+  int data_slot = 0;          ///< the data table as given
+  int metric_slot = 0;        ///< a Lua metric function, 0 for "pr"/"loglik"
+  int progress_slot = 0;      ///< progress(row) called after each optimiser step (not probes), or 0
+  std::vector<smi::improve::DesignRange> design;
+
+  // Diagnostics.
+  bool identifiability = true;
+  smi::improve::IdentifiabilityOptions ident;
+  std::optional<smi::improve::BootstrapOptions> bootstrap;
+};
+
+/// Reads the spec table at `idx`; pushes the callback values (see slots above).
+CalibrateSpec read_calibrate_spec(lua_State* L, int idx);
+
+}  // namespace smi::bind::improve

@@ -1,0 +1,189 @@
+// The result table of smi.calibrate: everything a report needs, keyed by parameter and response
+// name. Stack effects are noted per helper.
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "improve/calibrate.hpp"
+#include "luax/luax.hpp"
+#include "stats/dist_box.hpp"
+#include "stats/families.hpp"
+
+namespace smi::bind::improve {
+
+using namespace smi::improve;
+
+namespace {
+
+/// Stack: [] -> [{name = v[i]}].
+void push_named(lua_State* L, const std::vector<std::string>& names, const Eigen::VectorXd& v) {
+  lua_createtable(L, 0, static_cast<int>(names.size()));
+  for (std::size_t i = 0; i < names.size() && static_cast<Eigen::Index>(i) < v.size(); ++i) {
+    lua_pushnumber(L, v[static_cast<Eigen::Index>(i)]);
+    lua_setfield(L, -2, names[i].c_str());
+  }
+}
+
+/// Stack: [] -> [{s1, s2, ...}].
+void push_strings(lua_State* L, const std::vector<std::string>& v) {
+  lua_createtable(L, static_cast<int>(v.size()), 0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    lua_pushstring(L, v[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+/// The calibrated distribution of an input, or null when it has none (constant, zero std).
+DistributionPtr make_distribution(InputFamily fam, double mean, double std) {
+  if (!(std > 0.0)) return nullptr;
+  switch (fam) {
+    case InputFamily::normal: return std::make_shared<Normal>(mean, std);
+    case InputFamily::lognormal: return std::make_shared<LogNormal>(LogNormal::from_moments(mean, std));
+    case InputFamily::uniform: return std::make_shared<Uniform>(Uniform::from_moments(mean, std));
+    case InputFamily::constant: return nullptr;
+  }
+  return nullptr;
+}
+
+/// result.inputs, result.distributions, result.grids, n/seed. Stack: [res] -> [res].
+void push_statistical(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
+  const StatisticalObjective& obj = *out.stat;
+  const auto m = obj.input_moments(out.opt.theta);
+  lua_createtable(L, 0, static_cast<int>(s.inputs.size()));  // inputs
+  lua_createtable(L, 0, static_cast<int>(s.inputs.size()));  // distributions
+  for (std::size_t j = 0; j < s.inputs.size(); ++j) {
+    const InputSpec& in = s.inputs[j];
+    lua_createtable(L, 0, 4);
+    lua::set_string(L, "dist", family_name(in.family));
+    lua::set_number(L, "mean", m[j].first);
+    lua::set_number(L, "std", m[j].second);
+    lua::set_boolean(L, "calibrated", in.mean_param >= 0 || in.std_param >= 0);
+    lua_setfield(L, -3, in.name.c_str());
+    if (DistributionPtr d = make_distribution(in.family, m[j].first, m[j].second)) {
+      push_distribution(L, std::move(d));
+      lua_setfield(L, -2, in.name.c_str());
+    }
+  }
+  lua_setfield(L, -3, "distributions");
+  lua_setfield(L, -2, "inputs");
+  lua_createtable(L, 0, static_cast<int>(obj.responses().size()));
+  for (const ResponseSpec& r : obj.responses()) {
+    if (!r.grid) continue;
+    lua_createtable(L, 3, 0);
+    lua_pushnumber(L, r.grid->lo);
+    lua_rawseti(L, -2, 1);
+    lua_pushnumber(L, r.grid->hi);
+    lua_rawseti(L, -2, 2);
+    lua_pushinteger(L, static_cast<lua_Integer>(r.grid->n));
+    lua_rawseti(L, -2, 3);
+    lua_setfield(L, -2, r.name.c_str());
+  }
+  lua_setfield(L, -2, "grids");
+  lua::set_integer(L, "model_runs", obj.model_runs());
+  lua::set_integer(L, "n", static_cast<lua_Integer>(s.stat.n));
+  lua::set_integer(L, "seed", static_cast<lua_Integer>(s.stat.seed));
+  lua::set_string(L, "metric", s.metric_slot ? "custom" : (s.stat.metric == MetricKind::pr ? "pr" : "loglik"));
+}
+
+/// result.history: one row per evaluation. Stack: [res] -> [res].
+void push_history(lua_State* L, const std::vector<std::string>& names, const std::vector<std::string>& parts,
+                  const std::vector<HistoryEntry>& h) {
+  lua_createtable(L, static_cast<int>(h.size()), 0);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    lua_createtable(L, 0, 5);
+    push_named(L, names, h[i].theta);
+    lua_setfield(L, -2, "params");
+    lua::set_number(L, "objective", h[i].value);
+    push_named(L, parts, h[i].parts);
+    lua_setfield(L, -2, "metrics");
+    lua::set_integer(L, "start", h[i].start + 1);
+    lua::set_boolean(L, "probe", h[i].probe);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "history");
+}
+
+}  // namespace
+
+void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
+  std::vector<std::string> names;
+  for (const auto& p : s.params) names.push_back(p.name);
+  const OptimizationResult& r = out.opt;
+  lua_createtable(L, 0, 24);
+  push_named(L, names, r.theta);
+  lua_setfield(L, -2, "params");
+  push_strings(L, names);
+  lua_setfield(L, -2, "names");
+  lua::set_vec(L, "theta", r.theta);
+  lua::set_number(L, "objective", r.value);
+  push_named(L, out.part_names, r.parts);
+  lua_setfield(L, -2, "metrics");
+  lua::set_integer(L, "evaluations", r.evaluations);
+  lua::set_boolean(L, "converged", r.converged);
+  lua::set_string(L, "status", r.status);
+  lua::set_string(L, "method", method_name(s.optimizer.method));
+  push_strings(L, out.warnings);
+  lua_setfield(L, -2, "warnings");
+  push_strings(L, r.at_bounds);
+  lua_setfield(L, -2, "at_bounds");
+  push_history(L, names, out.part_names, r.history);
+
+  lua_createtable(L, static_cast<int>(r.starts.size()), 0);
+  for (std::size_t i = 0; i < r.starts.size(); ++i) {
+    const StartResult& st = r.starts[i];
+    lua_createtable(L, 0, 6);
+    push_named(L, names, st.start);
+    lua_setfield(L, -2, "start");
+    push_named(L, names, st.theta);
+    lua_setfield(L, -2, "params");
+    lua::set_number(L, "objective", st.value);
+    lua::set_integer(L, "evaluations", st.evaluations);
+    lua::set_string(L, "status", st.status);
+    lua::set_boolean(L, "converged", st.converged);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "starts");
+
+  if (out.ident) {
+    const IdentifiabilityResult& id = *out.ident;
+    lua_createtable(L, 0, 4);
+    push_named(L, names, id.span);
+    lua_setfield(L, -2, "span");
+    std::vector<std::string> weak;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (id.weak[i]) weak.push_back(names[i]);
+    push_strings(L, weak);
+    lua_setfield(L, -2, "weak");
+    lua_createtable(L, 0, static_cast<int>(names.size()));
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      lua_createtable(L, 0, 2);
+      lua::set_vec(L, "nodes", id.nodes.row(static_cast<Eigen::Index>(i)).transpose());
+      lua::set_vec(L, "values", id.profiles.row(static_cast<Eigen::Index>(i)).transpose());
+      lua_setfield(L, -2, names[i].c_str());
+    }
+    lua_setfield(L, -2, "profiles");
+    lua::set_integer(L, "evaluations", id.evaluations);
+    lua_setfield(L, -2, "identifiability");
+  }
+  if (out.boot) {
+    const BootstrapResult& b = *out.boot;
+    lua_createtable(L, 0, 8);
+    push_named(L, names, b.lower);
+    lua_setfield(L, -2, "lower");
+    push_named(L, names, b.upper);
+    lua_setfield(L, -2, "upper");
+    push_named(L, names, b.stddev);
+    lua_setfield(L, -2, "std");
+    lua::set_number(L, "level", s.bootstrap->level);
+    lua::set_integer(L, "replicates", static_cast<lua_Integer>(b.thetas.rows()));
+    lua::set_integer(L, "failed", b.failed);
+    lua::set_boolean(L, "paired", b.paired);
+    lua::set_integer(L, "evaluations", b.evaluations);
+    lua::push_mat(L, b.thetas);
+    lua_setfield(L, -2, "samples");
+    lua_setfield(L, -2, "bootstrap");
+  }
+  if (out.stat) push_statistical(L, s, out);
+}
+
+}  // namespace smi::bind::improve

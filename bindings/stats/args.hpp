@@ -1,0 +1,18 @@
+#pragma once
+// Small argument helpers shared by the stats bindings.
+#include <Eigen/Core>
+#include <lua.hpp>
+#include <string>
+
+#include "luax/luax.hpp"
+
+namespace smi::bind::stats {
+
+/// A required numeric field of an options table; raises a Lua error naming it and the call.
+double required_number(const lua::Options& o, const char* key, const char* fname);
+/// The data argument at idx (vec or table), checked finite (naming the index) and non-empty.
+Eigen::VectorXd data_arg(lua_State* L, int idx, const char* fname, Eigen::Index min_size = 1);
+/// Pushes {x = vec, pdf = vec, cdf = vec} (pdf omitted when has_pdf is false).
+void push_curve(lua_State* L, const Eigen::VectorXd& x, const Eigen::VectorXd* pdf, const Eigen::VectorXd* cdf);
+
+}  // namespace smi::bind::stats

@@ -1,0 +1,297 @@
+// smi.metric: area, pr, intersection, loglik, upool, upool_threshold, upool_pvalue, and the
+// verdict object.
+#include <fmt/format.h>
+
+#include "luax/luax.hpp"
+#include "stats/args.hpp"
+#include "stats/dist_box.hpp"
+#include "stats/kde.hpp"
+#include "stats/metrics.hpp"
+#include "stats/open_parts.hpp"
+#include "stats/upool.hpp"
+
+namespace smi::bind::stats {
+namespace {
+
+constexpr const char* kVerdictType = "smi.verdict";
+
+/// A distribution argument, or a sample (vec/table) turned into its normal-reference KDE.
+DistributionPtr dist_or_kde(lua_State* L, int idx, const char* fname, const char* what) {
+  if (auto d = test_distribution(L, idx)) return d;
+  const Eigen::VectorXd x = data_arg(L, idx, fname, 2);
+  DistributionPtr out;
+  lua::protect(L, fname, [&] {
+    out = make_kde(x, std::string("silverman"));
+    return 0;
+  });
+  (void)what;
+  return out;
+}
+
+/// Optional grid {lower =, upper =, nodes =} in an options table at idx.
+std::optional<Grid> grid_option(lua_State* L, int idx, const char* fname) {
+  lua::Options o(L, idx, fname);
+  o.check_known({"grid", "nodes"});
+  if (o.push("grid") == LUA_TTABLE) {
+    lua::Options g(L, lua_gettop(L), fname);
+    g.check_known({"lower", "upper", "nodes"});
+    Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", 4001))};
+    lua_pop(L, 1);
+    return gr;
+  }
+  lua_pop(L, 1);
+  if (o.has("nodes")) return Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", 4001))};  // range filled later
+  return std::nullopt;
+}
+
+Grid resolve_grid(const std::optional<Grid>& g, const Distribution& a, const Distribution& b) {
+  if (g && g->hi > g->lo) {
+    g->validate();
+    return *g;
+  }
+  return comparison_grid(a, b, g ? g->n : 4001);
+}
+
+/// smi.metric.pr(a, b [, {grid = {lower=, upper=, nodes=}} | {nodes = n}]) -> PR in [0, 2]
+int m_pr(lua_State* L) {
+  const auto a = dist_or_kde(L, 1, "smi.metric.pr", "a");
+  const auto b = dist_or_kde(L, 2, "smi.metric.pr", "b");
+  const auto g = grid_option(L, 3, "smi.metric.pr");
+  return lua::protect(L, "smi.metric.pr", [&] {
+    lua_pushnumber(L, pr(*a, *b, resolve_grid(g, *a, *b)));
+    return 1;
+  });
+}
+
+/// smi.metric.intersection(a, b [, grid options]) -> ∫ min(f_a, f_b)
+int m_intersection(lua_State* L) {
+  const auto a = dist_or_kde(L, 1, "smi.metric.intersection", "a");
+  const auto b = dist_or_kde(L, 2, "smi.metric.intersection", "b");
+  const auto g = grid_option(L, 3, "smi.metric.intersection");
+  return lua::protect(L, "smi.metric.intersection", [&] {
+    lua_pushnumber(L, intersection_area(*a, *b, resolve_grid(g, *a, *b)));
+    return 1;
+  });
+}
+
+/// smi.metric.area(a, b): a, b each a sample (vec/table) or a distribution.
+int m_area(lua_State* L) {
+  const auto da = test_distribution(L, 1), db = test_distribution(L, 2);
+  Eigen::VectorXd xa, xb;
+  if (!da) xa = data_arg(L, 1, "smi.metric.area");
+  if (!db) xb = data_arg(L, 2, "smi.metric.area");
+  return lua::protect(L, "smi.metric.area", [&] {
+    double v;
+    if (!da && !db) v = area_metric_samples(xa, xb);
+    else if (!da) v = area_metric(xa, *db);
+    else if (!db) v = area_metric(xb, *da);
+    else v = area_metric(*da, *db);
+    lua_pushnumber(L, v);
+    return 1;
+  });
+}
+
+/// smi.metric.loglik(data, dist [, {floor = 1e-300}]) -> log L, number of floored densities
+int m_loglik(lua_State* L) {
+  const Eigen::VectorXd x = data_arg(L, 1, "smi.metric.loglik");
+  const auto d = to_distribution(L, 2, "smi.metric.loglik: argument 2");
+  lua::Options o(L, 3, "smi.metric.loglik");
+  o.check_known({"floor"});
+  return lua::protect(L, "smi.metric.loglik", [&] {
+    int floored = 0;
+    lua_pushnumber(L, loglik(x, *d, o.number("floor", 1e-300), &floored));
+    lua_pushinteger(L, floored);
+    return 2;
+  });
+}
+
+UpoolMcSettings mc_settings(const lua::Options& o) {
+  UpoolMcSettings s;
+  s.replications = o.integer("replications", s.replications);
+  if (o.has("seed")) s.seed = static_cast<std::uint64_t>(o.integer("seed", 0));
+  return s;
+}
+
+double check_confidence_arg(lua_State* L, int idx, const char* fname) {
+  if (lua_isnoneornil(L, idx)) return 0.95;
+  const double c = luaL_checknumber(L, idx);
+  if (!(c > 0.0 && c < 1.0)) luaL_error(L, "%s: confidence must be in (0, 1), e.g. 0.95; got %f", fname, c);
+  return c;
+}
+
+/// smi.metric.upool_threshold(n, confidence [, {replications =, seed =}]) -> U_crit
+int m_threshold(lua_State* L) {
+  const lua_Integer n = luaL_checkinteger(L, 1);
+  if (n < 1) return luaL_error(L, "smi.metric.upool_threshold: n must be >= 1 (the number of u-values), got %d", static_cast<int>(n));
+  const double c = check_confidence_arg(L, 2, "smi.metric.upool_threshold");
+  lua::Options o(L, 3, "smi.metric.upool_threshold");
+  o.check_known({"replications", "seed"});
+  return lua::protect(L, "smi.metric.upool_threshold", [&] {
+    lua_pushnumber(L, upool_threshold(static_cast<int>(n), c, mc_settings(o)));
+    return 1;
+  });
+}
+
+/// smi.metric.upool_pvalue(n, U [, {replications =, seed =}]) -> P_H0(U' >= U)
+int m_pvalue(lua_State* L) {
+  const lua_Integer n = luaL_checkinteger(L, 1);
+  const double u = luaL_checknumber(L, 2);
+  lua::Options o(L, 3, "smi.metric.upool_pvalue");
+  o.check_known({"replications", "seed"});
+  return lua::protect(L, "smi.metric.upool_pvalue", [&] {
+    lua_pushnumber(L, upool_pvalue(static_cast<int>(n), u, mc_settings(o)));
+    return 1;
+  });
+}
+
+/// smi.metric.upool_statistic(u) -> U
+int m_statistic(lua_State* L) {
+  const Eigen::VectorXd u = data_arg(L, 1, "smi.metric.upool_statistic");
+  return lua::protect(L, "smi.metric.upool_statistic", [&] {
+    lua_pushnumber(L, upool_statistic(u));
+    return 1;
+  });
+}
+
+void push_verdict(lua_State* L, const UpoolVerdict& v) {
+  lua_createtable(L, 0, 8);
+  lua::set_number(L, "metric", v.metric);
+  lua::set_number(L, "threshold", v.threshold);
+  lua::set_number(L, "p", v.p);
+  lua::set_boolean(L, "pass", v.pass);
+  lua::set_number(L, "confidence", v.confidence);
+  lua::set_integer(L, "n", v.n);
+  lua::set_vec(L, "u", v.u);
+  lua::set_string(L, "text", v.describe());
+  luaL_setmetatable(L, kVerdictType);
+}
+
+/// Reads a verdict table back (for __tostring and curve).
+UpoolVerdict read_verdict(lua_State* L, int idx) {
+  luaL_checktype(L, idx, LUA_TTABLE);
+  UpoolVerdict v;
+  lua_getfield(L, idx, "metric"), v.metric = lua_tonumber(L, -1), lua_pop(L, 1);
+  lua_getfield(L, idx, "threshold"), v.threshold = lua_tonumber(L, -1), lua_pop(L, 1);
+  lua_getfield(L, idx, "p"), v.p = lua_tonumber(L, -1), lua_pop(L, 1);
+  lua_getfield(L, idx, "pass"), v.pass = lua_toboolean(L, -1), lua_pop(L, 1);
+  lua_getfield(L, idx, "confidence"), v.confidence = lua_tonumber(L, -1), lua_pop(L, 1);
+  lua_getfield(L, idx, "n"), v.n = static_cast<int>(lua_tointeger(L, -1)), lua_pop(L, 1);
+  lua_getfield(L, idx, "u");
+  v.u = lua::to_vector(L, lua_gettop(L), "verdict.u");
+  lua_pop(L, 1);
+  return v;
+}
+
+int verdict_tostring(lua_State* L) {
+  const UpoolVerdict v = read_verdict(L, 1);
+  const std::string s = v.describe();
+  lua_pushlstring(L, s.data(), s.size());
+  return 1;
+}
+
+/// v:curve() -> {x =, y = (ECDF of u as steps), diagonal = {x = {0,1}, y = {0,1}}, threshold =}
+int verdict_curve(lua_State* L) {
+  const UpoolVerdict v = read_verdict(L, 1);
+  Eigen::VectorXd x, y;
+  upool_curve(v, x, y);
+  lua_createtable(L, 0, 4);
+  lua::set_vec(L, "x", x);
+  lua::set_vec(L, "y", y);
+  lua_createtable(L, 0, 2);
+  lua::set_vec(L, "x", Eigen::Vector2d(0, 1));
+  lua::set_vec(L, "y", Eigen::Vector2d(0, 1));
+  lua_setfield(L, -2, "diagonal");
+  lua::set_number(L, "metric", v.metric);
+  lua::set_number(L, "threshold", v.threshold);
+  return 1;
+}
+
+/// Collects data groups and their predicted distributions from the upool options table.
+void read_groups(lua_State* L, int t, std::vector<Eigen::VectorXd>& data, std::vector<DistributionPtr>& pred) {
+  lua_getfield(L, t, "predicted");
+  lua_getfield(L, t, "data");
+  const int ip = lua_absindex(L, -2), id = lua_absindex(L, -1);
+  if (lua_isnil(L, id)) luaL_error(L, "smi.metric.upool: missing field 'data' (observations)");
+  if (lua_isnil(L, ip)) luaL_error(L, "smi.metric.upool: missing field 'predicted' (a distribution, or one per group)");
+  if (auto d = test_distribution(L, ip)) {  // one group under one prediction
+    data.push_back(data_arg(L, id, "smi.metric.upool"));
+    pred.push_back(d);
+  } else {
+    luaL_checktype(L, ip, LUA_TTABLE);
+    const lua_Integer np = static_cast<lua_Integer>(lua_rawlen(L, ip));
+    const bool flat = lua::test_vec(L, id) || (lua_istable(L, id) && lua_rawgeti(L, id, 1) == LUA_TNUMBER);
+    if (lua_istable(L, id) && !lua::test_vec(L, id)) lua_pop(L, 1);
+    if (flat) {  // datum i against predicted[i] (one site per datum)
+      const Eigen::VectorXd x = data_arg(L, id, "smi.metric.upool");
+      if (x.size() != np)
+        luaL_error(L, "smi.metric.upool: data has %d values but predicted has %d distributions: give one per datum, or group the data",
+                   static_cast<int>(x.size()), static_cast<int>(np));
+      for (lua_Integer i = 1; i <= np; ++i) {
+        lua_rawgeti(L, ip, i);
+        data.push_back(Eigen::VectorXd::Constant(1, x[i - 1]));
+        pred.push_back(to_distribution(L, -1, fmt::format("predicted[{}]", i).c_str()));
+        lua_pop(L, 1);
+      }
+    } else {
+      luaL_checktype(L, id, LUA_TTABLE);
+      const lua_Integer nd = static_cast<lua_Integer>(lua_rawlen(L, id));
+      if (nd != np)
+        luaL_error(L, "smi.metric.upool: data has %d groups but predicted has %d: give one predicted distribution per group",
+                   static_cast<int>(nd), static_cast<int>(np));
+      for (lua_Integer i = 1; i <= nd; ++i) {
+        lua_rawgeti(L, id, i);
+        data.push_back(data_arg(L, lua_gettop(L), fmt::format("smi.metric.upool: data[{}]", i).c_str()));
+        lua_pop(L, 1);
+        lua_rawgeti(L, ip, i);
+        pred.push_back(to_distribution(L, -1, fmt::format("predicted[{}]", i).c_str()));
+        lua_pop(L, 1);
+      }
+    }
+  }
+  lua_pop(L, 2);
+}
+
+/// smi.metric.upool{data =, predicted =, confidence = 0.95, replications =, seed =} -> verdict
+int m_upool(lua_State* L) {
+  luaL_checktype(L, 1, LUA_TTABLE);
+  lua::Options o(L, 1, "smi.metric.upool");
+  o.check_known({"data", "predicted", "confidence", "replications", "seed"});
+  lua_getfield(L, 1, "confidence");
+  const double c = check_confidence_arg(L, lua_gettop(L), "smi.metric.upool");
+  lua_pop(L, 1);
+  std::vector<Eigen::VectorXd> data;
+  std::vector<DistributionPtr> pred;
+  read_groups(L, 1, data, pred);
+  return lua::protect(L, "smi.metric.upool", [&] {
+    push_verdict(L, upool(data, pred, c, mc_settings(o)));
+    return 1;
+  });
+}
+
+}  // namespace
+
+void open_metric(lua_State* L) {
+  if (luaL_newmetatable(L, kVerdictType)) {
+    const luaL_Reg meta[] = {{"__tostring", verdict_tostring}, {nullptr, nullptr}};
+    luaL_setfuncs(L, meta, 0);
+    lua_createtable(L, 0, 1);
+    lua_pushcfunction(L, verdict_curve);
+    lua_setfield(L, -2, "curve");
+    lua_setfield(L, -2, "__index");
+  }
+  lua_pop(L, 1);
+  const luaL_Reg fns[] = {{"pr", m_pr},
+                          {"intersection", m_intersection},
+                          {"area", m_area},
+                          {"loglik", m_loglik},
+                          {"upool", m_upool},
+                          {"upool_threshold", m_threshold},
+                          {"upool_pvalue", m_pvalue},
+                          {"upool_statistic", m_statistic},
+                          {nullptr, nullptr}};
+  lua_newtable(L);
+  lua::set_funcs(L, fns);
+  lua_setfield(L, -2, "metric");
+}
+
+}  // namespace smi::bind::stats

@@ -1,0 +1,281 @@
+#include "improve/bounded_optimizer.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <nlopt.hpp>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+
+namespace smi::improve {
+
+Method parse_method(std::string_view name) {
+  if (name == "slsqp" || name == "sqp") return Method::slsqp;
+  if (name == "cobyla") return Method::cobyla;
+  if (name == "bobyqa") return Method::bobyqa;
+  if (name == "neldermead" || name == "nelder-mead" || name == "nelder_mead") return Method::neldermead;
+  throw InvalidArgument(fmt::format("unknown method \"{}\" (use \"slsqp\", \"cobyla\", \"bobyqa\" or \"neldermead\")", name));
+}
+
+std::string method_name(Method m) {
+  switch (m) {
+    case Method::slsqp: return "slsqp";
+    case Method::cobyla: return "cobyla";
+    case Method::bobyqa: return "bobyqa";
+    case Method::neldermead: return "neldermead";
+  }
+  return "?";
+}
+
+void validate_parameters(const std::vector<Parameter>& params) {
+  if (params.empty()) throw InvalidArgument("no parameters to calibrate (give at least one {name, lower, upper, start})");
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    const Parameter& p = params[i];
+    const std::string who = p.name.empty() ? fmt::format("parameter {}", i + 1) : fmt::format("parameter '{}'", p.name);
+    if (p.name.empty()) throw InvalidArgument(fmt::format("{}: needs a name", who));
+    for (std::size_t j = 0; j < i; ++j)
+      if (params[j].name == p.name) throw InvalidArgument(fmt::format("{}: name used twice", who));
+    if (!std::isfinite(p.lower) || !std::isfinite(p.upper) || !(p.lower < p.upper))
+      throw InvalidArgument(fmt::format("{}: need finite lower < upper, got [{}, {}]", who, p.lower, p.upper));
+    if (!std::isfinite(p.start) || p.start < p.lower || p.start > p.upper)
+      throw InvalidArgument(fmt::format("{}: start {} is outside its bounds [{}, {}]", who, p.start, p.lower, p.upper));
+  }
+}
+
+namespace {
+
+nlopt::algorithm to_nlopt(Method m) {
+  switch (m) {
+    case Method::slsqp: return nlopt::LD_SLSQP;
+    case Method::cobyla: return nlopt::LN_COBYLA;
+    case Method::bobyqa: return nlopt::LN_BOBYQA;
+    case Method::neldermead: return nlopt::LN_NELDERMEAD;
+  }
+  return nlopt::LD_SLSQP;
+}
+
+std::string result_name(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS: return "success";
+    case nlopt::STOPVAL_REACHED: return "stopval_reached";
+    case nlopt::FTOL_REACHED: return "ftol_reached";
+    case nlopt::XTOL_REACHED: return "xtol_reached";
+    case nlopt::MAXEVAL_REACHED: return "maxeval_reached";
+    case nlopt::MAXTIME_REACHED: return "maxtime_reached";
+    default: return fmt::format("nlopt_result_{}", static_cast<int>(r));
+  }
+}
+
+/// Raised inside the NLopt callback when the evaluation budget is spent (not an error).
+struct BudgetSpent {};
+
+/// State of one start: maps scaled u ∈ [0,1]^k to θ, evaluates, records, keeps the best point
+/// and the first exception thrown by the objective (nlopt.hpp would lose its message).
+struct Run {
+  const std::vector<Parameter>& params;
+  const Objective& f;
+  const OptimizerOptions& opt;
+  std::vector<HistoryEntry>& history;
+  int start_index = 0;
+  int evaluations = 0;
+  bool budget_spent = false;
+  std::exception_ptr error;
+  Eigen::VectorXd best_theta;
+  Evaluation best{std::numeric_limits<double>::infinity(), {}};
+  nlopt::opt* solver = nullptr;
+
+  Eigen::VectorXd theta_of(const double* u) const {
+    Eigen::VectorXd t(static_cast<Eigen::Index>(params.size()));
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      const double ui = std::min(1.0, std::max(0.0, u[i]));  // NLopt may step a hair outside
+      t[static_cast<Eigen::Index>(i)] = params[i].lower + ui * (params[i].upper - params[i].lower);
+    }
+    return t;
+  }
+
+  double eval(const double* u, bool probe) {
+    if (evaluations >= opt.maxeval) {
+      budget_spent = true;
+      throw BudgetSpent{};
+    }
+    Eigen::VectorXd theta = theta_of(u);
+    Evaluation e = f(theta);
+    ++evaluations;
+    if (!std::isfinite(e.value)) {
+      std::string t;
+      for (std::size_t i = 0; i < params.size(); ++i)
+        t += fmt::format("{}{} = {}", i ? ", " : "", params[i].name, theta[static_cast<Eigen::Index>(i)]);
+      throw InvalidArgument(fmt::format("the objective returned {} at {} (it must return a finite number)", e.value, t));
+    }
+    history.push_back({theta, e.value, e.parts, start_index, probe});
+    if (opt.observer) opt.observer(history.back());
+    if (e.value < best.value) {
+      best = e;
+      best_theta = theta;
+    }
+    return e.value;
+  }
+
+  /// NLopt callback: value at u and, when asked, the central-difference gradient in scaled units
+  /// (one-sided where a central probe would leave [0, 1]).
+  double operator()(const std::vector<double>& u, std::vector<double>& grad) {
+    if (error || budget_spent) return HUGE_VAL;
+    try {
+      const double f0 = eval(u.data(), false);
+      if (!grad.empty()) {
+        const double h = opt.fd_step;
+        std::vector<double> w(u);
+        for (std::size_t i = 0; i < u.size(); ++i) {
+          const double ui = std::min(1.0, std::max(0.0, u[i]));
+          const double up = ui + h <= 1.0 ? ui + h : ui, dn = ui - h >= 0.0 ? ui - h : ui;
+          double fp = f0, fm = f0;
+          if (up != ui) {
+            w[i] = up;
+            fp = eval(w.data(), true);
+          }
+          if (dn != ui) {
+            w[i] = dn;
+            fm = eval(w.data(), true);
+          }
+          w[i] = u[i];
+          grad[i] = (fp - fm) / (up - dn);
+        }
+      }
+      return f0;
+    } catch (const BudgetSpent&) {
+    } catch (const std::exception&) {
+      error = std::current_exception();
+    }
+    solver->force_stop();
+    return HUGE_VAL;
+  }
+};
+
+double trampoline(const std::vector<double>& u, std::vector<double>& grad, void* data) {
+  return (*static_cast<Run*>(data))(u, grad);
+}
+
+StartResult run_start(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt,
+                      const Eigen::VectorXd& u0, int index, std::vector<HistoryEntry>& history,
+                      std::vector<std::string>& warnings) {
+  const unsigned k = static_cast<unsigned>(params.size());
+  Method method = opt.method;
+  if (method == Method::bobyqa && k < 2) {
+    // NLopt's BOBYQA needs at least 2 variables (Powell's original restriction).
+    warnings.push_back("bobyqa needs at least 2 parameters; used cobyla for this 1-parameter problem");
+    method = Method::cobyla;
+  }
+  nlopt::opt solver(to_nlopt(method), k);
+  solver.set_lower_bounds(std::vector<double>(k, 0.0));
+  solver.set_upper_bounds(std::vector<double>(k, 1.0));
+  solver.set_xtol_rel(opt.xtol_rel);
+  solver.set_ftol_abs(opt.ftol_abs);
+  solver.set_maxeval(opt.maxeval);  // our own budget (Run::eval) also counts the gradient probes
+  if (method != Method::slsqp) solver.set_initial_step(opt.initial_step);
+  Run run{params, f, opt, history, index, 0, false, nullptr, Eigen::VectorXd(), {HUGE_VAL, {}}, &solver};
+  solver.set_min_objective(&trampoline, &run);
+
+  std::vector<double> u(u0.data(), u0.data() + u0.size());
+  double fmin = HUGE_VAL;
+  StartResult out;
+  out.start = run.theta_of(u0.data());
+  try {
+    const nlopt::result r = solver.optimize(u, fmin);
+    out.status = result_name(r);
+    out.converged = r == nlopt::SUCCESS || r == nlopt::FTOL_REACHED || r == nlopt::XTOL_REACHED || r == nlopt::STOPVAL_REACHED;
+  } catch (const nlopt::roundoff_limited&) {
+    // Usual for SLSQP near an optimum with finite-difference gradients: keep the best point.
+    out.status = "roundoff_limited";
+    out.converged = true;
+    warnings.push_back(fmt::format("start {}: NLopt stopped on round-off (roundoff_limited); the best point seen is kept", index + 1));
+  } catch (const nlopt::forced_stop&) {
+    out.status = "forced_stop";
+  } catch (const std::exception& e) {
+    if (!run.error) {
+      out.status = std::string("nlopt error: ") + e.what();
+      warnings.push_back(fmt::format("start {}: {}", index + 1, out.status));
+    }
+  }
+  if (run.error) std::rethrow_exception(run.error);
+  if (run.budget_spent) {
+    out.status = "maxeval_reached";
+    out.converged = false;
+  }
+  if (out.status == "maxeval_reached")
+    warnings.push_back(fmt::format("start {}: evaluation budget of {} spent before convergence (raise maxeval)", index + 1, opt.maxeval));
+  if (run.evaluations == 0) throw Error(fmt::format("start {}: NLopt made no evaluation ({})", index + 1, out.status));
+  out.theta = run.best_theta;
+  out.value = run.best.value;
+  out.evaluations = run.evaluations;
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd central_gradient(const Objective& f, const Eigen::VectorXd& theta, const Eigen::VectorXd& h) {
+  if (h.size() != theta.size()) throw DimensionMismatch(fmt::format("gradient: {} steps for {} parameters", h.size(), theta.size()));
+  Eigen::VectorXd g(theta.size());
+  for (Eigen::Index i = 0; i < theta.size(); ++i) {
+    Eigen::VectorXd tp = theta, tm = theta;
+    tp[i] += h[i];
+    tm[i] -= h[i];
+    g[i] = (f(tp).value - f(tm).value) / (2.0 * h[i]);
+  }
+  return g;
+}
+
+OptimizationResult minimize(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt) {
+  validate_parameters(params);
+  if (opt.multistart < 1) throw InvalidArgument(fmt::format("multistart must be >= 1, got {}", opt.multistart));
+  if (opt.maxeval < 1) throw InvalidArgument(fmt::format("maxeval must be >= 1, got {}", opt.maxeval));
+  if (!(opt.fd_step > 0.0 && opt.fd_step <= 0.1))
+    throw InvalidArgument(fmt::format("fd_step must be in (0, 0.1] (scaled units), got {}", opt.fd_step));
+  if (!(opt.xtol_rel >= 0.0) || !(opt.ftol_abs >= 0.0)) throw InvalidArgument("xtol_rel and ftol_abs must be >= 0");
+
+  const Eigen::Index k = static_cast<Eigen::Index>(params.size());
+  OptimizationResult res;
+  Rng rng(opt.seed, hash_label("multistart"));
+  for (int s = 0; s < opt.multistart; ++s) {
+    Eigen::VectorXd u0(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const Parameter& p = params[static_cast<std::size_t>(i)];
+      u0[i] = s == 0 ? (p.start - p.lower) / (p.upper - p.lower) : rng.uniform01();
+    }
+    StartResult sr = run_start(params, f, opt, u0, s, res.history, res.warnings);
+    res.evaluations += sr.evaluations;
+    if (s == 0 || sr.value < res.value) {
+      res.theta = sr.theta;
+      res.value = sr.value;
+      res.status = sr.status;
+      res.converged = sr.converged;
+    }
+    res.starts.push_back(std::move(sr));
+  }
+  for (const HistoryEntry& h : res.history)
+    if (h.value == res.value && h.theta == res.theta) {
+      res.parts = h.parts;
+      break;
+    }
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Parameter& p = params[static_cast<std::size_t>(i)];
+    const double tol = 1e-6 * (p.upper - p.lower);
+    if (res.theta[i] - p.lower <= tol || p.upper - res.theta[i] <= tol) {
+      res.at_bounds.push_back(p.name);
+      res.warnings.push_back(fmt::format("parameter '{}' = {} sits at a bound of [{}, {}]: widen the range if physically allowed",
+                                         p.name, res.theta[i], p.lower, p.upper));
+    }
+  }
+  if (opt.multistart > 1) {
+    int agree = 0;
+    for (const StartResult& s : res.starts) agree += std::abs(s.value - res.value) <= 1e-6 + 1e-4 * std::abs(res.value);
+    if (agree < opt.multistart)
+      res.warnings.push_back(fmt::format("{} of {} starts reached the best objective {}: the problem is multimodal or flat; keep several starts",
+                                         agree, opt.multistart, res.value));
+  }
+  return res;
+}
+
+}  // namespace smi::improve

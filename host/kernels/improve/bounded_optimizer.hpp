@@ -1,0 +1,99 @@
+#pragma once
+// Bound-constrained minimisation for calibration (shared/spec/algorithms.md §7).
+// Parameters are scaled to [0, 1] by their bounds; NLopt's LD_SLSQP gets a central
+// finite-difference gradient in scaled units; LN_COBYLA, LN_BOBYQA and LN_NELDERMEAD are the
+// derivative-free alternatives. Several seeded starts are supported, every evaluation is
+// recorded, and errors thrown by the objective come back out of minimize() unchanged
+// (nlopt.hpp alone would replace them by "nlopt failure").
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smi::improve {
+
+/// One calibration parameter: its name, bounds and starting value (lower < upper, start inside).
+struct Parameter {
+  std::string name;
+  double lower = 0.0;
+  double upper = 1.0;
+  double start = 0.5;
+};
+
+enum class Method { slsqp, cobyla, bobyqa, neldermead };
+/// "slsqp", "cobyla", "bobyqa", "neldermead" (also "nelder-mead"); throws naming the choices.
+Method parse_method(std::string_view name);
+std::string method_name(Method m);
+
+struct HistoryEntry;
+
+struct OptimizerOptions {
+  Method method = Method::slsqp;
+  double xtol_rel = 1e-6;
+  double ftol_abs = 1e-8;
+  /// Budget of objective evaluations per start, finite-difference probes included.
+  int maxeval = 500;
+  /// Central-difference step in scaled [0, 1] units (spec §7: 1e-4 to 1e-3).
+  double fd_step = 1e-4;
+  /// Initial step of the derivative-free methods, scaled units (spec: about 10 % of the range).
+  double initial_step = 0.1;
+  /// Number of starts: the given start, then multistart − 1 seeded uniform points in the box.
+  int multistart = 1;
+  std::uint64_t seed = 0;
+  /// Called after every recorded evaluation (progress display); may throw to abort.
+  std::function<void(const HistoryEntry&)> observer;
+};
+
+/// What the objective returns: the value minimised and, optionally, its parts (one per response).
+struct Evaluation {
+  double value = 0.0;
+  Eigen::VectorXd parts;
+};
+/// The objective, called with θ in the parameters' own units.
+using Objective = std::function<Evaluation(const Eigen::VectorXd& theta)>;
+
+struct HistoryEntry {
+  Eigen::VectorXd theta;
+  double value = 0.0;
+  Eigen::VectorXd parts;
+  int start = 0;       ///< 0-based index of the start this evaluation belongs to
+  bool probe = false;  ///< a finite-difference probe rather than a point the optimiser asked for
+};
+
+struct StartResult {
+  Eigen::VectorXd start;
+  Eigen::VectorXd theta;
+  double value = 0.0;
+  int evaluations = 0;
+  std::string status;  ///< NLopt's stop reason: "xtol_reached", "roundoff_limited", ...
+  bool converged = false;
+};
+
+struct OptimizationResult {
+  Eigen::VectorXd theta;  ///< best point over all starts
+  double value = 0.0;
+  Eigen::VectorXd parts;
+  int evaluations = 0;  ///< all objective evaluations, all starts
+  bool converged = false;
+  std::string status;  ///< status of the best start
+  std::vector<HistoryEntry> history;
+  std::vector<StartResult> starts;
+  std::vector<std::string> warnings;
+  /// θ where each parameter sits on (or within 1e-6 of the range of) a bound.
+  std::vector<std::string> at_bounds;
+};
+
+/// Checks names, finiteness and lower < upper, start within bounds; throws InvalidArgument naming
+/// the parameter.
+void validate_parameters(const std::vector<Parameter>& params);
+
+/// Minimises f over the box. Rethrows the objective's own exception.
+OptimizationResult minimize(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt);
+
+/// Central-difference gradient of f at θ in the parameters' own units with absolute steps h
+/// (one per parameter); 2k evaluations.
+Eigen::VectorXd central_gradient(const Objective& f, const Eigen::VectorXd& theta, const Eigen::VectorXd& h);
+
+}  // namespace smi::improve

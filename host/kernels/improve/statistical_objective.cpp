@@ -1,0 +1,203 @@
+#include "improve/statistical_objective.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/descriptive.hpp"
+#include "core/errors.hpp"
+#include "stats/bandwidth.hpp"
+#include "stats/kde.hpp"
+#include "stats/metrics.hpp"
+
+namespace smi::improve {
+
+MetricKind parse_metric(std::string_view name) {
+  if (name == "pr") return MetricKind::pr;
+  if (name == "loglik") return MetricKind::loglik;
+  throw InvalidArgument(fmt::format("unknown metric \"{}\" (use \"pr\", \"loglik\" or a function)", name));
+}
+
+namespace {
+
+std::string theta_text(const std::vector<Parameter>& p, const Eigen::VectorXd& t) {
+  std::string s;
+  for (std::size_t i = 0; i < p.size(); ++i) s += fmt::format("{}{} = {:.8g}", i ? ", " : "", p[i].name, t[static_cast<Eigen::Index>(i)]);
+  return s;
+}
+
+/// Bandwidth of a predicted sample by rule, with an error that says what to do about a constant
+/// output (a KDE of ties is a point mass).
+double predicted_bandwidth(ConstVec y, const std::string& rule, const std::string& response) {
+  const double lo = y.minCoeff(), hi = y.maxCoeff();
+  if (!(hi > lo))
+    throw InvalidArgument(fmt::format("response '{}': the model output is constant ({}) over the CRN sample, so it has no density "
+                                      "(check that the calibrated inputs reach the model)", response, lo));
+  return bandwidth_by_name(y, rule);
+}
+
+}  // namespace
+
+StatisticalObjective::StatisticalObjective(std::vector<InputSpec> inputs, std::vector<ResponseSpec> responses,
+                                           std::vector<Parameter> params, Model model, StatisticalOptions opt,
+                                           CustomMetric custom)
+    : inputs_(std::move(inputs)),
+      responses_(std::move(responses)),
+      params_(std::move(params)),
+      model_(std::move(model)),
+      opt_(std::move(opt)),
+      custom_(std::move(custom)) {
+  validate_parameters(params_);
+  if (inputs_.empty()) throw InvalidArgument("no inputs: give at least one input distribution");
+  if (responses_.empty()) throw InvalidArgument("no data: give at least one response with experimental data");
+  if (opt_.n < 10) throw InvalidArgument(fmt::format("n (CRN sample size) must be >= 10, got {}", opt_.n));
+  if (opt_.grid_nodes < 101) throw InvalidArgument(fmt::format("grid_nodes must be >= 101, got {}", opt_.grid_nodes));
+  if (opt_.metric == MetricKind::custom && !custom_) throw InvalidArgument("metric is custom but no metric function was given");
+  const int k = static_cast<int>(params_.size());
+  std::vector<int> used(static_cast<std::size_t>(k), 0);
+  for (const InputSpec& in : inputs_) {
+    const std::string who = fmt::format("input '{}'", in.name);
+    for (int idx : {in.mean_param, in.std_param}) {
+      if (idx >= k) throw InvalidArgument(fmt::format("{}: parameter index {} out of range", who, idx));
+      if (idx >= 0) ++used[static_cast<std::size_t>(idx)];
+    }
+    // Check the parameterisation over the whole box now rather than at an unlucky θ later.
+    const double mlo = in.mean_param >= 0 ? params_[static_cast<std::size_t>(in.mean_param)].lower : in.mean;
+    const double slo = in.std_param >= 0 ? params_[static_cast<std::size_t>(in.std_param)].lower : in.std;
+    if (in.family == InputFamily::lognormal && !(mlo > 0.0))
+      throw InvalidArgument(fmt::format("{}: lognormal needs mean > 0 everywhere, but its mean can be {} (raise the lower bound above 0 "
+                                        "or use \"normal\")", who, mlo));
+    if (!(slo >= 0.0))
+      throw InvalidArgument(in.std_param >= 0 ? fmt::format("{}: std must be >= 0, but its range starts at {} (raise the lower bound to >= 0)", who, slo)
+                                              : fmt::format("{}: std must be >= 0, got {}", who, slo));
+  }
+  for (int i = 0; i < k; ++i)
+    if (used[static_cast<std::size_t>(i)] != 1)
+      throw InvalidArgument(fmt::format("parameter '{}' is used by {} input moments (must be exactly 1)", params_[static_cast<std::size_t>(i)].name,
+                                        used[static_cast<std::size_t>(i)]));
+  for (ResponseSpec& r : responses_) {
+    if (r.data.size() > 0) require_finite(r.data, fmt::format("data of response '{}'", r.name));
+    if (opt_.metric != MetricKind::custom && r.data.size() < 2 && !(opt_.metric == MetricKind::pr && r.f_exp))
+      throw InvalidArgument(fmt::format("response '{}': need at least 2 experimental data, got {}", r.name, r.data.size()));
+  }
+  z_ = crn_matrix(opt_.n, static_cast<Eigen::Index>(inputs_.size()), opt_.seed, opt_.crn);
+  Eigen::VectorXd start(k);
+  for (int i = 0; i < k; ++i) start[i] = params_[static_cast<std::size_t>(i)].start;
+  prepare_responses(start);
+}
+
+void StatisticalObjective::prepare_responses(const Eigen::VectorXd& start) {
+  f_exp_grid_.clear();
+  exp_outside_.clear();
+  if (opt_.metric != MetricKind::pr) return;
+  Eigen::MatrixXd y0;  // one model run at the start fixes the default grids
+  for (ResponseSpec& r : responses_) {
+    if (!r.f_exp) {
+      r.f_exp = make_kde(r.data, bandwidth_normal_reference(r.data));
+      r.f_exp_from_data = true;
+    }
+    if (!r.grid) {
+      if (y0.size() == 0) y0 = run_model(start);
+      const Eigen::Index j = &r - responses_.data();
+      const Eigen::VectorXd y = y0.col(j);
+      const double hp = predicted_bandwidth(y, opt_.bandwidth, r.name);
+      double lo = y.minCoeff() - 6.0 * hp, hi = y.maxCoeff() + 6.0 * hp;
+      if (auto* kde = dynamic_cast<const Kde*>(r.f_exp.get())) {
+        lo = std::min(lo, kde->data().minCoeff() - 6.0 * kde->bandwidth());
+        hi = std::max(hi, kde->data().maxCoeff() + 6.0 * kde->bandwidth());
+      } else {
+        lo = std::min(lo, r.f_exp->quantile(1e-10));
+        hi = std::max(hi, r.f_exp->quantile(1.0 - 1e-10));
+      }
+      r.grid = Grid{lo, hi, opt_.grid_nodes};
+    }
+    r.grid->validate();
+    f_exp_grid_.push_back(pdf_grid(*r.f_exp, *r.grid));
+    exp_outside_.push_back(std::max(0.0, r.f_exp->cdf(r.grid->lo)) + std::max(0.0, 1.0 - r.f_exp->cdf(r.grid->hi)));
+  }
+}
+
+std::vector<std::pair<double, double>> StatisticalObjective::input_moments(const Eigen::VectorXd& theta) const {
+  if (theta.size() != static_cast<Eigen::Index>(params_.size()))
+    throw DimensionMismatch(fmt::format("θ has {} values for {} parameters", theta.size(), params_.size()));
+  std::vector<std::pair<double, double>> m;
+  for (const InputSpec& in : inputs_)
+    m.emplace_back(in.mean_param >= 0 ? theta[in.mean_param] : in.mean, in.std_param >= 0 ? theta[in.std_param] : in.std);
+  return m;
+}
+
+Eigen::MatrixXd StatisticalObjective::inputs_at(const Eigen::VectorXd& theta) const {
+  const auto m = input_moments(theta);
+  Eigen::MatrixXd X(opt_.n, static_cast<Eigen::Index>(inputs_.size()));
+  for (std::size_t j = 0; j < inputs_.size(); ++j)
+    X.col(static_cast<Eigen::Index>(j)) =
+        map_standard_normal(inputs_[j].family, m[j].first, m[j].second, z_.col(static_cast<Eigen::Index>(j)),
+                            fmt::format("input '{}'", inputs_[j].name));
+  return X;
+}
+
+Eigen::MatrixXd StatisticalObjective::run_model(const Eigen::VectorXd& theta) const {
+  const Eigen::MatrixXd X = inputs_at(theta);
+  Eigen::MatrixXd Y = model_(X);
+  ++*runs_;
+  if (Y.rows() != X.rows() || Y.cols() != static_cast<Eigen::Index>(responses_.size()))
+    throw DimensionMismatch(fmt::format("the model returned {}×{} outputs for {} samples and {} responses", Y.rows(), Y.cols(), X.rows(),
+                                        responses_.size()));
+  for (Eigen::Index j = 0; j < Y.cols(); ++j)
+    for (Eigen::Index i = 0; i < Y.rows(); ++i)
+      if (!std::isfinite(Y(i, j)))
+        throw InvalidArgument(fmt::format("the model returned {} for response '{}' at sample {} (θ: {})", Y(i, j),
+                                          responses_[static_cast<std::size_t>(j)].name, i + 1, theta_text(params_, theta)));
+  return Y;
+}
+
+Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const {
+  const Eigen::MatrixXd Y = run_model(theta);
+  if (opt_.metric == MetricKind::custom) return custom_(Y);
+  Evaluation e;
+  e.parts.resize(Y.cols());
+  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+    const ResponseSpec& r = responses_[static_cast<std::size_t>(j)];
+    const Eigen::VectorXd y = Y.col(j);
+    const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
+    if (opt_.metric == MetricKind::pr) {
+      const Grid& g = *r.grid;
+      const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, opt_.threads);
+      Eigen::VectorXd ends(2);
+      ends << g.lo, g.hi;
+      const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
+      const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
+      e.parts[j] = l1_area_on_grid(f_exp_grid_[static_cast<std::size_t>(j)], fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
+    } else {
+      const Eigen::VectorXd f = kde_pdf(y, h, r.data, 1);
+      double s = 0.0;
+      for (Eigen::Index i = 0; i < f.size(); ++i) {
+        if (!(f[i] > opt_.density_floor)) ++*floored_;
+        s += std::log(std::max(f[i], opt_.density_floor));
+      }
+      e.parts[j] = -s;
+    }
+  }
+  e.value = e.parts.sum();
+  return e;
+}
+
+StatisticalObjective StatisticalObjective::with_data(const std::vector<Eigen::VectorXd>& data) const {
+  if (data.size() != responses_.size())
+    throw DimensionMismatch(fmt::format("{} data sets for {} responses", data.size(), responses_.size()));
+  StatisticalObjective o = *this;
+  for (std::size_t j = 0; j < data.size(); ++j) {
+    ResponseSpec& r = o.responses_[j];
+    if (!r.f_exp_from_data) throw InvalidArgument(fmt::format("response '{}': its experimental PDF was given, not data, so it cannot be resampled", r.name));
+    require_finite(data[j], fmt::format("data of response '{}'", r.name));
+    r.data = data[j];
+    r.f_exp.reset();
+  }
+  Eigen::VectorXd start(static_cast<Eigen::Index>(params_.size()));
+  for (std::size_t i = 0; i < params_.size(); ++i) start[static_cast<Eigen::Index>(i)] = params_[i].start;
+  o.prepare_responses(start);  // grids are already fixed: no model run here
+  return o;
+}
+
+}  // namespace smi::improve

@@ -1,0 +1,109 @@
+#pragma once
+// The statistical calibration objective of Son et al. eq. (9) (shared/spec/algorithms.md §2, §7):
+// θ holds the means and standard deviations of the unknown inputs; every input is mapped from
+// a fixed CRN column (crn_mapping.hpp), the model runs once on the whole N×k input matrix, and
+// the predicted outputs are compared with the experimental data response by response:
+//   "pr"     Σ_r PR_r = Σ_r ∫|f_exp,r − f_pre,r| dy  (KDEs, normal-reference bandwidth, fixed grid)
+//   "loglik" −Σ_r Σ_i log f_pre,r(y_exp,r,i)            (densities floored at 1e-300)
+//   custom   any function of the predicted outputs (supplied by the caller).
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "improve/bounded_optimizer.hpp"
+#include "improve/crn_mapping.hpp"
+#include "stats/distribution.hpp"
+#include "stats/grid.hpp"
+
+namespace smi::improve {
+
+/// One model input: its family and either fixed or calibrated mean and std.
+struct InputSpec {
+  std::string name;
+  InputFamily family = InputFamily::normal;
+  double mean = 0.0;     ///< used when mean_param < 0
+  double std = 0.0;      ///< used when std_param < 0
+  int mean_param = -1;   ///< index of the mean in θ, or -1 when fixed
+  int std_param = -1;    ///< index of the std in θ, or -1 when fixed
+};
+
+/// One observed response.
+struct ResponseSpec {
+  std::string name;
+  Eigen::VectorXd data;     ///< the experimental observations
+  DistributionPtr f_exp;    ///< experimental PDF; null = Gaussian KDE of data, normal-reference h
+  std::optional<Grid> grid; ///< PR grid; null = fixed at construction (see StatisticalObjective)
+  bool f_exp_from_data = false;  ///< set when f_exp is built from data (then rebuilt by with_data)
+};
+
+enum class MetricKind { pr, loglik, custom };
+MetricKind parse_metric(std::string_view name);
+
+/// Y = model(X): X is N×k (columns in the order of the inputs), Y is N×R (columns in the order
+/// of the responses).
+using Model = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& X)>;
+/// A caller-supplied metric of the predicted outputs Y (N×R).
+using CustomMetric = std::function<Evaluation(const Eigen::MatrixXd& Y)>;
+
+struct StatisticalOptions {
+  Eigen::Index n = 2000;            ///< CRN sample size
+  std::uint64_t seed = 0;
+  CrnKind crn = CrnKind::random;
+  MetricKind metric = MetricKind::pr;
+  Eigen::Index grid_nodes = 4001;   ///< nodes of the default PR grids
+  std::string bandwidth = "silverman";  ///< bandwidth rule for the predicted KDEs
+  double density_floor = 1e-300;    ///< loglik floor (spec §2.2)
+  int threads = 1;                  ///< KDE evaluation threads
+};
+
+class StatisticalObjective {
+ public:
+  /// Validates everything it can before any model run: families vs θ bounds (lognormal means
+  /// must stay > 0), data finite and >= 2 points, parameter indices in range. The default PR grid
+  /// of each response is fixed here from the data, f_exp and one model run at θ = start:
+  /// [min − 6 h_max, max + 6 h_max] (spec §0). Mass of either PDF outside the grid is added to
+  /// PR exactly (through the KDE CDF), so moving the prediction away never lowers PR.
+  StatisticalObjective(std::vector<InputSpec> inputs, std::vector<ResponseSpec> responses, std::vector<Parameter> params,
+                       Model model, StatisticalOptions opt, CustomMetric custom = {});
+
+  Evaluation operator()(const Eigen::VectorXd& theta) const;
+
+  /// The N×k input sample at θ (CRN).
+  Eigen::MatrixXd inputs_at(const Eigen::VectorXd& theta) const;
+  /// Mean and std of every input at θ.
+  std::vector<std::pair<double, double>> input_moments(const Eigen::VectorXd& theta) const;
+
+  /// The same objective (same CRN, model, grids) with other experimental data (bootstrap).
+  StatisticalObjective with_data(const std::vector<Eigen::VectorXd>& data) const;
+
+  const std::vector<InputSpec>& inputs() const { return inputs_; }
+  const std::vector<ResponseSpec>& responses() const { return responses_; }
+  const std::vector<Parameter>& parameters() const { return params_; }
+  const Eigen::MatrixXd& crn() const { return z_; }
+  const StatisticalOptions& options() const { return opt_; }
+  /// Model runs so far (one per objective evaluation).
+  long model_runs() const { return *runs_; }
+  /// Densities floored by the loglik metric so far.
+  long floored() const { return *floored_; }
+
+ private:
+  Eigen::MatrixXd run_model(const Eigen::VectorXd& theta) const;
+  void prepare_responses(const Eigen::VectorXd& start);
+
+  std::vector<InputSpec> inputs_;
+  std::vector<ResponseSpec> responses_;
+  std::vector<Parameter> params_;
+  Model model_;
+  StatisticalOptions opt_;
+  CustomMetric custom_;
+  Eigen::MatrixXd z_;
+  std::vector<Eigen::VectorXd> f_exp_grid_;   // f_exp at each response's grid nodes
+  std::vector<double> exp_outside_;           // f_exp mass outside each grid
+  std::shared_ptr<long> runs_ = std::make_shared<long>(0);
+  std::shared_ptr<long> floored_ = std::make_shared<long>(0);
+};
+
+}  // namespace smi::improve

@@ -1,0 +1,185 @@
+// Normal, lognormal, uniform, truncated normal, triangular; shared Parametric code.
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "core/errors.hpp"
+#include "core/normal.hpp"
+#include "stats/families.hpp"
+
+namespace smi {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kSqrt3 = 1.7320508075688772935;
+
+void require_positive(double v, const char* name, const char* family) {
+  if (!(v > 0.0) || !std::isfinite(v))
+    throw InvalidArgument(fmt::format("{}: {} must be a positive finite number, got {}", family, name, v));
+}
+void require_finite_param(double v, const char* name, const char* family) {
+  if (!std::isfinite(v)) throw InvalidArgument(fmt::format("{}: {} must be finite, got {}", family, name, v));
+}
+void require_order(double lo, double hi, const char* family) {
+  if (!(lo < hi))
+    throw InvalidArgument(fmt::format("{}: lower ({}) must be < upper ({}); swap them or widen the interval", family, lo, hi));
+}
+}  // namespace
+
+// ---- Parametric ---------------------------------------------------------------------------
+
+double Parametric::quantile(double p) const {
+  auto [lo, hi] = support();
+  if (p <= 0.0) return lo;
+  if (p >= 1.0) return hi;
+  const double m = mean(), s = stddev();
+  if (!std::isfinite(lo)) {
+    lo = m - s;
+    while (cdf(lo) > p) lo -= 2.0 * (m - lo);
+  }
+  if (!std::isfinite(hi)) {
+    hi = m + s;
+    while (cdf(hi) < p) hi += 2.0 * (hi - m);
+  }
+  double x = 0.5 * (lo + hi);
+  for (int it = 0; it < 300; ++it) {
+    const double f = cdf(x) - p;
+    if (f > 0) hi = x; else lo = x;
+    const double d = pdf(x);
+    double xn = d > 0 ? x - f / d : 0.5 * (lo + hi);
+    if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+    if (std::abs(xn - x) <= 1e-15 * std::max(1.0, std::abs(x)) || hi - lo <= 1e-15 * std::max(1.0, std::abs(x))) return xn;
+    x = xn;
+  }
+  return x;
+}
+
+std::string Parametric::describe() const {
+  std::string s = family() + "(";
+  bool first = true;
+  for (const auto& [k, v] : params()) {
+    s += fmt::format("{}{}={:.10g}", first ? "" : ", ", k, v);
+    first = false;
+  }
+  return s + ")";
+}
+
+std::optional<double> Parametric::field(std::string_view name) const {
+  for (const auto& [k, v] : params())
+    if (k == name) return v;
+  return std::nullopt;
+}
+
+// ---- Normal -------------------------------------------------------------------------------
+
+Normal::Normal(double mean, double sd) : m_(mean), s_(sd) {
+  require_finite_param(mean, "mean", "normal");
+  require_positive(sd, "std", "normal");
+}
+double Normal::pdf(double x) const { return normal_pdf((x - m_) / s_) / s_; }
+double Normal::cdf(double x) const { return normal_cdf((x - m_) / s_); }
+double Normal::quantile(double p) const { return m_ + s_ * normal_quantile(p); }
+std::pair<double, double> Normal::support() const { return {-kInf, kInf}; }
+Eigen::VectorXd Normal::pdf(const Eigen::VectorXd& x) const {
+  return ((-0.5 * ((x.array() - m_) / s_).square()).exp() * (kInvSqrt2Pi / s_)).matrix();
+}
+
+// ---- LogNormal ----------------------------------------------------------------------------
+
+LogNormal LogNormal::from_moments(double mean, double sd) {
+  require_positive(mean, "mean", "lognormal");
+  require_positive(sd, "std", "lognormal");
+  const double s2 = std::log1p((sd / mean) * (sd / mean));
+  return LogNormal(std::log(mean) - 0.5 * s2, std::sqrt(s2));
+}
+LogNormal LogNormal::from_log_params(double mu_log, double sigma_log) {
+  require_finite_param(mu_log, "mu_log", "lognormal");
+  require_positive(sigma_log, "sigma_log", "lognormal");
+  return LogNormal(mu_log, sigma_log);
+}
+double LogNormal::pdf(double x) const { return x <= 0 ? 0.0 : normal_pdf((std::log(x) - mu_) / sig_) / (sig_ * x); }
+double LogNormal::cdf(double x) const { return x <= 0 ? 0.0 : normal_cdf((std::log(x) - mu_) / sig_); }
+double LogNormal::quantile(double p) const { return std::exp(mu_ + sig_ * normal_quantile(p)); }
+double LogNormal::mean() const { return std::exp(mu_ + 0.5 * sig_ * sig_); }
+double LogNormal::stddev() const { return mean() * std::sqrt(std::expm1(sig_ * sig_)); }
+std::pair<double, double> LogNormal::support() const { return {0.0, kInf}; }
+std::vector<std::pair<std::string, double>> LogNormal::params() const {
+  return {{"mean", mean()}, {"std", stddev()}, {"mu_log", mu_}, {"sigma_log", sig_}};
+}
+
+// ---- Uniform ------------------------------------------------------------------------------
+
+Uniform::Uniform(double lower, double upper) : a_(lower), b_(upper) {
+  require_finite_param(lower, "lower", "uniform");
+  require_finite_param(upper, "upper", "uniform");
+  require_order(lower, upper, "uniform");
+}
+Uniform Uniform::from_moments(double mean, double sd) {
+  require_finite_param(mean, "mean", "uniform");
+  require_positive(sd, "std", "uniform");
+  return Uniform(mean - kSqrt3 * sd, mean + kSqrt3 * sd);
+}
+double Uniform::pdf(double x) const { return x < a_ || x > b_ ? 0.0 : 1.0 / (b_ - a_); }
+double Uniform::cdf(double x) const { return x <= a_ ? 0.0 : x >= b_ ? 1.0 : (x - a_) / (b_ - a_); }
+double Uniform::quantile(double p) const { return a_ + p * (b_ - a_); }
+double Uniform::stddev() const { return (b_ - a_) / (2.0 * kSqrt3); }
+
+// ---- TruncNormal --------------------------------------------------------------------------
+
+TruncNormal::TruncNormal(double mu, double sigma, double lower, double upper) : mu_(mu), sig_(sigma), a_(lower), b_(upper) {
+  require_finite_param(mu, "mean", "truncnormal");
+  require_positive(sigma, "std", "truncnormal");
+  require_order(lower, upper, "truncnormal");
+  pa_ = normal_cdf((a_ - mu_) / sig_);
+  z_ = normal_cdf((b_ - mu_) / sig_) - pa_;
+  if (!(z_ > 1e-300))
+    throw InvalidArgument(fmt::format("truncnormal: [{}, {}] holds no mass of normal({}, {}); move the interval", a_, b_, mu_, sig_));
+}
+double TruncNormal::pdf(double x) const { return x < a_ || x > b_ ? 0.0 : normal_pdf((x - mu_) / sig_) / (sig_ * z_); }
+double TruncNormal::cdf(double x) const {
+  return x <= a_ ? 0.0 : x >= b_ ? 1.0 : (normal_cdf((x - mu_) / sig_) - pa_) / z_;
+}
+double TruncNormal::mean() const {
+  const double al = (a_ - mu_) / sig_, be = (b_ - mu_) / sig_;
+  return mu_ + sig_ * (normal_pdf(al) - normal_pdf(be)) / z_;
+}
+double TruncNormal::stddev() const {
+  const double al = (a_ - mu_) / sig_, be = (b_ - mu_) / sig_;
+  const double pa = normal_pdf(al), pb = normal_pdf(be);
+  const double ta = std::isfinite(al) ? al * pa : 0.0, tb = std::isfinite(be) ? be * pb : 0.0;
+  const double r = (pa - pb) / z_;
+  return sig_ * std::sqrt(std::max(0.0, 1.0 + (ta - tb) / z_ - r * r));
+}
+std::vector<std::pair<std::string, double>> TruncNormal::params() const {
+  return {{"mean", mu_}, {"std", sig_}, {"lower", a_}, {"upper", b_}};
+}
+
+// ---- Triangular ---------------------------------------------------------------------------
+
+Triangular::Triangular(double lower, double mode, double upper) : a_(lower), c_(mode), b_(upper) {
+  require_finite_param(lower, "lower", "triangular");
+  require_finite_param(upper, "upper", "triangular");
+  require_order(lower, upper, "triangular");
+  if (!(mode >= lower && mode <= upper))
+    throw InvalidArgument(fmt::format("triangular: mode ({}) must lie in [lower, upper] = [{}, {}]", mode, lower, upper));
+}
+double Triangular::pdf(double x) const {
+  if (x < a_ || x > b_) return 0.0;
+  return x < c_ ? 2.0 * (x - a_) / ((b_ - a_) * (c_ - a_)) : x == c_ ? 2.0 / (b_ - a_) : 2.0 * (b_ - x) / ((b_ - a_) * (b_ - c_));
+}
+double Triangular::cdf(double x) const {
+  if (x <= a_) return 0.0;
+  if (x >= b_) return 1.0;
+  return x <= c_ ? (x - a_) * (x - a_) / ((b_ - a_) * (c_ - a_)) : 1.0 - (b_ - x) * (b_ - x) / ((b_ - a_) * (b_ - c_));
+}
+double Triangular::quantile(double p) const {
+  const double fc = (c_ - a_) / (b_ - a_);
+  return p < fc ? a_ + std::sqrt(p * (b_ - a_) * (c_ - a_)) : b_ - std::sqrt((1.0 - p) * (b_ - a_) * (b_ - c_));
+}
+double Triangular::stddev() const {
+  return std::sqrt((a_ * a_ + b_ * b_ + c_ * c_ - a_ * b_ - a_ * c_ - b_ * c_) / 18.0);
+}
+std::vector<std::pair<std::string, double>> Triangular::params() const {
+  return {{"lower", a_}, {"mode", c_}, {"upper", b_}};
+}
+
+}  // namespace smi

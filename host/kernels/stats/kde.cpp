@@ -1,0 +1,114 @@
+// The Kde distribution object (sums in kde_sums.cpp).
+#include "stats/kde.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/normal.hpp"
+#include "stats/bandwidth.hpp"
+
+namespace smi {
+
+Kde::Kde(Eigen::VectorXd data, double h, KdeOptions opt) : t_(std::move(data)), h_(h), opt_(opt) {
+  require_size(t_, 1, "data");
+  require_finite(t_, "data");
+  if (!(h > 0.0) || !std::isfinite(h))
+    throw InvalidArgument(fmt::format("bandwidth must be a positive finite number, got {}", h));
+  std::sort(t_.data(), t_.data() + t_.size());
+  mean_ = t_.mean();
+  var_ = (t_.array() - mean_).square().mean();
+}
+
+std::string Kde::describe() const {
+  return fmt::format("kde(n={}, bandwidth={:.10g}{}{})", t_.size(), h_, label_.empty() ? "" : ", ", label_);
+}
+
+double Kde::stddev() const { return std::sqrt(var_ + h_ * h_); }
+
+std::pair<double, double> Kde::support() const {
+  return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+}
+
+namespace {
+bool use_binned(const Kde& k, Eigen::Index m) {
+  switch (k.options().method) {
+    case KdeMethod::Exact: return false;
+    case KdeMethod::Binned: return true;
+    case KdeMethod::Auto: break;
+  }
+  return k.data().size() > 2000 && static_cast<double>(k.data().size()) * static_cast<double>(m) > 2e7;
+}
+double bin_width(const Kde& k) { return k.bandwidth() * std::sqrt(8.0 * k.options().binned_tol); }
+}  // namespace
+
+Eigen::VectorXd Kde::pdf(const Eigen::VectorXd& x) const {
+  if (use_binned(*this, x.size())) return kde_pdf_binned(t_, h_, x, bin_width(*this), opt_.threads);
+  return kde_pdf(t_, h_, x, opt_.threads);
+}
+
+Eigen::VectorXd Kde::cdf(const Eigen::VectorXd& x) const { return kde_cdf(t_, h_, x, opt_.threads); }
+
+double Kde::pdf(double x) const { return kde_pdf(t_, h_, Eigen::VectorXd::Constant(1, x), 1)[0]; }
+double Kde::cdf(double x) const { return kde_cdf(t_, h_, Eigen::VectorXd::Constant(1, x), 1)[0]; }
+
+double Kde::quantile(double p) const {
+  if (p <= 0.0) return -std::numeric_limits<double>::infinity();
+  if (p >= 1.0) return std::numeric_limits<double>::infinity();
+  // Bracket: every kernel's own p-quantile lies in [t_min + h z_p, t_max + h z_p].
+  const double zp = normal_quantile(p);
+  double lo = t_[0] + h_ * zp, hi = t_[t_.size() - 1] + h_ * zp;
+  if (lo == hi) return lo;
+  double x = 0.5 * (lo + hi);
+  for (int it = 0; it < 200; ++it) {
+    const double f = cdf(x) - p;
+    if (f > 0) hi = x; else lo = x;
+    const double d = pdf(x);
+    double xn = d > 0 ? x - f / d : 0.5 * (lo + hi);
+    if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+    if (std::abs(xn - x) <= 1e-14 * std::max(1.0, std::abs(x)) || hi - lo <= 1e-14 * std::max(1.0, std::abs(x)))
+      return xn;
+    x = xn;
+  }
+  return x;
+}
+
+Eigen::VectorXd Kde::quantile(const Eigen::VectorXd& p) const {
+  Eigen::VectorXd q(p.size());
+  for (Eigen::Index i = 0; i < p.size(); ++i) q[i] = quantile(p[i]);
+  return q;
+}
+
+Eigen::VectorXd Kde::sample(Rng& rng, Eigen::Index n) const {
+  Eigen::VectorXd y(n);
+  const auto last = static_cast<std::int64_t>(t_.size() - 1);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double base = t_[static_cast<Eigen::Index>(rng.integer(0, last))];
+    y[i] = base + h_ * rng.normal();
+  }
+  return y;
+}
+
+std::optional<double> Kde::field(std::string_view name) const {
+  if (name == "bandwidth" || name == "h") return h_;
+  if (name == "n") return static_cast<double>(t_.size());
+  if (name == "error_bound")
+    return opt_.method == KdeMethod::Exact ? 0.0 : binned_error_bound(h_, bin_width(*this));
+  for (const auto& [k, v] : extra_)
+    if (k == name) return v;
+  return std::nullopt;
+}
+
+std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, const std::string& rule, KdeOptions opt) {
+  require_finite(data, "data");
+  auto k = std::make_shared<Kde>(data, bandwidth_by_name(data, rule), opt);
+  k->set_label(rule);
+  return k;
+}
+
+std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, double h, KdeOptions opt) {
+  return std::make_shared<Kde>(data, h, opt);
+}
+
+}  // namespace smi

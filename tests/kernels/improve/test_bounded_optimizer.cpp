@@ -1,0 +1,136 @@
+// Bound-constrained calibration optimiser: closed-form minima, bounds, multistart, errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "improve/bounded_optimizer.hpp"
+
+using namespace smi::improve;
+
+namespace {
+Evaluation quad(const Eigen::VectorXd& t) {
+  Evaluation e;
+  e.parts.resize(2);
+  e.parts << (t[0] - 1.3) * (t[0] - 1.3), 10 * (t[1] - 0.2) * (t[1] - 0.2);
+  e.value = e.parts.sum();
+  return e;
+}
+std::vector<Parameter> quad_params() { return {{"a", 0.0, 2.0, 0.1}, {"b", -1.0, 1.0, 0.9}}; }
+}  // namespace
+
+TEST_CASE("every method finds the minimum of a quadratic in the box") {
+  for (const char* m : {"slsqp", "cobyla", "bobyqa", "neldermead"}) {
+    OptimizerOptions o;
+    o.method = parse_method(m);
+    o.xtol_rel = 1e-10;
+    o.ftol_abs = 1e-14;
+    const OptimizationResult r = minimize(quad_params(), quad, o);
+    INFO(m << " status " << r.status);
+    CHECK(r.theta[0] == Approx(1.3).margin(1e-4));
+    CHECK(r.theta[1] == Approx(0.2).margin(1e-4));
+    CHECK(r.value < 1e-7);
+    CHECK(r.converged);
+    CHECK(r.parts.size() == 2);
+    CHECK(static_cast<int>(r.history.size()) == r.evaluations);
+    CHECK(r.at_bounds.empty());
+  }
+}
+
+TEST_CASE("SLSQP's gradient probes are recorded and counted") {
+  OptimizerOptions o;
+  const OptimizationResult r = minimize(quad_params(), quad, o);
+  int probes = 0;
+  for (const auto& h : r.history) probes += h.probe;
+  const int points = static_cast<int>(r.history.size()) - probes;
+  CHECK(probes > 0);
+  CHECK(probes <= 4 * points);  // at most two probes per parameter and point (one at a bound)
+  CHECK(r.evaluations == static_cast<int>(r.history.size()));
+}
+
+TEST_CASE("a minimum on a bound is reported; 1-parameter BOBYQA falls back to COBYLA") {
+  std::vector<Parameter> p{{"a", 0.0, 2.0, 1.5}};
+  auto f = [](const Eigen::VectorXd& t) { return Evaluation{(t[0] + 1) * (t[0] + 1), {}}; };
+  OptimizerOptions o;
+  o.method = Method::bobyqa;
+  const OptimizationResult r = minimize(p, f, o);
+  CHECK(r.theta[0] == Approx(0.0).margin(1e-6));
+  REQUIRE(r.at_bounds.size() == 1);
+  CHECK(r.at_bounds[0] == "a");
+  bool fell_back = false;
+  for (const auto& w : r.warnings) fell_back = fell_back || w.find("cobyla") != std::string::npos;
+  CHECK(fell_back);
+}
+
+TEST_CASE("multistart escapes a local minimum") {
+  // f = (x² − 1)² + 0.3x: minima at the roots of 4x³ − 4x + 0.3 near ±1; the left one is global.
+  auto f = [](const Eigen::VectorXd& t) {
+    const double x = t[0];
+    return Evaluation{(x * x - 1) * (x * x - 1) + 0.3 * x, {}};
+  };
+  // The global minimiser by bisection of f' on [-2, -0.5].
+  double lo = -2, hi = -0.5;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((4 * mid * mid * mid - 4 * mid + 0.3) < 0 ? lo : hi) = mid;
+  }
+  std::vector<Parameter> p{{"x", -2.0, 2.0, 1.5}};
+  OptimizerOptions o;
+  o.method = Method::slsqp;
+  const OptimizationResult one = minimize(p, f, o);
+  CHECK(one.theta[0] > 0);
+  o.multistart = 8;
+  o.seed = 3;
+  const OptimizationResult many = minimize(p, f, o);
+  CHECK(many.theta[0] == Approx(lo).margin(1e-4));
+  CHECK(many.starts.size() == 8);
+  CHECK(many.value < one.value);
+  // Same seed, same starts.
+  const OptimizationResult again = minimize(p, f, o);
+  CHECK(again.evaluations == many.evaluations);
+  CHECK(again.theta[0] == many.theta[0]);
+}
+
+TEST_CASE("the objective's own exception comes out of minimize with its message") {
+  int calls = 0;
+  auto f = [&](const Eigen::VectorXd& t) {
+    if (++calls == 5) throw std::domain_error("solver run 17 failed: deck line 3");
+    return quad(t);
+  };
+  for (const char* m : {"slsqp", "cobyla"}) {
+    calls = 0;
+    OptimizerOptions o;
+    o.method = parse_method(m);
+    CHECK_THROWS_AS(minimize(quad_params(), f, o), std::domain_error);
+    calls = 0;
+    CHECK_THROWS_WITH(minimize(quad_params(), f, o), Catch::Contains("solver run 17 failed: deck line 3"));
+  }
+}
+
+TEST_CASE("a NaN objective and bad parameters are clear errors") {
+  auto nan = [](const Eigen::VectorXd&) { return Evaluation{std::nan(""), {}}; };
+  CHECK_THROWS_WITH(minimize(quad_params(), nan, {}), Catch::Contains("a = 0.1") && Catch::Contains("finite"));
+  CHECK_THROWS_WITH(minimize({{"s", 1.0, 0.5, 0.7}}, quad, {}), Catch::Contains("'s'") && Catch::Contains("lower < upper"));
+  CHECK_THROWS_WITH(minimize({{"s", 0.0, 1.0, 2.0}}, quad, {}), Catch::Contains("outside its bounds"));
+  CHECK_THROWS_WITH(parse_method("lbfgs"), Catch::Contains("\"cobyla\""));
+}
+
+TEST_CASE("a small budget stops with a warning and the best point") {
+  OptimizerOptions o;
+  o.maxeval = 12;
+  const OptimizationResult r = minimize(quad_params(), quad, o);
+  CHECK(r.evaluations <= 12);
+  CHECK(!r.converged);
+  CHECK(r.status == "maxeval_reached");
+  CHECK(r.value <= quad(Eigen::Vector2d(0.1, 0.9)).value);
+}
+
+TEST_CASE("central differences match the analytic gradient") {
+  Eigen::VectorXd t(2), h(2);
+  t << 0.4, -0.3;
+  h << 1e-4, 1e-4;
+  const Eigen::VectorXd g = central_gradient(quad, t, h);
+  CHECK(g[0] == Approx(2 * (0.4 - 1.3)).epsilon(1e-8));
+  CHECK(g[1] == Approx(20 * (-0.3 - 0.2)).epsilon(1e-8));
+}
