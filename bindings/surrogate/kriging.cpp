@@ -1,0 +1,200 @@
+// smi.kriging.fit(X, y, opts) -> smi.Kriging;  smi.kriging.load(path) -> smi.Kriging
+//   m:predict(X [, {mse = false}]) -> mean vec, mse vec   (whole matrix, both cores)
+//   m:loo() -> {residuals = vec, variance = vec, q2, rmse}
+//   m:save(path)                                           (sandbox: check_write)
+//   m:evaluate(X) -> {<output> = vec}                      (the model interface)
+//   fields: theta, psi, sigma2, beta, evaluations, method, trend, corr, nugget, n, inputs,
+//           output, warnings, lower, upper
+#include <cmath>
+#include <sstream>
+
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "surrogate/kriging_box.hpp"
+
+namespace smi::bind::surrogate {
+namespace {
+
+KrigingBox& self(lua_State* L) { return lua::check_box<KrigingBox>(L, 1, kKrigingType); }
+
+void push_strings(lua_State* L, const std::vector<std::string>& v) {
+  lua_createtable(L, static_cast<int>(v.size()), 0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    lua_pushstring(L, v[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+Eigen::VectorXd opt_vector(lua_State* L, const lua::Options& o, const char* key) {
+  const int t = o.push(key);
+  Eigen::VectorXd v;
+  if (t == LUA_TNUMBER) {
+    v = Eigen::VectorXd::Constant(1, lua_tonumber(L, -1));
+  } else if (t != LUA_TNIL) {
+    v = lua::to_vector(L, -1, key);
+  }
+  lua_pop(L, 1);
+  return v;
+}
+
+int k_fit(lua_State* L) {
+  const Eigen::MatrixXd X = lua::to_matrix(L, 1, "X");
+  const Eigen::VectorXd y = lua::to_vector(L, 2, "y");
+  lua::Options o(L, 3, "smi.kriging.fit");
+  o.check_known({"trend", "corr", "theta", "method", "theta0", "lower", "upper", "nugget", "starts", "seed",
+                 "normalize", "inputs", "output", "threads"});
+  kriging::FitOptions fo;
+  KrigingBox box;
+  std::string trend = o.string("trend", "constant"), corr = o.string("corr", "gauss");
+  fo.method = o.string("method", "ml");
+  if (o.has("theta")) fo.theta = opt_vector(L, o, "theta");
+  fo.theta0 = opt_vector(L, o, "theta0");
+  fo.lower = opt_vector(L, o, "lower");
+  fo.upper = opt_vector(L, o, "upper");
+  if (o.push("nugget") == LUA_TBOOLEAN) {
+    fo.estimate_nugget = lua_toboolean(L, -1);
+    lua_pop(L, 1);
+  } else {
+    lua_pop(L, 1);
+    fo.nugget = o.number("nugget", 0.0);
+  }
+  fo.starts = static_cast<int>(o.integer("starts", 0));
+  fo.seed = static_cast<std::uint64_t>(o.integer("seed", 1));
+  fo.normalize = o.boolean("normalize", true);
+  fo.threads = static_cast<int>(o.integer("threads", 2));
+  if (o.has("inputs")) {
+    o.push("inputs");
+    box.inputs = lua::to_strings(L, -1, "inputs");
+    lua_pop(L, 1);
+  }
+  box.output = o.string("output", "y");
+  return lua::protect(L, "smi.kriging.fit", [&] {
+    fo.trend = kriging::parse_trend(trend);
+    fo.corr = kriging::parse_corr(corr);
+    if (!box.inputs.empty() && static_cast<Eigen::Index>(box.inputs.size()) != X.cols())
+      throw DimensionMismatch("inputs names " + std::to_string(box.inputs.size()) + " names for " +
+                              std::to_string(X.cols()) + " columns of X");
+    box.model = kriging::fit(X, y, fo);
+    lua::push_box(L, kKrigingType, std::move(box));
+    return 1;
+  });
+}
+
+int k_predict(lua_State* L) {
+  KrigingBox& k = self(L);
+  const Eigen::MatrixXd X = lua::to_matrix(L, 2, "X");
+  lua::Options o(L, 3, "predict");
+  o.check_known({"mse", "threads"});
+  const bool want_mse = o.boolean("mse", true);
+  const int threads = static_cast<int>(o.integer("threads", 2));
+  return lua::protect(L, "predict", [&] {
+    if (!want_mse) {
+      lua::push_vec(L, kriging::predict_mean(k.model, X, threads));
+      return 1;
+    }
+    kriging::Prediction p = kriging::predict(k.model, X, threads);
+    lua::push_vec(L, std::move(p.mean));
+    lua::push_vec(L, std::move(p.mse));
+    return 2;
+  });
+}
+
+int k_evaluate(lua_State* L) {
+  KrigingBox& k = self(L);
+  const Eigen::MatrixXd X = lua::to_matrix(L, 2, "X");
+  return lua::protect(L, "evaluate", [&] {
+    lua_createtable(L, 0, 1);
+    lua::push_vec(L, kriging::predict_mean(k.model, X));
+    lua_setfield(L, -2, k.output.c_str());
+    return 1;
+  });
+}
+
+int k_loo(lua_State* L) {
+  KrigingBox& k = self(L);
+  return lua::protect(L, "loo", [&] {
+    kriging::LooResult r = kriging::loo(k.model);
+    lua_createtable(L, 0, 4);
+    lua::set_vec(L, "residuals", std::move(r.residuals));
+    lua::set_vec(L, "variance", std::move(r.variance));
+    lua::set_number(L, "q2", r.q2);
+    lua::set_number(L, "rmse", r.rmse);
+    return 1;
+  });
+}
+
+int k_save(lua_State* L) {
+  KrigingBox& k = self(L);
+  const std::string path = luaL_checkstring(L, 2);
+  return lua::protect(L, "save", [&] {
+    const auto p = lua::policy(L).check_write(path, "smi.Kriging:save");
+    kriging::save(k.model, p.string());
+    return 0;
+  });
+}
+
+int k_load(lua_State* L) {
+  const std::string path = luaL_checkstring(L, 1);
+  return lua::protect(L, "smi.kriging.load", [&] {
+    const auto p = lua::policy(L).check_read(path, "smi.kriging.load");
+    KrigingBox box;
+    box.model = kriging::load(p.string());
+    lua::push_box(L, kKrigingType, std::move(box));
+    return 1;
+  });
+}
+
+int k_tostring(lua_State* L) {
+  KrigingBox& k = self(L);
+  std::ostringstream os;
+  os.precision(4);
+  const auto& m = k.model;
+  os << "smi.Kriging(" << m.size() << " points, " << m.inputs() << " inputs, trend=" << kriging::trend_name(m.trend)
+     << ", corr=" << kriging::corr_name(m.corr) << ", theta=[";
+  for (Eigen::Index j = 0; j < m.theta.size(); ++j) os << (j ? ", " : "") << m.theta[j];
+  os << "], sigma2=" << m.process_variance() << ", method=" << m.method << ")";
+  lua_pushstring(L, os.str().c_str());
+  return 1;
+}
+
+int k_field(lua_State* L) {
+  KrigingBox& k = self(L);
+  const std::string key = lua_tostring(L, 2) ? lua_tostring(L, 2) : "";
+  const auto& m = k.model;
+  if (key == "theta") lua::push_vec(L, m.theta);
+  else if (key == "psi") lua_pushnumber(L, m.psi);
+  else if (key == "sigma2") lua_pushnumber(L, m.process_variance());
+  else if (key == "beta") lua::push_vec(L, m.beta);
+  else if (key == "evaluations") lua_pushinteger(L, m.evaluations);
+  else if (key == "method") lua_pushstring(L, m.method.c_str());
+  else if (key == "trend") lua_pushstring(L, kriging::trend_name(m.trend));
+  else if (key == "corr") lua_pushstring(L, kriging::corr_name(m.corr));
+  else if (key == "nugget") lua_pushnumber(L, m.nugget);
+  else if (key == "n") lua_pushinteger(L, m.size());
+  else if (key == "output") lua_pushstring(L, k.output.c_str());
+  else if (key == "inputs") push_strings(L, k.inputs);
+  else if (key == "outputs") push_strings(L, {k.output});
+  else if (key == "warnings") push_strings(L, m.warnings);
+  else if (key == "lower" && m.lower.size()) lua::push_vec(L, m.lower);
+  else if (key == "upper" && m.upper.size()) lua::push_vec(L, m.upper);
+  else return 0;
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {{"predict", k_predict}, {"loo", k_loo},           {"save", k_save},
+                             {"evaluate", k_evaluate}, {nullptr, nullptr}};
+const luaL_Reg kMeta[] = {{"__tostring", k_tostring}, {nullptr, nullptr}};
+const luaL_Reg kFuncs[] = {{"fit", k_fit}, {"load", k_load}, {nullptr, nullptr}};
+
+}  // namespace
+
+KrigingBox* test_kriging(lua_State* L, int idx) { return lua::test_box<KrigingBox>(L, idx, kKrigingType); }
+
+void open_kriging(lua_State* L) {
+  lua::register_type<KrigingBox>(L, kKrigingType, kMethods, kMeta, k_field);
+  lua_newtable(L);
+  lua::set_funcs(L, kFuncs);
+  lua_setfield(L, -2, "kriging");
+}
+
+}  // namespace smi::bind::surrogate

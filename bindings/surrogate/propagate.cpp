@@ -1,0 +1,48 @@
+// smi.propagate{model =, inputs =, n =, seed = [, order =]} -> {output = vec, ...}, X
+// Common random numbers: each input's column is its quantile of a fixed uniform column
+// (surrogate/propagate.hpp), and the model gets the whole sample in one call.
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "surrogate/model_arg.hpp"
+
+namespace smi::bind::surrogate {
+namespace {
+
+int propagate_call(lua_State* L) {
+  constexpr const char* fname = "smi.propagate";
+  luaL_checktype(L, 1, LUA_TTABLE);
+  lua::Options o(L, 1, fname);
+  o.check_known({"model", "inputs", "n", "seed", "order"});
+  if (o.push("model") == LUA_TNIL) luaL_error(L, "%s: field 'model' is required", fname);
+  const int model_idx = lua_gettop(L);  // stays on the stack while the model runs
+  ModelArg model = to_model(L, model_idx, fname);
+  std::vector<std::string> order = model.input_names;
+  if (o.has("order")) {
+    o.push("order");
+    order = lua::to_strings(L, -1, "order");
+    lua_pop(L, 1);
+  }
+  if (o.push("inputs") == LUA_TNIL) luaL_error(L, "%s: field 'inputs' is required", fname);
+  const std::vector<propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
+  lua_pop(L, 1);
+  const lua_Integer n = o.integer("n", 10000);
+  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  return lua::protect(L, fname, [&] {
+    Eigen::MatrixXd X = propagate::crn_sample(inputs, n, seed);
+    const Eigen::MatrixXd Y = model.fn(X);
+    if (Y.rows() != X.rows()) throw DimensionMismatch("the model returned " + std::to_string(Y.rows()) + " rows for " + std::to_string(X.rows()) + " points");
+    lua::push_named_vectors(L, *model.outputs, Y);
+    lua::push_mat(L, std::move(X));
+    return 2;
+  });
+}
+
+}  // namespace
+
+void open_propagate(lua_State* L) {
+  lua_pushcfunction(L, propagate_call);
+  lua_setfield(L, -2, "propagate");
+}
+
+}  // namespace smi::bind::surrogate

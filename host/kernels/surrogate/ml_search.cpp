@@ -1,0 +1,121 @@
+// Multistart L-BFGS on ln psi in log-parameters.
+#include "surrogate/ml_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlopt.hpp>
+#include <numeric>
+#include <vector>
+
+#include "surrogate/doe.hpp"
+#include "surrogate/parallel.hpp"
+
+namespace smi::kriging::detail {
+namespace {
+
+constexpr double kNuggetLo = 1e-10, kNuggetHi = 1.0;
+constexpr double kPenalty = 1e10;  // ln psi where R is not positive definite
+
+struct Local {
+  const Problem* pb;
+  Eigen::Index n;
+  bool with_nugget;
+  double fixed_nugget;
+  int evals = 0;
+  std::vector<double> best_z;
+  double best = std::numeric_limits<double>::infinity();
+
+  double eval(const std::vector<double>& z, std::vector<double>& grad) {
+    ++evals;
+    Eigen::VectorXd theta(n);
+    for (Eigen::Index j = 0; j < n; ++j) theta[j] = std::exp(z[j]);
+    const double nug = with_nugget ? std::exp(z[n]) : fixed_nugget;
+    const Factors f = factorize(*pb, theta, nug);
+    if (!f.ok) {  // push towards shorter correlation lengths and more nugget: both regularise R
+      for (auto& g : grad) g = -1.0;
+      return kPenalty;
+    }
+    if (!grad.empty()) {
+      const Eigen::VectorXd g = log_psi_gradient(*pb, f, theta, nug, with_nugget);
+      for (Eigen::Index j = 0; j < g.size(); ++j) grad[j] = g[j];
+    }
+    if (f.log_psi < best) best = f.log_psi, best_z = z;
+    return f.log_psi;
+  }
+  static double thunk(const std::vector<double>& z, std::vector<double>& grad, void* self) {
+    return static_cast<Local*>(self)->eval(z, grad);
+  }
+};
+
+}  // namespace
+
+MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, double nugget,
+                   bool estimate_nugget, int starts, std::uint64_t seed, int threads, const MlResult* start,
+                   int maxeval) {
+  const Eigen::Index n = lower.size(), dim = n + (estimate_nugget ? 1 : 0);
+  std::vector<double> zlo(dim), zhi(dim);
+  for (Eigen::Index j = 0; j < n; ++j) zlo[j] = std::log(lower[j]), zhi[j] = std::log(upper[j]);
+  if (estimate_nugget) zlo[n] = std::log(kNuggetLo), zhi[n] = std::log(kNuggetHi);
+
+  // Candidate starts: a random LHS in log space plus the centre of the box (or the given start).
+  const Eigen::Index ncand = start ? 1 : std::min<Eigen::Index>(20 + 5 * dim, 60);
+  std::vector<std::vector<double>> cand(ncand, std::vector<double>(dim));
+  if (start) {
+    for (Eigen::Index j = 0; j < n; ++j) cand[0][j] = std::clamp(std::log(start->theta[j]), zlo[j], zhi[j]);
+    if (estimate_nugget) cand[0][n] = std::clamp(std::log(start->nugget), zlo[n], zhi[n]);
+  } else {
+    Eigen::MatrixXd U = doe::lhs(ncand, dim, seed, {"none", 50, 0, false});
+    U.row(0).setConstant(0.5);
+    for (Eigen::Index c = 0; c < ncand; ++c)
+      for (Eigen::Index j = 0; j < dim; ++j) cand[c][j] = zlo[j] + (zhi[j] - zlo[j]) * U(c, j);
+  }
+  std::vector<double> cval(ncand);
+  std::vector<int> cevals(ncand, 0);
+  smi::detail::parallel_for(ncand, threads, [&](long c) {
+    Local loc{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()};
+    std::vector<double> nograd;
+    cval[c] = loc.eval(cand[c], nograd);
+    cevals[c] = loc.evals;
+  });
+  std::vector<long> order(ncand);
+  std::iota(order.begin(), order.end(), 0L);
+  std::stable_sort(order.begin(), order.end(), [&](long a, long b) { return cval[a] < cval[b]; });
+
+  const int m = static_cast<int>(pb.m());
+  if (starts <= 0) starts = m <= 150 ? 8 : (m <= 400 ? 4 : 2);
+  starts = std::min<int>(starts, static_cast<int>(ncand));
+  std::vector<Local> runs(starts, Local{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()});
+  smi::detail::parallel_for(starts, threads, [&](long r) {
+    Local& loc = runs[r];
+    nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(dim));
+    opt.set_lower_bounds(zlo);
+    opt.set_upper_bounds(zhi);
+    opt.set_min_objective(&Local::thunk, &loc);
+    opt.set_ftol_rel(1e-10);
+    opt.set_xtol_rel(1e-7);
+    opt.set_maxeval(maxeval > 0 ? maxeval : (m > 500 ? 80 : 150));
+    std::vector<double> z = cand[order[r]];
+    double fz = 0;
+    try {
+      opt.optimize(z, fz);
+    } catch (const std::exception&) {
+      // roundoff_limited and friends: the best point seen so far stands
+    }
+  });
+  MlResult res;
+  res.log_psi = std::numeric_limits<double>::infinity();
+  std::vector<double> best = cand[order[0]];
+  res.log_psi = cval[order[0]];
+  for (auto& r : runs) {
+    res.evaluations += r.evals;
+    if (r.best < res.log_psi) res.log_psi = r.best, best = r.best_z;
+  }
+  for (int e : cevals) res.evaluations += e;
+  res.theta.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) res.theta[j] = std::exp(best[j]);
+  res.nugget = estimate_nugget ? std::exp(best[n]) : nugget;
+  return res;
+}
+
+}  // namespace smi::kriging::detail

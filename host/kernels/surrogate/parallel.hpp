@@ -1,0 +1,35 @@
+#pragma once
+// A minimal deterministic parallel loop: tasks 0..n-1 go to `threads` workers by stride, and
+// each task writes only its own outputs, so results never depend on the thread count. The
+// first exception of any worker is rethrown on the caller's thread.
+#include <algorithm>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace smi::detail {
+
+template <class F>
+void parallel_for(long n, int threads, F&& task) {
+  threads = static_cast<int>(std::max(1L, std::min<long>(threads, n)));
+  if (threads <= 1) {
+    for (long i = 0; i < n; ++i) task(i);
+    return;
+  }
+  std::vector<std::exception_ptr> errors(threads);
+  auto worker = [&](int w) {
+    try {
+      for (long i = w; i < n; i += threads) task(i);
+    } catch (...) {  // plain C++ only (no Lua here): carried to the caller and rethrown
+      errors[w] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < threads; ++w) pool.emplace_back(worker, w);
+  worker(0);
+  for (auto& t : pool) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace smi::detail
