@@ -1,0 +1,136 @@
+// Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06. A parser
+// receives them bound to its run's work directory (h.f06("column.f06")); smi.model.parse holds
+// the same functions for any allowed path. Every read goes through the sandbox.
+#include <filesystem>
+
+#include "eval/f06.hpp"
+#include "eval/text_parsers.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "model.hpp"
+
+namespace smi::bind::eval {
+namespace {
+
+namespace se = smi::eval;
+
+/// The file argument resolved against the bound directory (upvalue 1, "" for none), checked
+/// for reading. Stack: [file, ...].
+std::string path_arg(lua_State* L, const char* fname) {
+  const char* file = luaL_checkstring(L, 1);
+  const char* dir = lua_tostring(L, lua_upvalueindex(1));
+  std::string p = file;
+  if (dir && *dir && !std::filesystem::path(p).is_absolute()) p = (std::filesystem::path(dir) / p).string();
+  std::string resolved;
+  lua::protect(L, fname, [&] {
+    resolved = lua::policy(L).check_read(p, fname).string();
+    return 0;
+  });
+  return resolved;
+}
+
+int h_read(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.read");
+  return lua::protect(L, "smi.model.parse.read", [&] {
+    const std::string t = se::read_text_file(p);
+    lua_pushlstring(L, t.data(), t.size());
+    return 1;
+  });
+}
+
+int h_exists(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.exists");
+  lua_pushboolean(L, std::filesystem::exists(p));
+  return 1;
+}
+
+int h_regex(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.regex");
+  const std::string pattern = luaL_checkstring(L, 2);
+  return lua::protect(L, "smi.model.parse.regex", [&] {
+    lua_pushnumber(L, se::regex_number(se::read_text_file(p), pattern, p));
+    return 1;
+  });
+}
+
+int h_regex_all(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.regex_all");
+  const std::string pattern = luaL_checkstring(L, 2);
+  return lua::protect(L, "smi.model.parse.regex_all", [&] {
+    lua::push_vec(L, se::regex_numbers(se::read_text_file(p), pattern, p));
+    return 1;
+  });
+}
+
+int h_csv(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.csv");
+  const std::string column = luaL_checkstring(L, 2);
+  return lua::protect(L, "smi.model.parse.csv", [&] {
+    lua::push_vec(L, se::csv_column(se::read_text_file(p), column, p));
+    return 1;
+  });
+}
+
+/// h.f06(file) -> {mode, order, eigenvalue, radians, cycles, mass, stiffness (smi.vec each),
+///   direction = {...} (per label row), labels = {{mode, cycles, direction, paper, participation}},
+///   paper = {[n] = {mode, direction, hz}}, paper_hz = smi.vec (paper modes 1..k in order)}
+int h_f06(lua_State* L) {
+  const std::string p = path_arg(L, "smi.model.parse.f06");
+  return lua::protect(L, "smi.model.parse.f06", [&] {
+    const se::F06Result r = se::parse_f06(se::read_text_file(p), p);
+    const auto n = static_cast<Eigen::Index>(r.eigen.size());
+    Eigen::MatrixXd cols(n, 7);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto& e = r.eigen[static_cast<std::size_t>(i)];
+      cols.row(i) << e.mode, e.order, e.eigenvalue, e.radians, e.cycles, e.mass, e.stiffness;
+    }
+    lua_createtable(L, 0, 12);
+    const char* names[] = {"mode", "order", "eigenvalue", "radians", "cycles", "mass", "stiffness"};
+    for (int j = 0; j < 7; ++j) lua::set_vec(L, names[j], cols.col(j));
+    lua_createtable(L, static_cast<int>(r.labels.size()), 0);  // labels
+    lua_createtable(L, static_cast<int>(r.labels.size()), 0);  // direction
+    for (std::size_t i = 0; i < r.labels.size(); ++i) {
+      const auto& l = r.labels[i];
+      lua_createtable(L, 0, 5);
+      lua::set_integer(L, "mode", l.mode);
+      lua::set_number(L, "cycles", l.cycles);
+      lua::set_string(L, "direction", l.direction);
+      if (l.paper > 0) lua::set_integer(L, "paper", l.paper);
+      lua::set_vec(L, "participation", Eigen::Map<const Eigen::VectorXd>(l.participation, 6));
+      lua_rawseti(L, -3, static_cast<lua_Integer>(i + 1));
+      lua_pushstring(L, l.direction.c_str());
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -3, "direction");
+    lua_setfield(L, -2, "labels");
+    lua_newtable(L);
+    Eigen::VectorXd hz(static_cast<Eigen::Index>(r.paper.size()));
+    for (std::size_t i = 0; i < r.paper.size(); ++i) {
+      const auto& pm = r.paper[i];
+      hz[static_cast<Eigen::Index>(i)] = pm.hz;
+      lua_createtable(L, 0, 3);
+      lua::set_integer(L, "mode", pm.mode);
+      lua::set_string(L, "direction", pm.direction);
+      lua::set_number(L, "hz", pm.hz);
+      lua_rawseti(L, -2, pm.paper);
+    }
+    lua_setfield(L, -2, "paper");
+    lua::set_vec(L, "paper_hz", std::move(hz));
+    return 1;
+  });
+}
+
+const luaL_Reg kHelpers[] = {{"read", h_read},   {"exists", h_exists}, {"regex", h_regex}, {"regex_all", h_regex_all},
+                             {"csv", h_csv},     {"f06", h_f06},       {nullptr, nullptr}};
+
+}  // namespace
+
+void push_parse_helpers(lua_State* L, const std::string& dir) {
+  lua_createtable(L, 0, 7);
+  lua_pushstring(L, dir.c_str());
+  luaL_setfuncs(L, kHelpers, 1);  // each helper gets the directory as upvalue 1
+  lua_pushstring(L, dir.c_str());
+  lua_setfield(L, -2, "dir");
+}
+
+}  // namespace smi::bind::eval

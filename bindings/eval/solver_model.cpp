@@ -1,0 +1,305 @@
+// smi.model.command{...} and smi.model.batch{...}: models backed by an external solver run
+// through the evaluator (host/kernels/eval/evaluator.hpp). This file turns the option table
+// into a CommandConfig (through the sandbox), calls the Lua output parser for each finished
+// run, shows progress, and reports failures.
+#include <filesystem>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "eval/process.hpp"
+#include "eval/progress_line.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "model.hpp"
+
+namespace smi::bind::eval {
+namespace {
+
+namespace se = smi::eval;
+namespace fs = std::filesystem;
+
+const char kPlannedKey = 0;  // registry key of the dry-run totals table
+
+bool valid_model_name(const std::string& s) {
+  if (s.empty() || s == "." || s == "..") return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+
+/// Runs under lua_pcall (through lua::call): [fn, dir, outputs, n|nil] -> [smi.vec]. Calls the
+/// parser fn(dir, helpers [, n]) and checks what it returns: one number per output (command)
+/// or one vector of n numbers per output (batch), flattened column by column.
+int parse_trampoline(lua_State* L) {
+  const bool batch = !lua_isnil(L, 4);
+  const lua_Integer n = batch ? lua_tointeger(L, 4) : 1;
+  lua_pushvalue(L, 1);
+  lua_pushvalue(L, 2);
+  push_parse_helpers(L, lua_tostring(L, 2));
+  if (batch) lua_pushinteger(L, n);
+  lua_call(L, batch ? 3 : 2, 1);
+  if (!lua_istable(L, -1))
+    return luaL_error(L, "the parser must return a table {output = value, ...}, got %s", luaL_typename(L, -1));
+  const int res = lua_gettop(L);
+  const lua_Integer m = luaL_len(L, 3);
+  Eigen::VectorXd flat(n * m);
+  for (lua_Integer j = 1; j <= m; ++j) {
+    lua_rawgeti(L, 3, j);
+    const char* name = lua_tostring(L, -1);
+    const int t = lua_getfield(L, res, name);
+    if (t == LUA_TNIL) return luaL_error(L, "the parser returned no value for output '%s'", name);
+    if (!batch) {
+      if (t != LUA_TNUMBER)
+        return luaL_error(L, "the parser returned a %s for output '%s', expected a number", luaL_typename(L, -1), name);
+      flat[j - 1] = lua_tonumber(L, -1);
+    } else {
+      const std::string what = std::string("output '") + name + "'";
+      const Eigen::VectorXd v = lua::to_vector(L, -1, what.c_str());
+      if (v.size() != n)
+        return luaL_error(L, "the parser returned %d values for output '%s', the batch has %d points",
+                          static_cast<int>(v.size()), name, static_cast<int>(n));
+      flat.segment((j - 1) * n, n) = v;
+    }
+    lua_pop(L, 2);
+  }
+  lua::push_vec(L, std::move(flat));
+  return 1;
+}
+
+/// Builds the config common to both forms from the option table at index 1.
+se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
+  lua::Options o(L, 1, fname);
+  if (batch)
+    o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
+                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store"});
+  else
+    o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
+                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store"});
+  Policy& pol = lua::policy(L);
+  se::CommandConfig c;
+  c.batch = batch;
+  c.name = o.string("name", "model");
+  if (!valid_model_name(c.name))
+    luaL_error(L, "%s: name '%s' must be letters, digits, '_', '-' or '.' (it names the runs folder)", fname, c.name.c_str());
+  o.push("inputs");
+  c.inputs = lua::to_strings(L, -1, "inputs");
+  o.push("outputs");
+  c.outputs = lua::to_strings(L, -1, "outputs");
+  lua_pop(L, 2);
+  if (o.push("command") != LUA_TTABLE)
+    luaL_error(L, "%s: option 'command' must be the argv table {program, arg, ...} (no shell), got %s", fname,
+               luaL_typename(L, -1));
+  std::vector<std::string> argv = lua::to_strings(L, -1, "command");
+  lua_pop(L, 1);
+  if (argv.empty()) luaL_error(L, "%s: option 'command' is empty; its first element is the program", fname);
+  if (o.push("parse") != LUA_TFUNCTION)
+    luaL_error(L, "%s: option 'parse' must be a function(dir, h%s) returning {output = value, ...}, got %s", fname,
+               batch ? ", n" : "", luaL_typename(L, -1));
+  lua_pop(L, 1);
+  std::vector<std::string> files;
+  if (o.push("files") != LUA_TNIL) files = lua::to_strings(L, -1, "files");
+  lua_pop(L, 1);
+  c.version = o.string("version", "");
+  c.timeout = o.number("timeout", 0);
+  c.retries = static_cast<int>(o.integer("retries", 0));
+  c.concurrency = static_cast<int>(o.integer("concurrency", 1));
+  c.batch_size = static_cast<int>(o.integer("batch_size", 0));
+  c.reuse_failed = o.boolean("reuse_failed", false);
+  const std::string on_failure = o.string("on_failure", "stop");
+  const std::string store = o.string("store", "");
+  std::string template_file, template_text;
+  if (!batch) {
+    template_file = o.string("template", "");
+    template_text = o.string("template_string", "");
+    if (template_file.empty() == template_text.empty())
+      luaL_error(L, "%s: give exactly one of 'template' (a file) or 'template_string' (the text)", fname);
+    c.deck_file = o.string("deck", "input.deck");
+    if (o.push("constants") != LUA_TNIL) {
+      if (!lua_istable(L, -1)) luaL_error(L, "%s: option 'constants' must be a table {name = value}", fname);
+      lua_pushnil(L);
+      while (lua_next(L, -2)) {
+        if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: constants must have string keys", fname);
+        const std::string k = lua_tostring(L, -2);
+        if (lua_type(L, -1) == LUA_TNUMBER) c.constants[k] = se::DeckValue::num(lua_tonumber(L, -1));
+        else if (lua_type(L, -1) == LUA_TSTRING) c.constants[k] = se::DeckValue::str(lua_tostring(L, -1));
+        else luaL_error(L, "%s: constant '%s' must be a number or a string, got %s", fname, k.c_str(), luaL_typename(L, -1));
+        lua_pop(L, 1);
+      }
+    }
+    lua_pop(L, 1);
+  } else {
+    c.deck_file = o.string("input_file", "points.csv");
+  }
+  lua::protect(L, fname, [&] {
+    c.on_failure = se::parse_on_failure(on_failure);
+    c.program_name = argv[0];
+    c.program = pol.check_exec(argv[0], fname).string();
+    c.args.assign(argv.begin() + 1, argv.end());
+    for (const auto& f : files) c.files.push_back(pol.check_read(f, fname).string());
+    if (!template_file.empty())
+      c.deck = std::make_shared<se::DeckTemplate>(se::DeckTemplate::from_file(pol.check_read(template_file, fname).string()));
+    else if (!batch)
+      c.deck = std::make_shared<se::DeckTemplate>(template_text, "(template_string)");
+    const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
+    c.runs_dir = pol.check_write((out / "runs" / c.name).string(), fname).string();
+    c.store_path = pol.check_write(store.empty() ? (out / "evaluations.sqlite").string() : store, fname).string();
+    if (!pol.store_path.empty()) {
+      const std::string shared = pol.check_read(pol.store_path, fname).string();
+      if (shared != c.store_path) c.shared_store_path = shared;
+    }
+    return 0;
+  });
+  return c;
+}
+
+int make_solver_model(lua_State* L, bool batch) {
+  const char* fname = batch ? "smi.model.batch" : "smi.model.command";
+  luaL_checktype(L, 1, LUA_TTABLE);
+  se::CommandConfig c = solver_config(L, batch, fname);
+  lua_getfield(L, 1, "parse");
+  const int fn = lua_gettop(L);
+  Model m;
+  m.kind = batch ? Model::Batch : Model::Command;
+  m.name = c.name;
+  m.inputs = c.inputs;
+  m.outputs = c.outputs;
+  lua::protect(L, fname, [&] {
+    m.ev = std::make_unique<se::Evaluator>(std::move(c));
+    return 0;
+  });
+  push_model(L, std::move(m), fn);
+  return 1;
+}
+
+/// Adds a dry run's plan to the totals in the registry (smi.model.planned()).
+void add_planned(lua_State* L, const se::Plan& p) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
+  }
+  for (auto [key, v] : {std::pair<const char*, double>{"runs", static_cast<double>(p.runs)},
+                        {"points", static_cast<double>(p.points)}, {"reused", static_cast<double>(p.reused)},
+                        {"eta", p.eta_seconds}}) {
+    lua_getfield(L, -1, key);
+    const double before = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    if (std::string(key) == "eta" && (v < 0 || before < 0)) v = -1;  // unknown stays unknown
+    else v += before;
+    lua_pushnumber(L, v);
+    lua_setfield(L, -2, key);
+  }
+  lua_pop(L, 1);
+}
+
+}  // namespace
+
+int model_command(lua_State* L) { return make_solver_model(L, false); }
+int model_batch(lua_State* L) { return make_solver_model(L, true); }
+
+int model_planned(lua_State* L) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_createtable(L, 0, 4);
+    lua::set_integer(L, "runs", 0);
+    lua::set_integer(L, "points", 0);
+    lua::set_integer(L, "reused", 0);
+    lua::set_number(L, "eta", 0);
+  }
+  return 1;
+}
+
+int evaluate_solver(lua_State* L, Model& m) {
+  const Eigen::MatrixXd X = design_of(L, 2, m);
+  const Policy& pol = lua::policy(L);
+  const bool batch = m.kind == Model::Batch;
+  const char* fname = "smi.Model:evaluate";
+  lua_getiuservalue(L, 1, 1);  // the parser
+  const int fn = lua_gettop(L);
+  lua_createtable(L, static_cast<int>(m.outputs.size()), 0);
+  for (std::size_t j = 0; j < m.outputs.size(); ++j) {
+    lua_pushstring(L, m.outputs[j].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
+  }
+  const int outs = lua_gettop(L);
+  const int concurrency = m.ev->config().concurrency;
+
+  // The parser runs under pcall; a Lua error in it becomes LuaError, which the evaluator turns
+  // into a failed record ("unparsable output: ...").
+  auto call_parser = [&](const std::string& dir, std::size_t n) {
+    lua_pushcfunction(L, parse_trampoline);
+    lua_pushvalue(L, fn);
+    lua_pushstring(L, dir.c_str());
+    lua_pushvalue(L, outs);
+    if (batch) lua_pushinteger(L, static_cast<lua_Integer>(n));
+    else lua_pushnil(L);
+    lua::call(L, 4, 1);
+    Eigen::VectorXd flat = *lua::test_vec(L, -1);
+    lua_pop(L, 1);
+    return flat;
+  };
+  se::ParseFn parse = [&](const std::string& dir) {
+    const Eigen::VectorXd v = call_parser(dir, 1);
+    se::NamedValues out;
+    for (std::size_t j = 0; j < m.outputs.size(); ++j) out.emplace_back(m.outputs[j], v[static_cast<Eigen::Index>(j)]);
+    return out;
+  };
+  se::ParseBatchFn parse_batch = [&](const std::string& dir, std::size_t n) {
+    const Eigen::VectorXd v = call_parser(dir, n);
+    return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(v.data(), static_cast<Eigen::Index>(n),
+                                                             static_cast<Eigen::Index>(m.outputs.size())));
+  };
+  const bool show = !pol.quiet && isatty(STDERR_FILENO);
+  se::ProgressFn progress;
+  double shown_at = -1;
+  if (show)
+    progress = [&](const se::Progress& p, bool final) {
+      const double now = se::monotonic_seconds();
+      if (!final && now - shown_at < 0.1) return;  // a terminal line ten times a second is plenty
+      shown_at = now;
+      se::show_progress(stderr, se::format_progress(m.name, p), final);
+    };
+
+  // Ctrl-C (and the other aborts of the runtime) arm a count hook firing at every instruction;
+  // while we wait on solvers no Lua runs, so we look for that hook ourselves.
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+  lua_State* main = lua_tothread(L, -1);
+  lua_pop(L, 1);
+  m.ev->set_interrupt_check([L, main] {
+    for (lua_State* s : {L, main})
+      if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return true;
+    return false;
+  });
+
+  se::EvalResult r;
+  std::string summary;
+  lua::protect(L, fname, [&] {
+    if (pol.dry_run) {
+      const se::Plan plan = m.ev->plan(X);
+      std::printf("%s\n", se::format_plan(m.name, plan, concurrency).c_str());
+      std::fflush(stdout);
+      add_planned(L, plan);
+    }
+    r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
+    if (r.failed > 0) {
+      summary = fmt::format("model '{}': {} of {} point{} failed{}:", m.name, r.failed, X.rows(), X.rows() == 1 ? "" : "s",
+                            r.stopped ? " (on_failure = 'stop')" : " (skipped)");
+      int shown = 0;
+      for (std::size_t i = 0; i < r.status.size(); ++i)
+        if (r.status[i] == se::Status::Failed && shown++ < 10) summary += fmt::format("\n  row {}: {}", i + 1, r.reason[i]);
+      if (shown > 10) summary += fmt::format("\n  ... and {} more (see info.failures)", shown - 10);
+      summary += fmt::format("\n  records in {}", m.ev->config().store_path);
+    }
+    return 0;
+  });
+  if (r.stopped) {
+    std::string msg = summary + "\n  the remaining points were not run; pass on_failure = 'skip' or 'retry' to go on past failures";
+    return luaL_error(L, "%s: %s", fname, msg.c_str());
+  }
+  if (!summary.empty() && !pol.quiet) std::fprintf(stderr, "smi.model: %s\n", summary.c_str());
+  push_results(L, m, r);
+  return 2;
+}
+
+}  // namespace smi::bind::eval

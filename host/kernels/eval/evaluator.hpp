@@ -1,0 +1,120 @@
+#pragma once
+// Evaluating a design matrix with an external solver: render one deck per point (or one input
+// file per batch of points), look every point up in the evaluation store, run the missing ones
+// through the Scheduler, parse and store each result the moment its run ends, and return the
+// outputs in input order. Failures (non-zero exit, signal, timeout, missing or unparsable
+// output) are results too: a failed record with its reason, a NaN row, and a status.
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "eval/deck_template.hpp"
+#include "eval/store.hpp"
+
+namespace smi::eval {
+
+enum class OnFailure { Stop, Skip, Retry };
+OnFailure parse_on_failure(const std::string& s);  // "stop" | "skip" | "retry"
+
+struct CommandConfig {
+  std::string name = "model";               // names the runs folder and the progress line
+  std::vector<std::string> inputs, outputs;
+  std::shared_ptr<const DeckTemplate> deck;   // per-point deck (nullptr in batch mode)
+  std::string deck_file = "input.deck";       // its file name in the work directory
+  DeckValues constants;                       // extra placeholder values (numbers or strings)
+  std::vector<std::string> files;             // absolute paths copied into every work directory
+  std::string program;                        // absolute path (checked by the sandbox)
+  std::string program_name;                   // as the study wrote it; goes into the key
+  std::vector<std::string> args;              // argv[1..]: "{deck}" -> deck_file, "{workdir}" -> the folder
+  std::string version;                        // "" -> "sha256:" + hash of the program file
+  double timeout = 0;                         // seconds per run; 0 = none
+  int retries = 0;                            // extra attempts after a failure
+  OnFailure on_failure = OnFailure::Stop;
+  int concurrency = 1;
+  bool reuse_failed = false;                  // also reuse stored failures (default: run again)
+  std::string runs_dir;                       // <out>/runs/<name>
+  std::string store_path;                     // the local store (written)
+  std::string shared_store_path;              // --store: read for hits only ("" = none)
+  // Batch mode: one run takes `batch_size` points (0 = all pending) written as CSV to deck_file.
+  bool batch = false;
+  int batch_size = 0;
+};
+
+enum class Status { Ok, Failed, NotRun };
+
+struct EvalResult {
+  Eigen::MatrixXd Y;                 // rows = points, columns = outputs; NaN where not Ok
+  std::vector<Status> status;
+  std::vector<std::string> reason;   // "" when Ok
+  Eigen::VectorXd duration;          // run seconds (stored duration for reused points)
+  std::vector<bool> reused;          // found in a store, no run
+  std::size_t launched = 0;          // processes started (retries included)
+  std::size_t failed = 0;            // points that ended Failed
+  bool stopped = false;              // on_failure = stop ended the evaluation early
+};
+
+struct Progress {
+  std::size_t total = 0;     // runs needed (points not in a store)
+  std::size_t done = 0;      // runs finished (ok or failed), this evaluation
+  std::size_t failed = 0;
+  std::size_t running = 0;
+  double mean_seconds = 0;   // of finished runs (stored timing before the first)
+  double eta_seconds = -1;   // -1 = unknown
+};
+
+struct Plan {
+  std::size_t points = 0;    // rows of X
+  std::size_t unique = 0;    // distinct keys
+  std::size_t reused = 0;    // distinct keys found in a store
+  std::size_t runs = 0;      // solver processes that would start (batches count once)
+  Timing timing;             // stored timings of this program and version
+  double eta_seconds = -1;   // -1 when no timing is stored
+};
+
+/// Reads the outputs of a finished run from its work directory: one value per name, in any
+/// order (command mode). Throws (any std::exception) when the output is missing or unparsable.
+using ParseFn = std::function<NamedValues(const std::string& workdir)>;
+/// Batch mode: a matrix with one row per point of the batch (in the order written) and one
+/// column per output, in the order of CommandConfig::outputs.
+using ParseBatchFn = std::function<Eigen::MatrixXd(const std::string& workdir, std::size_t points)>;
+using ProgressFn = std::function<void(const Progress&, bool final)>;
+
+class Evaluator {
+ public:
+  explicit Evaluator(CommandConfig cfg);
+  ~Evaluator();
+
+  /// Runs what the stores do not hold. X: rows = points, columns = cfg.inputs. With
+  /// launch = false (--dry-run) only stored results are filled in; the rest are NotRun.
+  EvalResult evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, const ParseBatchFn& parse_batch,
+                      const ProgressFn& progress, bool launch = true);
+  /// What evaluate(X) would run, without running anything (--dry-run).
+  Plan plan(const Eigen::MatrixXd& X);
+
+  /// A check polled while runs go on (every tick and after each run): when it returns true,
+  /// evaluate() kills the running process groups and throws smi::Interrupted. Records of the
+  /// runs that finished are in the store already, so running the study again resumes.
+  void set_interrupt_check(std::function<bool()> check) { interrupted_ = std::move(check); }
+
+  /// The content key of row `x` (tests and reports).
+  std::string key(const Eigen::VectorXd& x) const;
+  /// The deck text for `x` (command mode).
+  std::string render(const Eigen::VectorXd& x) const;
+  const CommandConfig& config() const { return cfg_; }
+  const std::string& version() const { return cfg_.version; }
+  Store& store();
+
+ private:
+  struct Point;
+  std::vector<Point> points_of(const Eigen::MatrixXd& X) const;
+  std::string key_of(const Eigen::VectorXd& x, const std::string& deck) const;
+  bool lookup(Point& p);
+  CommandConfig cfg_;
+  std::string key_prefix_;  // hash state of everything but the point, as text fed first
+  std::unique_ptr<Store> store_, shared_;
+  std::function<bool()> interrupted_;
+};
+
+}  // namespace smi::eval

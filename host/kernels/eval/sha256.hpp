@@ -1,0 +1,39 @@
+#pragma once
+// SHA-256 (FIPS 180-4), written here so the evaluation store needs no crypto library. It keys
+// solver runs by content (rendered deck, program, version), so a collision-resistant hash is
+// what lets a store be shared between studies and teammates without false hits.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace smi::eval {
+
+class Sha256 {
+ public:
+  Sha256();
+  /// Feeds bytes; may be called any number of times before digest().
+  Sha256& update(std::string_view bytes);
+  /// Feeds a field followed by its length, so that ("ab","c") and ("a","bc") hash differently.
+  Sha256& field(std::string_view bytes);
+  /// The 32-byte digest; the object must not be updated afterwards.
+  std::array<std::uint8_t, 32> digest();
+  /// The digest as 64 lowercase hex characters.
+  std::string hex();
+
+ private:
+  void block(const std::uint8_t* p);
+  std::uint32_t h_[8];
+  std::uint8_t buf_[64];
+  std::size_t used_ = 0;
+  std::uint64_t total_ = 0;
+  bool done_ = false;
+};
+
+/// Hex SHA-256 of a byte string.
+std::string sha256_hex(std::string_view bytes);
+
+/// Hex SHA-256 of a file's contents; throws smi::Error naming the file if it cannot be read.
+std::string sha256_file(const std::string& path);
+
+}  // namespace smi::eval

@@ -1,0 +1,202 @@
+#include "eval/store.hpp"
+
+#include <cstdlib>
+#include <fmt/format.h>
+#include <sqlite3.h>
+
+namespace smi::eval {
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS evaluations(
+  key         TEXT PRIMARY KEY,
+  model       TEXT NOT NULL,
+  program     TEXT NOT NULL,
+  version     TEXT NOT NULL,
+  inputs      TEXT NOT NULL,
+  outputs     TEXT NOT NULL,
+  status      TEXT NOT NULL CHECK (status IN ('ok', 'failed')),
+  reason      TEXT NOT NULL,
+  duration    REAL NOT NULL,
+  attempts    INTEGER NOT NULL,
+  stdout_tail TEXT NOT NULL,
+  stderr_tail TEXT NOT NULL,
+  workdir     TEXT NOT NULL,
+  created     TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')));
+CREATE INDEX IF NOT EXISTS evaluations_program ON evaluations(program, version, status);
+)sql";
+
+// A success is never overwritten by a failure under the same key (a flaky rerun must not erase
+// a good result another study may rely on).
+constexpr const char* kPut = R"sql(
+INSERT INTO evaluations(key, model, program, version, inputs, outputs, status, reason, duration, attempts,
+                        stdout_tail, stderr_tail, workdir)
+VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)
+ON CONFLICT(key) DO UPDATE SET
+  model = excluded.model, inputs = excluded.inputs, outputs = excluded.outputs, status = excluded.status,
+  reason = excluded.reason, duration = excluded.duration, attempts = excluded.attempts,
+  stdout_tail = excluded.stdout_tail, stderr_tail = excluded.stderr_tail, workdir = excluded.workdir,
+  created = strftime('%Y-%m-%dT%H:%M:%fZ', 'now')
+WHERE evaluations.status <> 'ok' OR excluded.status = 'ok';
+)sql";
+
+constexpr const char* kFind =
+    "SELECT key, model, program, version, inputs, outputs, status, reason, duration, attempts, "
+    "stdout_tail, stderr_tail, workdir FROM evaluations WHERE key = ?1";
+
+std::string column_text(sqlite3_stmt* s, int i) {
+  const auto* t = sqlite3_column_text(s, i);
+  return t ? reinterpret_cast<const char*>(t) : "";
+}
+
+/// Resets a statement when it goes out of scope, whatever happened in between.
+struct Reset {
+  sqlite3_stmt* s;
+  ~Reset() {
+    sqlite3_reset(s);
+    sqlite3_clear_bindings(s);
+  }
+};
+
+}  // namespace
+
+std::string encode_values(const NamedValues& v) {
+  std::string s;
+  for (const auto& [name, value] : v) s += fmt::format("{}\t{}\n", name, value);
+  return s;
+}
+
+NamedValues decode_values(const std::string& s) {
+  NamedValues out;
+  std::size_t pos = 0;
+  while (pos < s.size()) {
+    const std::size_t eol = s.find('\n', pos);
+    const std::string line = s.substr(pos, eol == std::string::npos ? std::string::npos : eol - pos);
+    pos = eol == std::string::npos ? s.size() : eol + 1;
+    const std::size_t tab = line.find('\t');
+    if (tab == std::string::npos) continue;
+    out.emplace_back(line.substr(0, tab), std::strtod(line.c_str() + tab + 1, nullptr));
+  }
+  return out;
+}
+
+void Store::fail(const char* what) {
+  throw Error(fmt::format("evaluation store '{}': {}: {}", path_, what, db_ ? sqlite3_errmsg(db_) : "out of memory"));
+}
+
+void Store::exec(const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw Error(fmt::format("evaluation store '{}': {}", path_, msg));
+  }
+}
+
+Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(read_only) {
+  const int flags = read_only ? (SQLITE_OPEN_READONLY | SQLITE_OPEN_URI) : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+    const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw Error(fmt::format("cannot open evaluation store '{}'{}: {}", path, read_only ? " (read-only)" : "", msg));
+  }
+  sqlite3_busy_timeout(db_, 10000);  // two studies writing one store wait for each other
+  if (read_only) {
+    // Reading a WAL database needs its -shm file; in a folder we may not write, fall back to
+    // reading the file as immutable (a snapshot: fine for a shared, read-only cache).
+    if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
+      sqlite3_close(db_);
+      db_ = nullptr;
+      const std::string uri = "file:" + path + "?immutable=1";
+      if (sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK)
+        fail("cannot open read-only");
+    }
+  } else {
+    exec("PRAGMA journal_mode=WAL");
+    exec("PRAGMA synchronous=NORMAL");
+    exec(kSchema);
+    if (sqlite3_prepare_v2(db_, kPut, -1, &put_, nullptr) != SQLITE_OK) fail("prepare insert");
+  }
+  if (sqlite3_prepare_v2(db_, kFind, -1, &find_, nullptr) != SQLITE_OK)
+    fail(read_only ? "not an evaluation store (no 'evaluations' table)" : "prepare lookup");
+}
+
+Store::~Store() {
+  sqlite3_finalize(find_);
+  sqlite3_finalize(put_);
+  sqlite3_close(db_);
+}
+
+std::optional<Record> Store::find(const std::string& key) {
+  Reset guard{find_};
+  sqlite3_bind_text(find_, 1, key.c_str(), static_cast<int>(key.size()), SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(find_);
+  if (rc == SQLITE_DONE) return std::nullopt;
+  if (rc != SQLITE_ROW) fail("lookup");
+  Record r;
+  r.key = column_text(find_, 0);
+  r.model = column_text(find_, 1);
+  r.program = column_text(find_, 2);
+  r.version = column_text(find_, 3);
+  r.inputs = decode_values(column_text(find_, 4));
+  r.outputs = decode_values(column_text(find_, 5));
+  r.ok = column_text(find_, 6) == "ok";
+  r.reason = column_text(find_, 7);
+  r.duration = sqlite3_column_double(find_, 8);
+  r.attempts = sqlite3_column_int(find_, 9);
+  r.stdout_tail = column_text(find_, 10);
+  r.stderr_tail = column_text(find_, 11);
+  r.workdir = column_text(find_, 12);
+  return r;
+}
+
+void Store::put(const Record& r) {
+  if (read_only_) throw Error(fmt::format("evaluation store '{}' is read-only", path_));
+  Reset guard{put_};
+  const std::string inputs = encode_values(r.inputs), outputs = encode_values(r.outputs);
+  auto text = [&](int i, const std::string& s) {
+    sqlite3_bind_text(put_, i, s.c_str(), static_cast<int>(s.size()), SQLITE_TRANSIENT);
+  };
+  text(1, r.key);
+  text(2, r.model);
+  text(3, r.program);
+  text(4, r.version);
+  text(5, inputs);
+  text(6, outputs);
+  text(7, r.ok ? std::string("ok") : std::string("failed"));
+  text(8, r.reason);
+  sqlite3_bind_double(put_, 9, r.duration);
+  sqlite3_bind_int(put_, 10, r.attempts);
+  text(11, r.stdout_tail);
+  text(12, r.stderr_tail);
+  text(13, r.workdir);
+  if (sqlite3_step(put_) != SQLITE_DONE) fail("write");
+}
+
+Timing Store::timing(const std::string& program, const std::string& version) {
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT count(*), avg(duration) FROM evaluations WHERE program = ?1 AND version = ?2 "
+                              "AND status = 'ok'", -1, &s, nullptr) != SQLITE_OK)
+    fail("prepare timing");
+  sqlite3_bind_text(s, 1, program.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(s, 2, version.c_str(), -1, SQLITE_TRANSIENT);
+  Timing t;
+  if (sqlite3_step(s) == SQLITE_ROW) {
+    t.count = sqlite3_column_int64(s, 0);
+    t.mean = sqlite3_column_double(s, 1);
+  }
+  sqlite3_finalize(s);
+  return t;
+}
+
+long Store::count() {
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT count(*) FROM evaluations", -1, &s, nullptr) != SQLITE_OK) fail("prepare count");
+  long n = 0;
+  if (sqlite3_step(s) == SQLITE_ROW) n = static_cast<long>(sqlite3_column_int64(s, 0));
+  sqlite3_finalize(s);
+  return n;
+}
+
+}  // namespace smi::eval

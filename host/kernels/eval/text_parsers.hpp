@@ -1,0 +1,35 @@
+#pragma once
+// Reading numbers out of solver output files: the first (or every) match of a regular
+// expression, and named columns of a CSV file. Errors name the file, the line and what was
+// expected, because a parser failure becomes a failed evaluation record that a person reads.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace smi::eval {
+
+/// The output could not be read as expected (missing value, not a number).
+struct ParseError : Error {
+  using Error::Error;
+};
+
+/// Reads a whole file; throws ParseError naming it if it is missing or unreadable.
+std::string read_text_file(const std::string& path);
+
+/// The number captured by `pattern` (ECMAScript syntax; capture group 1 if the pattern has one,
+/// else the whole match) at its first match in `text`. `source` names the file in errors.
+double regex_number(const std::string& text, const std::string& pattern, const std::string& source);
+/// Every match, in order.
+Eigen::VectorXd regex_numbers(const std::string& text, const std::string& pattern, const std::string& source);
+
+/// Column `column` (by header name) of a comma-separated table with one header line; blank
+/// lines and lines starting with '#' are skipped.
+Eigen::VectorXd csv_column(const std::string& text, const std::string& column, const std::string& source);
+
+/// Parses a whole number from text (strtod over the trimmed string); nullopt-like false if the
+/// text is not entirely a number.
+bool parse_number(const std::string& text, double& out);
+
+}  // namespace smi::eval
