@@ -8,6 +8,8 @@ namespace smi::bind {
 void open_vec(lua_State* L);        // smi.vec            (bindings/vec.cpp)
 void open_mat(lua_State* L);        // smi.mat            (bindings/mat.cpp)
 void open_rng(lua_State* L);        // smi.rng            (bindings/rng.cpp)
+void open_csv(lua_State* L);        // smi.csv            (bindings/csv.cpp)
+void open_json(lua_State* L);       // smi.json           (bindings/json.cpp)
 void open_stats(lua_State* L);      // smi.dist, smi.kde, smi.kde_bd, smi.kde_ebd, smi.ecdf, smi.metric
 void open_surrogate(lua_State* L);  // smi.doe, smi.kriging, smi.propagate, smi.screen
 void open_eval(lua_State* L);       // smi.model

@@ -6,6 +6,8 @@ int luaopen_smi(lua_State* L) {
   smi::bind::open_vec(L);
   smi::bind::open_mat(L);
   smi::bind::open_rng(L);
+  smi::bind::open_csv(L);
+  smi::bind::open_json(L);
   smi::bind::open_stats(L);
   smi::bind::open_surrogate(L);
   smi::bind::open_eval(L);

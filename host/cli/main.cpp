@@ -1,30 +1,73 @@
-// smi-lua [options] [script [args]]: a minimal front end (the full CLI of issue 2 replaces it).
+// smi-lua [options] [script [args]]: parses the command line, builds the runtime, runs -e/-l,
+// the script and the REPL in lua.c's order. Exit status: 0 ok, 1 script error, 2 usage error,
+// or the code given to os.exit.
 #include <cstdio>
-#include <cstring>
+#include <cstdlib>
 #include <exception>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
+#include "cli/args.hpp"
+#include "repl/repl.hpp"
 #include "vm/runtime.hpp"
 
+namespace {
+
+constexpr int kUsageError = 2;
+
+void print_version() {
+  std::printf("smi-lua %s (%s), statistical model improvement in Lua\n", SMI_VERSION, LUA_RELEASE);
+  std::fflush(stdout);
+}
+
+int run(smi::cli::Args& a, int argc, char** argv) {
+  if (!a.ignore_env)
+    if (const char* d = std::getenv("SMI_STDLIB_DIR"); d && a.cfg.stdlib_dir.empty()) a.cfg.stdlib_dir = d;
+  if (a.ignore_env) ::setenv("SMI_PATH", "", 1);
+  // Progress output only makes sense on a terminal.
+  if (!::isatty(STDOUT_FILENO) || !::isatty(STDERR_FILENO)) a.cfg.quiet = true;
+
+  smi::vm::Runtime rt(a.cfg);
+  rt.set_arg(argc, argv, a.script_index ? a.script_index : argc);
+  if (a.warnings) lua_warning(rt.state(), "@on", 0);
+  if (a.version) print_version();
+
+  for (const auto& act : a.actions) {
+    const int st = act.kind == smi::cli::Action::exec ? rt.run_string(act.text, "=(command line)")
+                                                       : rt.require_global(act.text);
+    if (st != 0 || rt.exit_requested()) return st;
+  }
+  if (a.script_index) {
+    std::vector<std::string> args(argv + a.script_index + 1, argv + argc);
+    const int st = rt.run_file(a.cfg.script, args);
+    if (st != 0 || rt.exit_requested()) return st;
+  }
+  if (a.interactive) return smi::repl::run(rt);
+  if (!a.script_index && a.actions.empty() && !a.version) {
+    if (::isatty(STDIN_FILENO)) {
+      print_version();
+      return smi::repl::run(rt);
+    }
+    return rt.run_file("-", {});
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  try {
-    smi::vm::Config cfg;
-    smi::vm::Runtime rt(cfg);
-    int i = 1;
-    for (; i < argc; ++i) {
-      if (std::strcmp(argv[i], "-e") == 0 && i + 1 < argc) {
-        if (!rt.run_string(argv[++i], "=(command line)")) return 1;
-      } else if (std::strcmp(argv[i], "--quiet") == 0) {
-      } else {
-        break;
-      }
-    }
-    if (i < argc) {
-      std::vector<std::string> args(argv + i + 1, argv + argc);
-      if (!rt.run_file(argv[i], args)) return 1;
-    }
+  smi::cli::Args a = smi::cli::parse(argc, argv);
+  if (!a.error.empty()) {
+    std::fprintf(stderr, "smi-lua: %s\n%s\n", a.error.c_str(), smi::cli::usage_line());
+    return kUsageError;
+  }
+  if (a.help) {
+    std::fputs(smi::cli::help_text(), stdout);
     return 0;
+  }
+  try {
+    return run(a, argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "smi-lua: %s\n", e.what());
     return 1;

@@ -43,24 +43,46 @@ fs::path Policy::check_read(const std::string& path, const char* function) const
     if (path_within(r, root)) return r;
   for (const auto& root : write_roots)
     if (path_within(r, root)) return r;
+  // The message leaves out `function`: callers raise it through protect(L, function, ...),
+  // which puts the function name in front.
+  (void)function;
   throw SandboxDenied(fmt::format(
-      "{}: reading '{}' (resolved to '{}') is not allowed: scripts read only under their own folder, "
+      "reading '{}' (resolved to '{}') is not allowed: scripts read only under their own folder, "
       "the library folders and --allow-read paths ({}); run with --allow-read {} to allow it",
-      function, path, r.string(), list_roots(read_roots), r.parent_path().string()));
+      path, r.string(), list_roots(read_roots), r.parent_path().string()));
+}
+
+fs::path Policy::ensure_out_dir() const {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error(fmt::format("cannot create the output folder '{}': {}", out_dir.string(), ec.message()));
+  return resolve_path(out_dir.string());
 }
 
 fs::path Policy::check_write(const std::string& path, const char* function) const {
-  const fs::path r = resolve_path(path);
-  if (unrestricted) return r;
-  for (const auto& root : write_roots)
-    if (path_within(r, root)) return r;
-  throw SandboxDenied(fmt::format(
-      "{}: writing '{}' (resolved to '{}') is not allowed: scripts write only under --out and "
-      "--allow-write paths ({}); run with --allow-write {} to allow it",
-      function, path, r.string(), list_roots(write_roots), r.parent_path().string()));
+  fs::path r = resolve_path(path);
+  (void)function;  // named by the caller's protect(), see check_read
+  if (!unrestricted) {
+    bool ok = false;
+    for (const auto& root : write_roots)
+      if (path_within(r, root)) ok = true;
+    if (!ok)
+      throw SandboxDenied(fmt::format(
+          "writing '{}' (resolved to '{}') is not allowed: scripts write only under the output folder "
+          "(--out, now {}; smi.out(\"name\") gives a path there) and --allow-write paths ({}); run with "
+          "--allow-write {} to allow it",
+          path, r.string(), out_dir.string(), list_roots(write_roots), r.parent_path().string()));
+  }
+  // The output folder is created on demand: on the first write under it.
+  if (!out_dir.empty() && path_within(r, resolve_path(out_dir.string())) && !fs::exists(out_dir)) {
+    ensure_out_dir();
+    r = resolve_path(path);
+  }
+  return r;
 }
 
 fs::path Policy::check_exec(const std::string& program, const char* function) const {
+  (void)function;  // named by the caller's protect(), see check_read
   fs::path resolved;
   if (program.find('/') != std::string::npos) {
     resolved = resolve_path(program);
@@ -80,7 +102,7 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
     }
   }
   if (resolved.empty())
-    throw SandboxDenied(fmt::format("{}: program '{}' not found on PATH", function, program));
+    throw SandboxDenied(fmt::format("program '{}' not found on PATH", program));
   if (unrestricted) return resolved;
   for (const auto& allowed : exec_allowed) {
     // By name: "--allow-exec column-fe" allows that program wherever PATH finds it.
@@ -88,9 +110,9 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
     if (allowed.find('/') != std::string::npos && resolve_path(allowed) == resolved) return resolved;
   }
   throw SandboxDenied(fmt::format(
-      "{}: running '{}' ({}) is not allowed: scripts run only programs named by --allow-exec; "
+      "running '{}' ({}) is not allowed: scripts run only programs named by --allow-exec; "
       "run with --allow-exec {} to allow it",
-      function, program, resolved.string(), program));
+      program, resolved.string(), program));
 }
 
 namespace lua {

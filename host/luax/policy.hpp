@@ -32,9 +32,15 @@ struct Policy {
 
   /// Resolves `path` (relative to the working directory; "..", symlinks) and returns it if it
   /// lies under a read root (write roots are readable too); throws SandboxDenied otherwise.
+  /// The message names the path, the rule and the flag; it does not repeat `function`, which
+  /// callers put in front by raising through protect(L, function, ...).
   std::filesystem::path check_read(const std::string& path, const char* function) const;
-  /// Same for writing: the path must lie under a write root.
+  /// Same for writing: the path must lie under a write root. A path under out_dir creates
+  /// out_dir first (the output folder is made on demand, so a run that writes nothing leaves none).
   std::filesystem::path check_write(const std::string& path, const char* function) const;
+  /// Creates out_dir (and its parents) if missing and returns it resolved; throws smi::Error
+  /// naming the folder when it cannot be made.
+  std::filesystem::path ensure_out_dir() const;
   /// Resolves a program name through PATH (or takes a path) and returns its absolute path if
   /// --allow-exec named it (by name or by path); throws SandboxDenied otherwise.
   std::filesystem::path check_exec(const std::string& program, const char* function) const;

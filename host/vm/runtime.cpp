@@ -5,98 +5,262 @@
 #include <stdexcept>
 
 #include "modules.hpp"
-#include "vm/embedded_stdlib.hpp"
+#include "luax/luax.hpp"
+#include "sandbox/sandbox.hpp"
 
 namespace smi::vm {
+namespace fs = std::filesystem;
+
 namespace {
 
+/// Why a function a script tried to call is missing: the sandbox removed it.
+const char* removed_hint(const char* msg) {
+  static const struct {
+    const char* field;
+    const char* hint;
+  } kRemoved[] = {
+      {"(field 'popen')", "io.popen is removed by the sandbox: studies run programs through smi.model with --allow-exec"},
+      {"(field 'execute')", "os.execute is removed by the sandbox: studies run programs through smi.model with --allow-exec"},
+      {"(field 'dump')", "string.dump is removed by the sandbox: binary chunks are not allowed"},
+      {"(field 'loadlib')", "package.loadlib is removed by the sandbox: C modules are not allowed"},
+      {"(field 'tmpname')", "os.tmpname is removed by the sandbox: write under smi.out(...)"},
+      {"(field 'tmpfile')", "io.tmpfile is removed by the sandbox: write under smi.out(...)"},
+      {"(field 'getinfo')", "the debug library is removed by the sandbox (debug.traceback remains)"},
+      {"(field 'sethook')", "the debug library is removed by the sandbox (debug.traceback remains)"},
+  };
+  if (!std::strstr(msg, "attempt to call a nil value")) return nullptr;
+  for (const auto& r : kRemoved)
+    if (std::strstr(msg, r.field)) return r.hint;
+  return nullptr;
+}
+
+/// Message handler of every chunk: message plus traceback. An os.exit request passes through
+/// untouched; a non-string error is described; a call of a removed function says why.
 int msghandler(lua_State* L) {
+  if (lua_touserdata(L, 1) == exit_sentinel()) return 1;
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
     msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  } else if (const char* hint = removed_hint(msg)) {
+    msg = lua_pushfstring(L, "%s\n(%s)", msg, hint);
   }
   luaL_traceback(L, L, msg, 1);
   return 1;
 }
 
-/// package.searchers entry: modules compiled into the binary (or read from stdlib_dir).
-int embedded_searcher(lua_State* L) {
-  const char* name = luaL_checkstring(L, 1);
-  for (const EmbeddedModule* m = kEmbeddedModules; m->name; ++m) {
-    if (std::strcmp(m->name, name) != 0) continue;
-    std::string chunk = std::string("@") + m->path;
-    if (luaL_loadbufferx(L, m->data, m->size, chunk.c_str(), "t") != LUA_OK) return lua_error(L);
-    lua_pushstring(L, m->path);
-    return 2;
+/// warn(): "@on"/"@off" switch warnings, as in lua.c; off by default. ud = bool* state.
+void warnf(void* ud, const char* msg, int tocont) {
+  static bool continuing = false;
+  bool& on = *static_cast<bool*>(ud);
+  if (!continuing && !tocont && msg[0] == '@') {
+    if (std::strcmp(msg, "@on") == 0) on = true;
+    if (std::strcmp(msg, "@off") == 0) on = false;
+    return;
   }
-  lua_pushfstring(L, "no embedded module '%s'", name);
+  if (on) {
+    if (!continuing) std::fputs("smi-lua: warning: ", stderr);
+    std::fputs(msg, stderr);
+    if (!tocont) std::fputs("\n", stderr);
+  }
+  continuing = tocont != 0;
+}
+bool g_warnings_on = false;
+
+int panic(lua_State* L) {
+  const char* msg = lua_tostring(L, -1);
+  std::fprintf(stderr, "smi-lua: unprotected error: %s\n", msg ? msg : "(not a string)");
+  return 0;  // lua aborts
+}
+
+/// smi.out(name): a path in the output folder (created now). Stack: [name] -> [path].
+int smi_out(lua_State* L) {
+  const char* name = luaL_optstring(L, 1, "");
+  std::string path;
+  lua::protect(L, "smi.out", [&] {
+    path = (lua::policy(L).ensure_out_dir() / name).string();
+    return 0;
+  });
+  lua_pushstring(L, path.c_str());
   return 1;
+}
+
+/// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
+int init_state(lua_State* L) {
+  auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
+  const Config& cfg = rt->config();
+  const Policy& pol = rt->policy();
+  luaL_openlibs(L);
+  luaL_requiref(L, "smi", luaopen_smi, 1);  // stack: [rt, smi]
+  lua_pushinteger(L, static_cast<lua_Integer>(cfg.seed));
+  lua_setfield(L, -2, "seed");
+  lua_pushboolean(L, cfg.quiet);
+  lua_setfield(L, -2, "quiet");
+  lua_pushstring(L, pol.out_dir.c_str());
+  lua_setfield(L, -2, "out_dir");
+  lua_pushstring(L, pol.read_roots.empty() ? "." : pol.read_roots.front().c_str());
+  lua_setfield(L, -2, "script_dir");
+  lua_pushcfunction(L, smi_out);
+  lua_setfield(L, -2, "out");
+  lua_pop(L, 1);
+  if (cfg.sandbox) sandbox::install(L);
+  return 0;
+}
+
+std::vector<std::string> split_env_path(const char* env) {
+  std::vector<std::string> out;
+  if (!env) return out;
+  std::string s = env;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const std::size_t end = s.find(':', start);
+    const std::string part = s.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (!part.empty()) out.push_back(part);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
 }
 
 }  // namespace
 
-Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(luaL_newstate()) {
-  if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
-  luaL_openlibs(L_);
-  // require "smi" and the global smi
-  luaL_requiref(L_, "smi", luaopen_smi, 1);
-  lua_pushinteger(L_, static_cast<lua_Integer>(cfg_.seed));
-  lua_setfield(L_, -2, "seed");
-  lua_pop(L_, 1);
-  // the embedded stdlib searcher goes right after preload
-  lua_getglobal(L_, "package");
-  lua_getfield(L_, -1, "searchers");
-  const lua_Integer n = luaL_len(L_, -1);
-  for (lua_Integer i = n; i >= 2; --i) {
-    lua_rawgeti(L_, -1, i);
-    lua_rawseti(L_, -2, i + 1);
+std::string default_out_dir(const std::string& script) {
+  std::string name;
+  if (script.empty())
+    name = "interactive";
+  else if (script == "-")
+    name = "stdin";
+  else
+    name = fs::path(script).stem().string();
+  return (fs::path("smi-out") / name).string();
+}
+
+void Runtime::build_policy() {
+  // The script's folder (the working directory for -e, stdin and the REPL) comes first: it is
+  // smi.script_dir and the first place require looks.
+  fs::path script_dir = ".";
+  if (!cfg_.script.empty() && cfg_.script != "-") {
+    script_dir = fs::path(cfg_.script).parent_path();
+    if (script_dir.empty()) script_dir = ".";
   }
-  lua_pushcfunction(L_, embedded_searcher);
-  lua_rawseti(L_, -2, 2);
-  lua_pop(L_, 2);
+  std::vector<std::string> libs = cfg_.lib_dirs;
+  for (const auto& d : split_env_path(std::getenv("SMI_PATH"))) libs.push_back(d);
+
+  policy_.read_roots.push_back(resolve_path(script_dir.string()));
+  modules_.roots.push_back(script_dir);
+  for (const auto& d : libs) {
+    policy_.read_roots.push_back(resolve_path(d));
+    modules_.roots.emplace_back(d);
+  }
+  if (!cfg_.stdlib_dir.empty()) {
+    modules_.stdlib_dir = cfg_.stdlib_dir;
+    policy_.read_roots.push_back(resolve_path(cfg_.stdlib_dir));
+  }
+  for (const auto& d : cfg_.allow_read) policy_.read_roots.push_back(resolve_path(d));
+
+  policy_.out_dir = cfg_.out_dir.empty() ? default_out_dir(cfg_.script) : cfg_.out_dir;
+  policy_.write_roots.push_back(resolve_path(policy_.out_dir.string()));
+  for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(resolve_path(d));
+  if (!cfg_.store_path.empty()) policy_.write_roots.push_back(resolve_path(cfg_.store_path));
+  policy_.exec_allowed = cfg_.allow_exec;
+
+  policy_.seed = cfg_.seed;
+  policy_.quiet = cfg_.quiet;
+  policy_.unrestricted = !cfg_.sandbox;
+  policy_.store_path = cfg_.store_path;
+  policy_.dry_run = cfg_.dry_run;
+  policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
+}
+
+Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
+  build_policy();
+  limits_.timeout_s = cfg_.timeout_s;
+  limits_.mem_limit = cfg_.max_memory_mb << 20;
+  L_ = lua_newstate(limited_alloc, &limits_);
+  if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  lua_atpanic(L_, panic);
+  lua_setwarnf(L_, warnf, &g_warnings_on);
+  install_limits(L_, &limits_);
+  lua::set_policy(L_, &policy_);
+  lua_pushcfunction(L_, init_state);
+  lua_pushlightuserdata(L_, this);
+  if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
+    std::string msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : "unknown error";
+    lua_close(L_);
+    throw std::runtime_error("cannot set up the Lua state: " + msg);
+  }
+  install_searchers(L_, &modules_);
 }
 
 Runtime::~Runtime() { lua_close(L_); }
 
-bool Runtime::report(int status) {
-  if (status == LUA_OK) return true;
-  const char* msg = lua_tostring(L_, -1);
-  std::fprintf(stderr, "smi-lua: %s\n", msg ? msg : "(error object is not a string)");
-  std::fflush(stderr);
-  lua_pop(L_, 1);
-  return false;
-}
-
-bool Runtime::run_file(const std::string& path, const std::vector<std::string>& args) {
-  lua_createtable(L_, static_cast<int>(args.size()), 1);
-  lua_pushstring(L_, path.c_str());
-  lua_rawseti(L_, -2, 0);
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    lua_pushstring(L_, args[i].c_str());
-    lua_rawseti(L_, -2, static_cast<lua_Integer>(i + 1));
+void Runtime::set_arg(int argc, char** argv, int script_index) {
+  if (script_index >= argc) script_index = 0;  // no script: the interpreter is arg[0]
+  lua_createtable(L_, argc - script_index - 1 > 0 ? argc - script_index - 1 : 0, script_index + 1);
+  for (int i = 0; i < argc; ++i) {
+    lua_pushstring(L_, argv[i]);
+    lua_rawseti(L_, -2, i - script_index);
   }
   lua_setglobal(L_, "arg");
-  lua_pushcfunction(L_, msghandler);
-  const int base = lua_gettop(L_);
-  int status = luaL_loadfilex(L_, path.c_str(), "t");
-  if (status == LUA_OK) {
-    for (const auto& a : args) lua_pushstring(L_, a.c_str());
-    status = lua_pcall(L_, static_cast<int>(args.size()), 0, base);
-  }
-  const bool ok = report(status);
-  lua_settop(L_, base - 1);
-  return ok;
 }
 
-bool Runtime::run_string(const std::string& code, const std::string& chunkname) {
+int Runtime::docall(int nargs, int nresults) {
+  const int base = lua_gettop(L_) - nargs;  // the function
   lua_pushcfunction(L_, msghandler);
-  const int base = lua_gettop(L_);
+  lua_insert(L_, base);
+  begin_chunk(L_);
+  catch_sigint(L_);
+  const int status = lua_pcall(L_, nargs, nresults, base);
+  release_sigint();
+  lua_remove(L_, base);
+  return status;
+}
+
+int Runtime::report(int status) {
+  if (status == LUA_OK) return 0;
+  if (exit_requested()) {
+    lua_pop(L_, 1);
+    return limits_.exit_code;
+  }
+  char buf[256];
+  const char* msg = lua_tostring(L_, -1);
+  if (limits_.abort == Abort::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
+    // "not enough memory" comes from the allocator refusing: say which limit and how to raise it
+    std::fprintf(stderr, "smi-lua: %s\n", abort_message(limits_, buf, sizeof buf));
+    if (msg && std::strcmp(msg, "not enough memory") != 0) std::fprintf(stderr, "%s\n", msg);
+  } else {
+    std::fprintf(stderr, "smi-lua: %s\n", msg ? msg : "(error object is not a string)");
+  }
+  std::fflush(stderr);
+  lua_pop(L_, 1);
+  return 1;
+}
+
+int Runtime::run_file(const std::string& path, const std::vector<std::string>& args) {
+  const bool stdin_script = path == "-";
+  int status = luaL_loadfilex(L_, stdin_script ? nullptr : path.c_str(), "t");
+  if (status == LUA_OK) {
+    for (const auto& a : args) lua_pushstring(L_, a.c_str());
+    status = docall(static_cast<int>(args.size()), 0);
+  }
+  return report(status);
+}
+
+int Runtime::run_string(const std::string& code, const std::string& chunkname) {
   int status = luaL_loadbufferx(L_, code.data(), code.size(), chunkname.c_str(), "t");
-  if (status == LUA_OK) status = lua_pcall(L_, 0, 0, base);
-  const bool ok = report(status);
-  lua_settop(L_, base - 1);
-  return ok;
+  if (status == LUA_OK) status = docall(0, 0);
+  return report(status);
+}
+
+int Runtime::require_global(const std::string& spec) {
+  const std::size_t eq = spec.find('=');
+  const std::string global = eq == std::string::npos ? spec : spec.substr(0, eq);
+  const std::string mod = eq == std::string::npos ? spec : spec.substr(eq + 1);
+  lua_getglobal(L_, "require");
+  lua_pushstring(L_, mod.c_str());
+  const int status = docall(1, 1);
+  if (status == LUA_OK) lua_setglobal(L_, global.c_str());
+  return report(status);
 }
 
 }  // namespace smi::vm

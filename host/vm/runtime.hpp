@@ -1,17 +1,37 @@
 #pragma once
-// The Lua VM of one smi-lua run: state, standard libraries, the smi module, embedded stdlib.
+// The Lua VM of one smi-lua run: a state with limited memory, the standard libraries behind the
+// sandbox, the smi module, the module searchers, and the protected calls every chunk goes
+// through (message handler with traceback, Ctrl-C, --timeout, os.exit).
 #include <cstdint>
 #include <string>
 #include <vector>
 #include <lua.hpp>
 
+#include "luax/policy.hpp"
+#include "vm/limits.hpp"
+#include "vm/searchers.hpp"
+
 namespace smi::vm {
 
+inline constexpr std::uint64_t kDefaultSeed = 20200214;
+
 struct Config {
-  std::uint64_t seed = 20200214;  // fixed default, recorded in results
-  bool quiet = false;
-  std::string stdlib_dir;         // load stdlib from disk (development); empty = embedded
+  std::uint64_t seed = kDefaultSeed;  // --seed; recorded in results as smi.seed
+  bool quiet = false;                 // --quiet, or set by the CLI when output is not a terminal
+  std::string stdlib_dir;             // --stdlib-dir / SMI_STDLIB_DIR; empty = embedded
+  std::string script;                 // script path, "-" for stdin, "" for none (-e, REPL)
+  std::vector<std::string> allow_read, allow_write, allow_exec;
+  std::vector<std::string> lib_dirs;  // --lib, then SMI_PATH entries
+  std::string out_dir;                // --out; empty = smi-out/<script name>/
+  std::string store_path;             // --store
+  bool dry_run = false;               // --dry-run
+  double timeout_s = 0;               // --timeout; 0 = none
+  std::size_t max_memory_mb = 0;      // --max-memory; 0 = none
+  bool sandbox = true;                // false only in tests of the runtime itself
 };
+
+/// The default output folder for a script: smi-out/<script name without .lua>.
+std::string default_out_dir(const std::string& script);
 
 class Runtime {
  public:
@@ -22,16 +42,34 @@ class Runtime {
 
   lua_State* state() const { return L_; }
   const Config& config() const { return cfg_; }
+  const Policy& policy() const { return policy_; }
 
-  /// Runs a script file with `args` as arg[1..n] and `...`; returns true on success, false after
-  /// printing "smi-lua: <message>\n<traceback>" to stderr.
-  bool run_file(const std::string& path, const std::vector<std::string>& args);
-  /// Runs a chunk of code (-e).
-  bool run_string(const std::string& code, const std::string& chunkname);
+  /// Sets the global `arg` as lua.c does: argv[script_index] at 0, the script's arguments at
+  /// 1..n, the interpreter and its options at negative indices.
+  void set_arg(int argc, char** argv, int script_index);
+
+  /// Each returns an exit status: 0 on success, 1 after printing the error with its traceback
+  /// on stderr, or the code given to os.exit.
+  int run_file(const std::string& path, const std::vector<std::string>& args);  // "-" = stdin
+  int run_string(const std::string& code, const std::string& chunkname);
+  /// -l mod / -l g=mod: global g (default mod) = require(mod).
+  int require_global(const std::string& spec);
+
+  /// Calls the function below `nargs` arguments in protected mode with the message handler,
+  /// Ctrl-C and the limits armed. Returns the Lua status; the error value is left on the stack.
+  int docall(int nargs, int nresults);
+  /// Prints the error at the top of the stack (pops it) unless it is an os.exit request;
+  /// returns the exit status for `status`.
+  int report(int status);
+  /// True once os.exit was called; the host must stop running chunks.
+  bool exit_requested() const { return limits_.abort == Abort::exit; }
 
  private:
-  bool report(int status);
+  void build_policy();
   Config cfg_;
+  Policy policy_;
+  Limits limits_;
+  ModuleSearch modules_;
   lua_State* L_;
 };
 

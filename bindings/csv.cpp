@@ -1,0 +1,308 @@
+// smi.csv: comma-separated tables with a header row, columns by name.
+//   local d, header = smi.csv.read(path [, {sep = ",", strings = {"name", ...}}])
+//       d.<column> is a smi.vec when every cell of the column is a number, a table of strings
+//       otherwise; header lists the column names in file order.
+//   smi.csv.write(path, t [, {header = {...}, sep = ","}])
+//       t.<column> a vec or a table of numbers/strings, all the same length; the header row
+//       follows opts.header, else the column names sorted.
+// Both go through the sandbox policy (read / write). A bad number is reported with the file,
+// line and column; numbers are written so that they read back exactly (shortest round trip).
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <fmt/format.h>
+#include <set>
+#include <sstream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "modules.hpp"
+
+namespace smi::bind {
+namespace {
+
+struct Record {
+  std::vector<std::string> fields;
+  long line = 0;  // line where the record starts
+};
+
+/// Splits text into records (RFC 4180: quoted fields may hold sep, quotes as "", newlines).
+std::vector<Record> split_records(const std::string& text, char sep, const std::string& file) {
+  std::vector<Record> out;
+  long line = 1;
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  while (i < n) {
+    Record rec;
+    rec.line = line;
+    std::string field;
+    bool any = false;
+    for (;;) {
+      if (i < n && text[i] == '"') {
+        const long start_line = line;
+        ++i;
+        for (;;) {
+          if (i >= n) throw Error(fmt::format("{}:{}: a quoted field never ends (missing '\"')", file, start_line));
+          if (text[i] == '"') {
+            if (i + 1 < n && text[i + 1] == '"') {
+              field += '"';
+              i += 2;
+              continue;
+            }
+            ++i;
+            break;
+          }
+          if (text[i] == '\n') ++line;
+          field += text[i++];
+        }
+      }
+      while (i < n && text[i] != sep && text[i] != '\n' && text[i] != '\r') field += text[i++];
+      any = any || !field.empty();
+      rec.fields.push_back(std::move(field));
+      field.clear();
+      if (i < n && text[i] == sep) {
+        ++i;
+        any = true;
+        continue;
+      }
+      break;
+    }
+    if (i < n && text[i] == '\r') ++i;
+    if (i < n && text[i] == '\n') ++i;
+    ++line;
+    if (any) out.push_back(std::move(rec));  // blank lines are skipped
+  }
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+bool parse_number(const std::string& cell, double& out) {
+  const std::string t = trim(cell);
+  if (t.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(t.c_str(), &end);
+  return *end == '\0';
+}
+
+using Column = std::variant<std::vector<double>, std::vector<std::string>>;
+
+struct Table {
+  std::vector<std::string> header;
+  std::vector<Column> columns;
+};
+
+Table parse_table(const std::string& text, char sep, const std::string& file, const std::set<std::string>& strings) {
+  std::vector<Record> recs = split_records(text, sep, file);
+  if (recs.empty()) throw Error(fmt::format("{}: the file is empty (a header row is needed)", file));
+  Table t;
+  for (std::size_t j = 0; j < recs[0].fields.size(); ++j) {
+    std::string name = trim(recs[0].fields[j]);
+    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, recs[0].line, j + 1));
+    for (const auto& h : t.header)
+      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, recs[0].line, name));
+    t.header.push_back(std::move(name));
+  }
+  const std::size_t ncol = t.header.size();
+  for (std::size_t r = 1; r < recs.size(); ++r)
+    if (recs[r].fields.size() != ncol)
+      throw Error(fmt::format("{}:{}: {} fields, but the header has {} columns", file, recs[r].line,
+                              recs[r].fields.size(), ncol));
+  for (std::size_t j = 0; j < ncol; ++j) {
+    // A column is numeric when its first non-empty cell is a number (and it is not listed in
+    // opts.strings); from then on every cell must be one.
+    bool numeric = false;
+    if (!strings.count(t.header[j]))
+      for (std::size_t r = 1; r < recs.size(); ++r) {
+        if (trim(recs[r].fields[j]).empty()) continue;
+        double v;
+        numeric = parse_number(recs[r].fields[j], v);
+        break;
+      }
+    if (numeric) {
+      std::vector<double> col;
+      col.reserve(recs.size() - 1);
+      for (std::size_t r = 1; r < recs.size(); ++r) {
+        double v = 0;
+        if (!parse_number(recs[r].fields[j], v))
+          throw Error(fmt::format(
+              "{}:{}: column {} ('{}'): bad number '{}' (the column holds numbers above; fix the cell, or "
+              "read the column as text with {{strings = {{\"{}\"}}}})",
+              file, recs[r].line, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
+        col.push_back(v);
+      }
+      t.columns.emplace_back(std::move(col));
+    } else {
+      std::vector<std::string> col;
+      for (std::size_t r = 1; r < recs.size(); ++r) col.push_back(recs[r].fields[j]);
+      t.columns.emplace_back(std::move(col));
+    }
+  }
+  return t;
+}
+
+char sep_option(const lua::Options& o) {
+  const std::string s = o.string("sep", ",");
+  if (s.size() != 1 || s[0] == '"' || s[0] == '\n' || s[0] == '\r')
+    throw Error("option 'sep' must be one character other than a quote or a newline, got '" + s + "'");
+  return s[0];
+}
+
+/// smi.csv.read(path [, opts]) -> columns, header
+int csv_read(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  lua::Options opts(L, 2, "smi.csv.read");
+  opts.check_known({"sep", "strings"});
+  std::set<std::string> strings;
+  if (opts.push("strings") != LUA_TNIL)
+    for (auto& s : lua::to_strings(L, -1, "option 'strings'")) strings.insert(s);
+  lua_pop(L, 1);
+  return lua::protect(L, "smi.csv.read", [&] {
+    const char sep = sep_option(opts);
+    const auto resolved = lua::policy(L).check_read(path, "smi.csv.read");
+    std::ifstream in(resolved, std::ios::binary);
+    if (!in) throw Error(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    const Table t = parse_table(ss.str(), sep, path, strings);
+    lua_createtable(L, 0, static_cast<int>(t.header.size()));  // stack: [..., columns]
+    for (std::size_t j = 0; j < t.header.size(); ++j) {
+      if (const auto* num = std::get_if<std::vector<double>>(&t.columns[j])) {
+        lua::push_vec(L, Eigen::Map<const Eigen::VectorXd>(num->data(), static_cast<Eigen::Index>(num->size())));
+      } else {
+        const auto& str = std::get<std::vector<std::string>>(t.columns[j]);
+        lua_createtable(L, static_cast<int>(str.size()), 0);
+        for (std::size_t r = 0; r < str.size(); ++r) {
+          lua_pushlstring(L, str[r].data(), str[r].size());
+          lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
+        }
+      }
+      lua_setfield(L, -2, t.header[j].c_str());
+    }
+    lua_createtable(L, static_cast<int>(t.header.size()), 0);  // stack: [..., columns, header]
+    for (std::size_t j = 0; j < t.header.size(); ++j) {
+      lua_pushstring(L, t.header[j].c_str());
+      lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
+    }
+    return 2;
+  });
+}
+
+std::string format_number(lua_State* L, int idx) {
+  if (lua_isinteger(L, idx)) return std::to_string(lua_tointeger(L, idx));
+  const double v = lua_tonumber(L, idx);
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back exactly
+  return std::string(buf, r.ptr);
+}
+
+std::string quote_cell(const std::string& s, char sep) {
+  if (s.find_first_of(std::string("\"\r\n") + sep) == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+/// smi.csv.write(path, t [, opts]): columns by name, header row first.
+int csv_write(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  luaL_checktype(L, 2, LUA_TTABLE);
+  lua::Options opts(L, 3, "smi.csv.write");
+  opts.check_known({"sep", "header"});
+  std::vector<std::string> header;
+  if (opts.push("header") != LUA_TNIL) {
+    header = lua::to_strings(L, -1, "option 'header'");
+  } else {
+    lua_pushnil(L);
+    while (lua_next(L, 2)) {
+      lua_pop(L, 1);
+      if (lua_type(L, -1) != LUA_TSTRING)
+        luaL_error(L, "smi.csv.write: column keys must be names (strings), got a %s key", luaL_typename(L, -1));
+      header.emplace_back(lua_tostring(L, -1));
+    }
+    std::sort(header.begin(), header.end());
+  }
+  lua_pop(L, 1);
+  if (header.empty()) luaL_error(L, "smi.csv.write: the table has no columns");
+  const char sep = [&] {
+    char c = ',';
+    lua::protect(L, "smi.csv.write", [&] {
+      c = sep_option(opts);
+      return 0;
+    });
+    return c;
+  }();
+  // Render every column to text (raises on a bad cell, before the file is touched).
+  std::vector<std::vector<std::string>> cols;
+  for (const auto& name : header) {
+    std::vector<std::string> cells;
+    lua_getfield(L, 2, name.c_str());
+    if (const Eigen::VectorXd* v = lua::test_vec(L, -1)) {
+      for (Eigen::Index i = 0; i < v->size(); ++i) {
+        lua_pushnumber(L, (*v)[i]);
+        cells.push_back(format_number(L, -1));
+        lua_pop(L, 1);
+      }
+    } else if (lua_istable(L, -1)) {
+      const lua_Integer n = luaL_len(L, -1);
+      for (lua_Integer i = 1; i <= n; ++i) {
+        const int t = lua_rawgeti(L, -1, i);
+        if (t == LUA_TNUMBER)
+          cells.push_back(format_number(L, -1));
+        else if (t == LUA_TSTRING)
+          cells.push_back(quote_cell(lua_tostring(L, -1), sep));
+        else
+          luaL_error(L, "smi.csv.write: column '%s'[%d] must be a number or a string, got %s", name.c_str(),
+                     static_cast<int>(i), luaL_typename(L, -1));
+        lua_pop(L, 1);
+      }
+    } else {
+      luaL_error(L, "smi.csv.write: column '%s' must be a smi.vec or a table, got %s", name.c_str(),
+                 luaL_typename(L, -1));
+    }
+    lua_pop(L, 1);
+    if (!cols.empty() && cells.size() != cols.front().size())
+      luaL_error(L, "smi.csv.write: column '%s' has %d values but column '%s' has %d; columns need equal lengths",
+                 name.c_str(), static_cast<int>(cells.size()), header.front().c_str(),
+                 static_cast<int>(cols.front().size()));
+    cols.push_back(std::move(cells));
+  }
+  return lua::protect(L, "smi.csv.write", [&] {
+    const auto resolved = lua::policy(L).check_write(path, "smi.csv.write");
+    std::ofstream out(resolved, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(fmt::format("cannot open '{}' for writing: {}", path, std::strerror(errno)));
+    for (std::size_t j = 0; j < header.size(); ++j) out << (j ? std::string(1, sep) : "") << quote_cell(header[j], sep);
+    out << '\n';
+    for (std::size_t r = 0; r < cols.front().size(); ++r) {
+      for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? std::string(1, sep) : "") << cols[j][r];
+      out << '\n';
+    }
+    out.close();
+    if (!out) throw Error(fmt::format("writing '{}' failed", path));
+    return 0;
+  });
+}
+
+const luaL_Reg kFunctions[] = {{"read", csv_read}, {"write", csv_write}, {nullptr, nullptr}};
+
+}  // namespace
+
+void open_csv(lua_State* L) {
+  lua_newtable(L);  // stack: [smi, csv]
+  luaL_setfuncs(L, kFunctions, 0);
+  lua_setfield(L, -2, "csv");
+}
+
+}  // namespace smi::bind

@@ -1,0 +1,174 @@
+#include "cli/args.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace smi::cli {
+namespace {
+
+/// Options that take a value: "--name VALUE" or "--name=VALUE".
+const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--lib", "--out", "--seed",
+                               "--max-memory", "--timeout",     "--store",      "--stdlib-dir"};
+
+bool parse_u64(const std::string& s, std::uint64_t& out) {
+  if (s.empty() || s[0] == '-') return false;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
+  if (errno || *end) return false;
+  out = v;
+  return true;
+}
+
+bool parse_positive(const std::string& s, double& out) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || !std::isfinite(v) || v <= 0) return false;
+  out = v;
+  return true;
+}
+
+/// Applies one valued option; returns a usage error or "".
+std::string apply(Args& a, const std::string& name, const std::string& v) {
+  vm::Config& c = a.cfg;
+  if (name == "--allow-read") c.allow_read.push_back(v);
+  else if (name == "--allow-write") c.allow_write.push_back(v);
+  else if (name == "--allow-exec") c.allow_exec.push_back(v);
+  else if (name == "--lib") c.lib_dirs.push_back(v);
+  else if (name == "--out") c.out_dir = v;
+  else if (name == "--store") c.store_path = v;
+  else if (name == "--stdlib-dir") c.stdlib_dir = v;
+  else if (name == "--seed") {
+    if (!parse_u64(v, c.seed)) return "--seed needs a non-negative integer, got '" + v + "'";
+  } else if (name == "--timeout") {
+    if (!parse_positive(v, c.timeout_s)) return "--timeout needs a positive number of seconds, got '" + v + "'";
+  } else if (name == "--max-memory") {
+    std::uint64_t mb = 0;
+    if (!parse_u64(v, mb) || mb == 0 || mb > (1u << 22))
+      return "--max-memory needs a whole number of megabytes (1 to 4194304), got '" + v + "'";
+    c.max_memory_mb = mb;
+  }
+  if (v.empty()) return name + " needs a non-empty value";
+  return "";
+}
+
+}  // namespace
+
+Args parse(int argc, char** argv) {
+  Args a;
+  int i = 1;
+  for (; i < argc; ++i) {
+    const std::string s = argv[i];
+    if (s.empty() || s[0] != '-') break;  // the script
+    if (s == "-") break;                  // the script is stdin
+    if (s == "--") {
+      ++i;
+      break;
+    }
+    if (s == "-i") {
+      a.interactive = true;
+    } else if (s == "-v") {
+      a.version = true;
+    } else if (s == "-W") {
+      a.warnings = true;
+    } else if (s == "-E") {
+      a.ignore_env = true;
+    } else if (s == "-h" || s == "--help") {
+      a.help = true;
+    } else if (s == "--quiet" || s == "-q") {
+      a.quiet_given = true;
+      a.cfg.quiet = true;
+    } else if (s == "--dry-run") {
+      a.cfg.dry_run = true;
+    } else if (s.rfind("-e", 0) == 0 || s.rfind("-l", 0) == 0) {
+      // -e chunk, -echunk, -l mod, -lmod (as lua.c)
+      std::string v = s.substr(2);
+      if (v.empty()) {
+        if (i + 1 >= argc) {
+          a.error = "'" + s + "' needs an argument";
+          return a;
+        }
+        v = argv[++i];
+      }
+      a.actions.push_back({s[1] == 'e' ? Action::exec : Action::require, v});
+    } else if (s.rfind("--", 0) == 0) {
+      const std::size_t eq = s.find('=');
+      const std::string name = s.substr(0, eq);
+      bool known = false;
+      for (const char* k : kValued) known = known || name == k;
+      if (!known) {
+        a.error = "unrecognized option '" + s + "'";
+        return a;
+      }
+      std::string v;
+      if (eq != std::string::npos) {
+        v = s.substr(eq + 1);
+      } else {
+        if (i + 1 >= argc) {
+          a.error = "'" + name + "' needs an argument";
+          return a;
+        }
+        v = argv[++i];
+      }
+      a.error = apply(a, name, v);
+      if (!a.error.empty()) return a;
+    } else {
+      a.error = "unrecognized option '" + s + "'";
+      return a;
+    }
+  }
+  if (i < argc) {
+    a.script_index = i;
+    a.cfg.script = argv[i];
+  }
+  return a;
+}
+
+const char* usage_line() { return "usage: smi-lua [options] [script [args]]   (smi-lua --help lists the options)"; }
+
+const char* help_text() {
+  return R"(usage: smi-lua [options] [script [args]]
+
+Runs a study script (or stdin with '-') in a sandbox; with no script, starts the REPL on a
+terminal and runs stdin otherwise. The script gets its arguments as arg[1..n] and as '...'.
+
+Lua options (as the lua program):
+  -e chunk            run the string 'chunk' (in order with -l, before the script)
+  -l mod              require 'mod' into the global 'mod'; -l g=mod names the global g
+  -i                  enter the REPL after running the script
+  -v                  print version information
+  -W                  turn warnings on
+  -E                  ignore the environment variables SMI_PATH and SMI_STDLIB_DIR
+  --                  stop handling options (the next argument is the script)
+  -                   run stdin as the script and stop handling options
+
+Sandbox (each option may be repeated):
+  --allow-read PATH   let the script read under PATH (it always may read its own folder and
+                      the library folders)
+  --allow-write PATH  let the script write under PATH (it always may write under --out)
+  --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
+
+Modules:
+  --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too)
+  --stdlib-dir DIR    load the smi stdlib from DIR instead of the copy built in (SMI_STDLIB_DIR)
+
+Run:
+  --out DIR           output folder, created when first written (default smi-out/<script>/)
+  --seed N            seed of smi's and math.random's generators (default 20200214); smi.seed
+  --quiet, -q         no progress output (automatic when stdout or stderr is not a terminal)
+  --max-memory MB     stop the script when the Lua heap would exceed MB megabytes (data held
+                      in C++, such as smi.vec contents, is not counted)
+  --timeout SECONDS   stop the script (and each -e chunk, each REPL entry) after SECONDS of
+                      running; pcall cannot catch it
+  --store PATH        evaluation store (database of solver runs) to use
+  --dry-run           count the solver runs a study would launch; launch none
+  -h, --help          print this help and exit
+
+Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
+stderr), 2 usage error; os.exit(n) exits with n.
+)";
+}
+
+}  // namespace smi::cli

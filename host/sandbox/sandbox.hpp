@@ -1,0 +1,29 @@
+#pragma once
+// The sandbox: the globals a script sees, built by allow-list (Redis, LuaSandbox, LÖVE; see
+// shared/conventions.md §3.8).
+//
+// The state is made for one run and restricted before any script code runs, so the standard
+// libraries' dangerous entries are never reachable: removed, or replaced by wrappers that check
+// smi::Policy and keep the original only as a C upvalue (no debug library to dig it out).
+//   io.open io.lines io.input io.output dofile loadfile os.remove os.rename  checked by the policy
+//   load, loadfile, dofile, require                                         text chunks only
+//   os.execute io.popen io.tmpfile os.tmpname os.setlocale package.loadlib
+//   package.searchpath string.dump debug.* (but traceback)                  gone
+//   os.exit                  raises an uncatchable request; the host closes the state and exits
+//   math.random              seeded with --seed; math.randomseed() without argument reseeds it
+#include <lua.hpp>
+
+namespace smi::sandbox {
+
+/// Restricts the globals of a state whose standard libraries are open. Uses lua::policy(L)
+/// (paths, seed) and vm::limits(L) (os.exit). Stack: unchanged.
+void install(lua_State* L);
+
+/// Checked file functions (files.cpp): io.open, io.lines, io.input, io.output, dofile, loadfile,
+/// os.remove, os.rename. Stack: unchanged.
+void install_file_functions(lua_State* L);
+
+/// Replaces `lib[name]` by the C closure `fn` whose upvalue 1 is the original. Stack: unchanged.
+void wrap(lua_State* L, const char* lib, const char* name, lua_CFunction fn);
+
+}  // namespace smi::sandbox

@@ -1,0 +1,209 @@
+// The REPL as a person uses it, through a pseudo-terminal (readline active): tab completion of
+// globals, nested fields and methods, multi-line input, printing without '=', Ctrl-C stopping a
+// running chunk and clearing the prompt line while the session goes on, persistent history,
+// and the sandbox.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <poll.h>
+#include <pty.h>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+/// smi-lua running on the slave side of a pty; we read and type on the master side.
+class Session {
+ public:
+  explicit Session(const std::string& history) {
+    struct winsize ws {};
+    ws.ws_row = 40;
+    ws.ws_col = 200;
+    pid_ = forkpty(&fd_, nullptr, nullptr, &ws);
+    REQUIRE(pid_ >= 0);
+    if (pid_ == 0) {
+      setenv("TERM", "dumb", 1);
+      setenv("SMI_HISTORY", history.c_str(), 1);
+      execl(SMI_LUA_PATH, "smi-lua", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+  }
+  ~Session() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    close(fd_);
+  }
+
+  void type(const std::string& keys) {
+    REQUIRE(write(fd_, keys.data(), keys.size()) == static_cast<ssize_t>(keys.size()));
+  }
+
+  /// Reads until `text` appears after the previous match; false after `seconds`.
+  bool expect(const std::string& text, double seconds = 5) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (;;) {
+      const std::size_t at = out_.find(text, mark_);
+      if (at != std::string::npos) {
+        mark_ = at + text.size();
+        return true;
+      }
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
+      if (left.count() <= 0) return false;
+      struct pollfd p {fd_, POLLIN, 0};
+      if (poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+      char buf[4096];
+      const ssize_t n = read(fd_, buf, sizeof buf);
+      if (n <= 0) return false;
+      out_.append(buf, static_cast<std::size_t>(n));
+    }
+  }
+
+  /// Waits for the program to end; returns its exit status (or -1).
+  int wait_exit(double seconds = 5) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      char buf[4096];
+      struct pollfd p {fd_, POLLIN, 0};
+      ssize_t n = 0;
+      if (poll(&p, 1, 50) > 0 && (n = read(fd_, buf, sizeof buf)) > 0) out_.append(buf, static_cast<std::size_t>(n));
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+    }
+    return -1;
+  }
+
+  const std::string& transcript() const { return out_; }
+
+ private:
+  pid_t pid_ = -1;
+  int fd_ = -1;
+  std::string out_;
+  std::size_t mark_ = 0;
+};
+
+std::string temp_history() {
+  char tmpl[] = "/tmp/smi_history_XXXXXX";
+  const int fd = mkstemp(tmpl);
+  close(fd);
+  return tmpl;
+}
+
+}  // namespace
+
+TEST_CASE("REPL: completion, multi-line input, printing, Ctrl-C, sandbox, history") {
+  const std::string history = temp_history();
+  {
+    Session s(history);
+    INFO(s.transcript());
+    REQUIRE(s.expect("smi-lua "));
+    REQUIRE(s.expect("> "));
+
+    // an expression is printed without '='
+    s.type("6 * 7\n");
+    CHECK(s.expect("42"));
+
+    // tab completion: a global, a nested field, a method of a userdata
+    s.type("prin\t('completed')\n");
+    CHECK(s.expect("print('completed')"));
+    CHECK(s.expect("completed"));
+    s.type("smi.vec.linsp\t(0, 1, 3)\n");
+    CHECK(s.expect("smi.vec.linspace(0, 1, 3)"));
+    CHECK(s.expect("vec(3)[0, 0.5, 1]"));
+    s.type("v = smi.vec{1, 2, 3}\n");
+    s.type("v:cums\t()\n");
+    CHECK(s.expect("v:cumsum()"));
+    CHECK(s.expect("vec(3)[1, 3, 6]"));
+
+    // multi-line input: the second prompt until the chunk is complete
+    s.type("function twice(a)\n");
+    CHECK(s.expect(">> "));
+    s.type("return a * 2\n");
+    CHECK(s.expect(">> "));
+    s.type("end\n");
+    s.type("twice(21.5)\n");
+    CHECK(s.expect("43"));
+
+    // tables print bounded and readable
+    s.type("t = {1, 2, a = {b = 'x'}}\n");
+    s.type("t\n");
+    CHECK(s.expect("{1, 2, a = {b = \"x\"}}"));
+    s.type("smi.vec.linspace(0, 1, 1000000)\n");
+    CHECK(s.expect("vec(1000000)["));
+
+    // Ctrl-C stops a running chunk and the session goes on
+    s.type("while true do end\n");
+    usleep(300 * 1000);
+    s.type("\x03");
+    CHECK(s.expect("interrupted!"));
+    s.type("'still alive'\n");
+    CHECK(s.expect("still alive"));
+    // ... even when the chunk swallows errors with pcall
+    s.type("while true do pcall(function() while true do end end) end\n");
+    usleep(300 * 1000);
+    s.type("\x03");
+    CHECK(s.expect("interrupted!"));
+    s.type("100 + 1\n");
+    CHECK(s.expect("101"));
+    // ... and when the loop runs inside a coroutine
+    s.type("coroutine.wrap(function() while true do end end)()\n");
+    usleep(300 * 1000);
+    s.type("\x03");
+    CHECK(s.expect("interrupted!"));
+    s.type("100 + 2\n");
+    CHECK(s.expect("102"));
+
+    // Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk
+    s.type("this is not lua");
+    usleep(100 * 1000);
+    s.type("\x03");
+    usleep(200 * 1000);  // the terminal flushes input typed right after Ctrl-C, as a person would not
+    s.type("2 ^ 10\n");
+    CHECK(s.expect("1024.0"));
+    s.type("for i = 1, 3 do\n");
+    CHECK(s.expect(">> "));
+    s.type("\x03");
+    usleep(200 * 1000);
+    s.type("'fresh'\n");
+    CHECK(s.expect("fresh"));
+
+    // the same sandbox as scripts
+    s.type("io.open('/etc/passwd')\n");
+    CHECK(s.expect("is not allowed"));
+    s.type("io.popen\n");
+    CHECK(s.expect("nil"));
+    CHECK(s.expect("> "));  // ^D typed before readline owns the terminal could be lost
+
+    s.type("\x04");  // Ctrl-D: end of input
+    const int status = s.wait_exit();
+    CHECK(status == 0);
+    if (status != 0) std::fprintf(stderr, "transcript:\n%s\n", s.transcript().c_str());
+  }
+
+  // the history file holds the entries, and a new session recalls them (Ctrl-P)
+  std::ifstream h(history);
+  std::stringstream all;
+  all << h.rdbuf();
+  CHECK(all.str().find("twice(21.5)") != std::string::npos);
+  CHECK(all.str().find("return a * 2") != std::string::npos);  // multi-line entries are kept whole
+  {
+    Session s(history);
+    INFO(s.transcript());
+    REQUIRE(s.expect("> "));
+    s.type("\x10\n");  // previous entry: 'fresh'... then the sandbox lines; recall the last one
+    CHECK(s.expect("nil"));
+    s.type("os.exit(3)\n");
+    CHECK(s.wait_exit() == 3);
+  }
+  std::remove(history.c_str());
+}
