@@ -1,0 +1,287 @@
+--- One trial of statistical model improvement on the steering column (Son et al. 2020 §4.1 and
+-- §4.2): Kriging surrogates on a Latin hypercube of the unknowns (solver runs through
+-- smi.model.command and the evaluation store), calibration of the unknowns' means and stds by
+-- PR(mode 1) + PR(mode 4) with SLSQP on common random numbers, and validation by u-pooling on
+-- modes 1, 4 and 2. The report blocks are in trial_report.lua; this file computes.
+local inputs = require "steering_column.inputs"
+local solver = require "steering_column.solver"
+
+local M = {}
+M.modes = { "mode1", "mode2", "mode4" }
+
+local function col_table(v)
+  local t = {}
+  for i = 1, #v do t[i] = v[i] end
+  return t
+end
+
+--- Design, solver runs, Kriging per mode, leave-one-out and an independent test set.
+-- t: {name, airbag, unknowns, trend, n_design, n_test, seed, solver, out}
+function M.surrogate(t)
+  local box = {}
+  for i, n in ipairs(t.unknowns) do box[i] = inputs.design_box(n) end
+  local X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
+  local Xt = smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" })
+  local model = solver.command{ solver = t.solver, airbag = t.airbag, vary = t.unknowns, name = t.name .. "-design" }
+  local Y = model:evaluate(X)
+  local Yt = model:evaluate(Xt)
+  local k, diag = {}, {}
+  for _, m in ipairs(M.modes) do
+    k[m] = smi.kriging.fit(X, Y[m], { trend = t.trend, corr = "gauss", inputs = t.unknowns, output = m, seed = t.seed })
+    local loo = k[m]:loo()
+    local pred = k[m]:predict(Xt)
+    local se, ymin, ymax = 0, math.huge, -math.huge
+    for i = 1, #pred do
+      se = se + (pred[i] - Yt[m][i]) ^ 2
+      ymin, ymax = math.min(ymin, Yt[m][i]), math.max(ymax, Yt[m][i])
+    end
+    local loo_pred = {}
+    for i = 1, #loo.residuals do loo_pred[i] = Y[m][i] - loo.residuals[i] end
+    diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = math.sqrt(se / #pred), test_range = { ymin, ymax },
+                theta = col_table(k[m].theta), observed = col_table(Y[m]), loo_predicted = loo_pred,
+                warnings = k[m].warnings }
+  end
+  local design = {}
+  for i = 1, X:rows() do design[i] = col_table(X[i]) end
+  local bounds = {}
+  for i, n in ipairs(t.unknowns) do bounds[n] = box[i] end
+  return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = t.n_design, n_test = t.n_test,
+           trend = t.trend, unknowns = t.unknowns }
+end
+
+--- The Kriging models of a surrogate step's results: the live objects, or, when the step ran
+-- in an earlier process, refitted from the saved design and solver outputs with the saved
+-- hyperparameters (no search: the same model). smi.kriging.load would be the natural way but
+-- crashes (reported to the surrogate area), so the models are not saved to files.
+function M.krigings(s)
+  if s.kriging and type(s.kriging.mode1) == "userdata" then return s.kriging end
+  local k, X = {}, smi.mat(s.design)
+  for _, m in ipairs(M.modes) do
+    k[m] = smi.kriging.fit(X, smi.vec(s.diagnostics[m].observed), { trend = s.trend, corr = "gauss", theta = smi.vec(s.diagnostics[m].theta),
+                                                                    inputs = s.unknowns, output = m })
+  end
+  return k
+end
+
+--- Calibration: t {unknowns, data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist},
+-- kriging, design_bounds, n, seed, maxeval, bootstrap, boot_maxeval}. Stage 1 is smi.calibrate
+-- and stage 2 are smi.calibrate in its objective form: the prior penalty depends on the
+-- parameters themselves, which the model form's metrics never see.
+function M.calibrate(t)
+  local k = t.kriging
+  local history = {}
+  -- Stage 1: match the means and stds of modes 1 and 4 (a smooth objective that never
+  -- saturates), from the paper's initial values. PR saturates at 2 when the predicted and
+  -- measured PDFs do not overlap (the initial values put mode 1 about 4 Hz below the data), so
+  -- SLSQP needs an overlapping start (algorithms.md §2.1). Modes 1 and 4 do not determine the
+  -- five means (mode 1 moves with column_frame_E and the ECU bracket alike, the wheel cover's
+  -- density and thickness act alike, and a lighter cover raises every mode), so stage 1 adds
+  -- prior engineering knowledge as penalties (inputs.lua, prior_penalty): the wheel cover's mass
+  -- is known from weighing the wheels (±5 %), and, as a light tie-breaker, the means stay near
+  -- their initial values (1e-2 per range, squared). The unseen mode 2 depends on this prior:
+  -- without it the fit of modes 1 and 4 can trade column stiffness for a lighter wheel.
+  local dm = {}
+  for _, m in ipairs{ "mode1", "mode4" } do dm[m] = { t.data[m]:mean(), t.data[m]:std() } end
+  local params1 = {}
+  for _, n in ipairs(t.unknowns) do
+    local u = inputs.unknown[n]
+    params1[#params1 + 1] = { name = n .. ".mean", lower = u.mean[1], upper = u.mean[2], start = u.mean[3] }
+    params1[#params1 + 1] = { name = n .. ".std", lower = u.std[1], upper = u.std[2], start = u.std[3] }
+  end
+  local lambda = t.tie_break or 1e-2
+  local r1 = smi.calibrate{
+    parameters = params1, method = "slsqp", maxeval = t.maxeval_moments or 400, identifiability = false,
+    objective = function(th)
+      local dists = {}
+      for i, n in ipairs(t.unknowns) do
+        dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
+      end
+      local Y = smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+      local fit, pen = 0, 0
+      for _, m in ipairs{ "mode1", "mode4" } do
+        local sd = dm[m][2]
+        fit = fit + ((Y[m]:mean() - dm[m][1]) / sd) ^ 2 + ((Y[m]:std() - sd) / sd) ^ 2
+      end
+      pen = inputs.prior_penalty(th, t.unknowns, lambda)
+      return fit + pen, { fit = fit, penalty = pen }
+    end,
+  }
+  -- Stage 2: the paper's objective PR(mode 1) + PR(mode 4) (KDE-ebd of the data against the KDE
+  -- of the CRN sample through the Krigings, fixed grids) plus the same prior penalty, SLSQP from
+  -- the stage-1 optimum. Without the prior, SLSQP walks along the valley of equally good fits to
+  -- a wheel cover far lighter than the weighing allows (seen in development: −37 %).
+  local grids = {}
+  for _, m in ipairs{ "mode1", "mode4" } do
+    grids[m] = { lower = t.data[m]:min() - 25, upper = t.data[m]:max() + 25, nodes = 6001 }
+  end
+  local function stage2(f_exp, start, maxeval, identifiability)
+    local params2 = {}
+    for _, q in ipairs(params1) do params2[#params2 + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
+    return smi.calibrate{
+      parameters = params2, method = "slsqp", maxeval = maxeval, identifiability = identifiability,
+      objective = function(th)
+        local dists = {}
+        for i, n in ipairs(t.unknowns) do
+          dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
+        end
+        local Y = smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+        local p1 = smi.metric.pr(f_exp.mode1, smi.kde(Y.mode1), { grid = grids.mode1 })
+        local p4 = smi.metric.pr(f_exp.mode4, smi.kde(Y.mode4), { grid = grids.mode4 })
+        local pen = inputs.prior_penalty(th, t.unknowns, lambda)
+        return p1 + p4 + pen, { mode1 = p1, mode4 = p4, prior = pen }
+      end,
+    }
+  end
+  -- Identifiability profiles: a parameter is weak when sweeping it over its whole range moves
+  -- the objective by less than 0.05 (PR units). An absolute rule, because the weighing prior's
+  -- large range would make smi.calibrate's default relative rule flag everything else.
+  local r = stage2(t.f_exp, r1.params, t.maxeval, { rel_tol = 1e-9, abs_tol = 0.05 })
+  local params = {}
+  for _, n in ipairs(t.unknowns) do
+    local u = inputs.unknown[n]
+    params[#params + 1] = { input = n, dist = u.dist, unit = u.unit,
+      mean = r.params[n .. ".mean"], std = r.params[n .. ".std"],
+      mean_bounds = { u.mean[1], u.mean[2] }, std_bounds = { u.std[1], u.std[2] }, mean_start = u.mean[3], std_start = u.std[3],
+      stage1_mean = r1.params[n .. ".mean"], stage1_std = r1.params[n .. ".std"] }
+  end
+  for i, h in ipairs(r.history) do
+    if not h.probe then history[#history + 1] = { i, h.objective, h.metrics.mode1, h.metrics.mode4, h.metrics.prior } end
+  end
+  local warnings = {}
+  for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = w end
+  -- Beyond the paper: does the calibrated sample stay inside the Kriging design box?
+  for _, p in ipairs(params) do
+    local d = smi.dist[p.dist]{ mean = p.mean, std = p.std }
+    local lo, hi = d:quantile(0.001), d:quantile(0.999)
+    local box = t.design_bounds[p.input]
+    if lo < box[1] or hi > box[2] then
+      warnings[#warnings + 1] = ("input '%s': the calibrated distribution's 0.1-99.9 %% range [%.4g, %.4g] leaves the Kriging design range [%.4g, %.4g]: the surrogate extrapolates there"):format(
+        p.input, lo, hi, box[1], box[2])
+    end
+  end
+  local prior = inputs.prior_penalty(r.params, t.unknowns, lambda)
+  local rho, tc = r.params["wheel_cover_rho.mean"], r.params["wheel_cover_thickness.mean"]
+  local out = { objective = r.metrics.mode1 + r.metrics.mode4, prior_penalty = prior, metrics = { mode1 = r.metrics.mode1, mode4 = r.metrics.mode4 },
+    evaluations = r.evaluations, converged = r.converged, status = r.status, warnings = warnings, at_bounds = r.at_bounds,
+    params = params, theta = r.params, history = history, weak = r.identifiability and r.identifiability.weak or {},
+    n = t.n, seed = t.seed, maxeval = t.maxeval, cover_mass_ratio = rho and tc and inputs.cover_mass_ratio(rho, tc),
+    moments_stage = { objective = r1.objective, evaluations = r1.evaluations, params = r1.params, status = r1.status,
+                      cover_mass_ratio = inputs.cover_mass_ratio(r1.params["wheel_cover_rho.mean"], r1.params["wheel_cover_thickness.mean"]) } }
+  -- Bootstrap CIs (beyond the paper): the 9 data rows resampled with replacement (paired across
+  -- modes), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum.
+  if (t.bootstrap or 0) > 0 then
+    local rng = smi.rng(t.seed + 7)
+    local n = #t.data.mode1
+    local samples, failed = {}, 0
+    for _ = 1, t.bootstrap do
+      local idx = rng:uniform(n, 0, n)
+      local d = { mode1 = {}, mode4 = {} }
+      for i = 1, n do
+        local j = math.min(n, math.floor(idx[i]) + 1)
+        d.mode1[i], d.mode4[i] = t.data.mode1[j], t.data.mode4[j]
+      end
+      local ok, rb = pcall(stage2, { mode1 = smi.kde(smi.vec(d.mode1)), mode4 = smi.kde(smi.vec(d.mode4)) }, r.params, t.boot_maxeval or 60, false)
+      if ok then samples[#samples + 1] = rb.params else failed = failed + 1 end
+    end
+    local lower, upper, sd = {}, {}, {}
+    for name in pairs(r.params) do
+      local v = {}
+      for i, th in ipairs(samples) do v[i] = th[name] end
+      local vv = smi.vec(v)
+      lower[name], upper[name], sd[name] = vv:quantile(0.05), vv:quantile(0.95), #v > 1 and vv:std() or 0
+    end
+    out.bootstrap = { level = 0.9, replicates = #samples, failed = failed, lower = lower, upper = upper, std = sd }
+  end
+  out.sensitivity = M.sensitivity(k, out)
+  return out, r
+end
+
+--- What modes 1 and 4 can determine (beyond the paper): the relative sensitivities
+-- d ln f / d ln x of the Kriging modes at the calibrated means (central differences of ±1 %),
+-- the share of each mode's sensitivity vector that lies outside the span of those of modes 1
+-- and 4 (0: the calibration fixes that mode's mean; 1: it leaves it free), and the number of
+-- mean combinations modes 1 and 4 leave undetermined (unknowns − 2).
+function M.sensitivity(k, cal)
+  local names, x0 = {}, {}
+  for i, p in ipairs(cal.params) do names[i], x0[i] = p.input, p.mean end
+  local J = {}
+  for _, m in ipairs(M.modes) do
+    J[m] = {}
+    local f0 = k[m]:predict(smi.mat{ x0 })[1]
+    for j = 1, #x0 do
+      local up, dn = {}, {}
+      for i = 1, #x0 do up[i], dn[i] = x0[i], x0[i] end
+      up[j], dn[j] = x0[j] * 1.01, x0[j] * 0.99
+      J[m][j] = (k[m]:predict(smi.mat{ up })[1] - k[m]:predict(smi.mat{ dn })[1]) / (0.02 * f0)
+    end
+  end
+  -- Gram-Schmidt on the rows of modes 1 and 4, then the residual of mode 2.
+  local function dot(a, b) local s = 0 for i = 1, #a do s = s + a[i] * b[i] end return s end
+  local basis = {}
+  for _, m in ipairs{ "mode1", "mode4" } do
+    local v = {}
+    for i = 1, #x0 do v[i] = J[m][i] end
+    for _, b in ipairs(basis) do local c = dot(v, b) for i = 1, #v do v[i] = v[i] - c * b[i] end end
+    local n = math.sqrt(dot(v, v))
+    if n > 1e-12 then for i = 1, #v do v[i] = v[i] / n end basis[#basis + 1] = v end
+  end
+  local r = {}
+  for i = 1, #x0 do r[i] = J.mode2[i] end
+  for _, b in ipairs(basis) do local c = dot(r, b) for i = 1, #r do r[i] = r[i] - c * b[i] end end
+  local sens = {}
+  for _, m in ipairs(M.modes) do
+    sens[m] = {}
+    for j, n in ipairs(names) do sens[m][n] = J[m][j] end
+  end
+  return { inputs = names, sensitivity = sens, undetermined = #x0 - #basis,
+           mode2_unconstrained_share = math.sqrt(dot(r, r) / dot(J.mode2, J.mode2)) }
+end
+
+--- The calibrated input distributions of a calibration result (numbers only, so that a step
+-- running alone can rebuild them).
+function M.distributions(cal)
+  local d = {}
+  for _, p in ipairs(cal.params) do d[#d + 1] = { p.input, smi.dist[p.dist]{ mean = p.mean, std = p.std } } end
+  return d
+end
+
+--- Validation: propagate the calibrated distributions through the Krigings (n samples) and,
+-- as a check of the surrogate, through the solver itself (n_solver samples, batch runs);
+-- u-pooling of the 9 data of each mode against the predicted KDE, at 95 %.
+function M.validate(t)
+  local k, dists = t.kriging, M.distributions(t.calibration)
+  local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+  local out = { n = t.n, n_solver = t.n_solver, modes = {} }
+  local Xs = {}
+  for i = 1, t.n_solver do Xs[i] = X[i] end
+  local base = solver.write_deck(smi.out(t.name .. "_base.deck"), t.airbag)
+  local names = {}
+  for i, d in ipairs(dists) do names[i] = d[1] end
+  local bm = solver.batch{ solver = t.solver, airbag = t.airbag, vary = names, name = t.name .. "-check", base = base,
+                           batch_size = math.ceil(t.n_solver / 2), concurrency = 2 }
+  local Ysol = bm:evaluate(smi.mat(Xs))
+  for _, m in ipairs(M.modes) do
+    local pred = smi.kde(Ys[m])
+    local v = smi.metric.upool{ data = { t.data[m] }, predicted = { pred }, confidence = 0.95, seed = t.seed + 3 }
+    local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95, seed = t.seed + 3 }
+    local c = v:curve()
+    out.modes[m] = { metric = v.metric, threshold = v.threshold, p = v.p, pass = v.pass, u = col_table(v.u),
+      predicted_mean = Ys[m]:mean(), predicted_std = Ys[m]:std(),
+      solver = { metric = vs.metric, pass = vs.pass, p = vs.p, mean = Ysol[m]:mean(), std = Ysol[m]:std() },
+      curve = { x = col_table(c.x), y = col_table(c.y) }, used_in_calibration = m ~= "mode2" }
+    out.modes[m].pdf = M.pdf_curve(pred, t.data[m])
+  end
+  return out
+end
+
+--- (x, pdf) of a distribution on a grid covering the data and the distribution's bulk.
+function M.pdf_curve(d, data, lo, hi)
+  local mu, sd = d:mean(), d:std()
+  lo = lo or math.min(mu - 4 * sd, data:min() - sd)
+  hi = hi or math.max(mu + 4 * sd, data:max() + sd)
+  local x = {}
+  for i = 1, 201 do x[i] = lo + (hi - lo) * (i - 1) / 200 end
+  return { x = x, y = col_table(d:pdf(smi.vec(x))) }
+end
+
+return M
