@@ -151,7 +151,9 @@ Sandbox (each option may be repeated):
   --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
 
 Modules:
-  --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too)
+  --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too);
+                      a folder holding smi-lib.lua is a library, and so is each such subfolder:
+                      require "name.module" loads <library folder>/module.lua
   --stdlib-dir DIR    load the smi stdlib from DIR instead of the copy built in (SMI_STDLIB_DIR)
 
 Run:
@@ -165,6 +167,13 @@ Run:
   --store PATH        evaluation store (database of solver runs) to use
   --dry-run           count the solver runs a study would launch; launch none
   -h, --help          print this help and exit
+
+Commands (sharing libraries; options such as --lib go before or after them):
+  libs                the libraries a study would see: name, version, git commit, path
+  new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
+  test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed"
+  verify RESULTS      do the libraries at hand match those recorded in RESULTS (results.json)?
+  (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
 stderr), 2 usage error; os.exit(n) exits with n.

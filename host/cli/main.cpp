@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/args.hpp"
+#include "cli/commands.hpp"
 #include "repl/repl.hpp"
 #include "vm/runtime.hpp"
 
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
     std::fputs(smi::cli::help_text(), stdout);
     return 0;
   }
+  // libs, new-lib, test, verify (cli/commands.hpp)
+  if (a.script_index && smi::cli::is_command(argv[a.script_index])) return smi::cli::run_command(a, argc, argv);
   try {
     return run(a, argc, argv);
   } catch (const std::exception& e) {

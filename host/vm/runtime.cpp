@@ -7,6 +7,7 @@
 #include "modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
+#include "vm/library_lua.hpp"
 
 namespace smi::vm {
 namespace fs = std::filesystem;
@@ -174,6 +175,9 @@ void Runtime::build_policy() {
 
 Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   build_policy();
+  // Two versions of a library or an unmet requirement stop the run before any code runs.
+  libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")));
+  libs_.check();
   limits_.timeout_s = cfg_.timeout_s;
   limits_.mem_limit = cfg_.max_memory_mb << 20;
   L_ = lua_newstate(limited_alloc, &limits_);
@@ -190,6 +194,7 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
     throw std::runtime_error("cannot set up the Lua state: " + msg);
   }
   install_searchers(L_, &modules_);
+  install_libraries(L_, &libs_);
 }
 
 Runtime::~Runtime() { lua_close(L_); }

@@ -8,6 +8,7 @@
 #include <lua.hpp>
 
 #include "luax/policy.hpp"
+#include "vm/libraries.hpp"
 #include "vm/limits.hpp"
 #include "vm/searchers.hpp"
 
@@ -71,6 +72,10 @@ class Runtime {
   Limits limits_;
   ModuleSearch modules_;
   lua_State* L_;
+  LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
+
+ public:
+  const LibrarySet& libraries() const { return libs_; }
 };
 
 }  // namespace smi::vm

@@ -14,7 +14,9 @@
 --   s:run{only = "fit"}                      -- "data" comes from the saved results.json
 --   s:run(study.parse_args(arg))             -- --only NAME[,NAME] --from NAME --quiet
 --
--- results.json: {study=, seed=, order={...}, steps={name={status=, seconds=, result={...}}}}.
+-- results.json: {study=, seed=, order={...}, steps={name={status=, seconds=, result={...}}},
+-- provenance=smi.provenance()} (libraries with version, content hash and commit; smi-lua version;
+-- seed; the study script's hash), so that `smi-lua verify results.json` can check a rerun.
 -- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
 -- same run, are left out of the file, and are listed under the step's "not_saved".
 local json = require "smi.report.json"
@@ -24,6 +26,12 @@ local M = {}
 
 local Study = {}
 Study.__index = Study
+
+-- What produced this run's numbers (host function; absent when run outside smi-lua).
+local function provenance(opts)
+  if type(smi) == "table" and type(smi.provenance) == "function" then return smi.provenance(opts) end
+  return nil
+end
 
 local function now()
   -- wall time when the host offers it (a solver's child processes use no CPU time of ours)
@@ -133,7 +141,7 @@ function Study:run(opts)
   local partial = false
   for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
 
-  local saved = { study = self.name, seed = self.seed, order = {}, steps = {} }
+  local saved = { study = self.name, seed = self.seed, order = {}, steps = {}, provenance = provenance() }
   if partial then
     local old, why = self:load()
     if old then saved.steps = old.steps else self.load_problem = why end
@@ -244,6 +252,14 @@ function Study:_finish_report(partial, selected, total)
   for _, t in ipairs(self.timings) do rows[#rows + 1] = { t[1], { status = t[2] == "ok" and "pass" or "fail" }, t[3] } end
   r:table{ caption = ("Steps run, %s in total."):format(fmt.seconds(total)), columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
   r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
+  local p = provenance{ files = false }
+  if p then
+    local libs = {}
+    for _, l in ipairs(p.libraries) do
+      libs[l.name] = ("%s, %s, %s, %s"):format(l.version, l.hash:sub(1, 19), l.commit and ("commit " .. l.commit:sub(1, 12)) or "no commit", l.path)
+    end
+    r:provenance{ smi_lua = p.smi_lua, libraries = next(libs) and libs or "none" }
+  end
   -- a partial run must not overwrite the full report
   self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
   self:_say("report: %s", self.report_path)

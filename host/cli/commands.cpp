@@ -1,0 +1,58 @@
+#include "cli/commands.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace smi::cli {
+
+bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify"; }
+
+vm::LibrarySet current_libraries(const Args& a) {
+  return vm::LibrarySet::discover(vm::library_roots(a.cfg.lib_dirs, a.ignore_env ? nullptr : std::getenv("SMI_PATH")));
+}
+
+int run_command(const Args& first, int argc, char** argv) {
+  // Options may follow the command word: move them in front of it and parse once more, so
+  // every option means what it means for a study. Whether an option takes a value is asked of
+  // the parser itself (it reports "needs an argument" for a valued option given alone).
+  const int at = first.script_index;
+  const std::string word = argv[at];
+  std::vector<std::string> opts, pos;
+  for (int i = at + 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    if (s == "--") {
+      for (++i; i < argc; ++i) pos.push_back(argv[i]);
+      break;
+    }
+    if (s.size() > 1 && s[0] == '-') {
+      char* probe[] = {argv[0], const_cast<char*>(s.c_str()), nullptr};
+      const Args t = parse(2, probe);
+      opts.push_back(s);
+      if (t.error.find("needs an argument") != std::string::npos && i + 1 < argc) opts.push_back(argv[++i]);
+    } else {
+      pos.push_back(s);
+    }
+  }
+  std::vector<std::string> words(argv, argv + at);
+  words.insert(words.end(), opts.begin(), opts.end());
+  words.push_back(word);
+  std::vector<char*> av;
+  for (auto& w : words) av.push_back(w.data());
+  av.push_back(nullptr);
+  Args a = parse(static_cast<int>(words.size()), av.data());
+  if (!a.error.empty()) {
+    std::fprintf(stderr, "smi-lua %s: %s\n", word.c_str(), a.error.c_str());
+    return 2;
+  }
+  try {
+    if (word == "libs") return cmd_libs(a, pos);
+    if (word == "new-lib") return cmd_new_lib(a, pos);
+    if (word == "test") return cmd_test(a, pos, argv[0]);
+    return cmd_verify(a, pos);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "smi-lua %s: %s\n", word.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace smi::cli

@@ -1,0 +1,32 @@
+#pragma once
+// Subcommands for sharing libraries (the word in the script position selects one; a script
+// file literally named like a command is run as ./libs):
+//   smi-lua libs                 the libraries a study would see: name, version, commit, path
+//   smi-lua new-lib NAME [DIR]   scaffold a library (manifest, module, a passing test, README)
+//   smi-lua test DIR             run DIR/tests/test_*.lua sandboxed; prints "N passed, N failed"
+//   smi-lua verify RESULTS.json  do the libraries at hand still match those a study recorded?
+// Options such as --lib, --allow-read and --seed may come before or after the command word.
+#include <string>
+#include <vector>
+
+#include "cli/args.hpp"
+#include "vm/libraries.hpp"
+
+namespace smi::cli {
+
+bool is_command(const std::string& word);
+
+/// Runs the command named at argv[a.script_index]; returns the exit status (0 ok, 1 failure,
+/// 2 usage error).
+int run_command(const Args& a, int argc, char** argv);
+
+// The commands, each in its own file. `args` are the positional words after the command.
+int cmd_libs(const Args& a, const std::vector<std::string>& args);
+int cmd_new_lib(const Args& a, const std::vector<std::string>& args);
+int cmd_test(const Args& a, const std::vector<std::string>& args, const char* argv0);
+int cmd_verify(const Args& a, const std::vector<std::string>& args);
+
+/// The library set the options and environment describe (SMI_PATH unless -E).
+vm::LibrarySet current_libraries(const Args& a);
+
+}  // namespace smi::cli

@@ -1,0 +1,120 @@
+// smi-lua test DIR: runs each DIR/tests/test_*.lua as its own sandboxed smi-lua process (so one
+// test cannot disturb another), with DIR on the library path, and prints "N passed, N failed"
+// counting test files. A file passes when it exits with status 0 (smi.testing's T.finish()
+// raises when a case failed).
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <sys/wait.h>
+
+#include "cli/commands.hpp"
+#include "core/errors.hpp"
+#include "eval/process.hpp"
+
+namespace smi::cli {
+namespace fs = std::filesystem;
+namespace {
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// The last "N passed, N failed" line a test printed, or "".
+std::string case_summary(const std::string& out) {
+  static const std::regex re(R"((\d+) passed, (\d+) failed)");
+  std::string last;
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), re); it != std::sregex_iterator(); ++it) last = it->str();
+  return last;
+}
+
+std::string indent(const std::string& text) {
+  std::string out = "    ";
+  for (char c : text) {
+    out += c;
+    if (c == '\n') out += "    ";
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == '\n')) out.pop_back();
+  return out;
+}
+
+}  // namespace
+
+int cmd_test(const Args& a, const std::vector<std::string>& args, const char* argv0) {
+  if (args.size() != 1) {
+    std::fprintf(stderr, "usage: smi-lua test DIR   (DIR is a library folder holding smi-lib.lua and tests/test_*.lua)\n");
+    return 2;
+  }
+  const fs::path dir = args[0];
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / vm::kManifestName, ec))
+    throw Error("'" + dir.string() + "' is not a library folder: it has no " + vm::kManifestName +
+                " (make one with smi-lua new-lib NAME)");
+  const vm::Manifest m = vm::read_manifest(dir / vm::kManifestName);
+  std::vector<fs::path> tests;
+  if (fs::is_directory(dir / "tests", ec))
+    for (const auto& e : fs::directory_iterator(dir / "tests", ec)) {
+      const std::string f = e.path().filename().string();
+      if (e.is_regular_file(ec) && f.rfind("test_", 0) == 0 && e.path().extension() == ".lua") tests.push_back(e.path());
+    }
+  std::sort(tests.begin(), tests.end());
+  if (tests.empty())
+    throw Error("library " + m.name + " has no tests: add files " + (dir / "tests" / "test_*.lua").string() +
+                " (smi-lua new-lib makes an example)");
+
+  fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) self = argv0;
+  const fs::path out_base = a.cfg.out_dir.empty() ? fs::path("smi-out") / ("test-" + m.name) : fs::path(a.cfg.out_dir);
+  fs::create_directories(out_base, ec);
+  if (ec) throw Error("cannot create the output folder '" + out_base.string() + "': " + ec.message());
+
+  std::printf("testing %s %s (%s)\n", m.name.c_str(), m.version.text.c_str(), dir.string().c_str());
+  std::fflush(stdout);
+  int passed = 0, failed = 0;
+  for (const fs::path& t : tests) {
+    const std::string stem = t.stem().string();
+    std::vector<std::string> av = {self.string(), "--quiet"};
+    if (a.ignore_env) av.push_back("-E");
+    av.insert(av.end(), {"--lib", dir.string()});
+    for (const auto& d : a.cfg.lib_dirs) av.insert(av.end(), {"--lib", d});
+    for (const auto& d : a.cfg.allow_read) av.insert(av.end(), {"--allow-read", d});
+    for (const auto& d : a.cfg.allow_write) av.insert(av.end(), {"--allow-write", d});
+    for (const auto& d : a.cfg.allow_exec) av.insert(av.end(), {"--allow-exec", d});
+    if (!a.cfg.stdlib_dir.empty()) av.insert(av.end(), {"--stdlib-dir", a.cfg.stdlib_dir});
+    if (a.cfg.timeout_s > 0) av.insert(av.end(), {"--timeout", std::to_string(a.cfg.timeout_s)});
+    if (a.cfg.max_memory_mb > 0) av.insert(av.end(), {"--max-memory", std::to_string(a.cfg.max_memory_mb)});
+    av.insert(av.end(), {"--seed", std::to_string(a.cfg.seed), "--out", (out_base / stem).string(), "--", t.string()});
+    eval::SpawnSpec spec;
+    spec.program = self.string();
+    spec.argv = av;
+    spec.workdir = fs::current_path().string();
+    spec.stdout_path = fs::absolute(out_base / (stem + ".stdout.txt")).string();
+    spec.stderr_path = fs::absolute(out_base / (stem + ".stderr.txt")).string();
+    const pid_t pid = eval::spawn_process(spec);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    const std::string out = read_all(spec.stdout_path), err = read_all(spec.stderr_path);
+    const std::string cases = case_summary(out);
+    const std::string rel = t.lexically_relative(dir).generic_string();
+    if (ok) {
+      ++passed;
+      std::printf("ok    %s%s\n", rel.c_str(), cases.empty() ? "" : (" (" + cases + ")").c_str());
+    } else {
+      ++failed;
+      std::printf("FAIL  %s (%s%s)\n", rel.c_str(), eval::describe_wait_status(status).c_str(),
+                  cases.empty() ? "" : ("; " + cases).c_str());
+      if (!err.empty()) std::printf("%s\n", indent(err).c_str());
+    }
+    std::fflush(stdout);
+  }
+  std::printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace smi::cli

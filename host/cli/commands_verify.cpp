@@ -1,0 +1,213 @@
+// smi-lua verify RESULTS.json: compares the provenance a study recorded (smi.provenance() in
+// its results file) with the libraries at hand: the ones --lib / SMI_PATH give now, or, for a
+// library not found there, the folder it was recorded at. Names every changed, added or removed
+// file. Exit status 0 when everything matches, 1 otherwise.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <lua.hpp>
+
+#include "cli/commands.hpp"
+#include "core/errors.hpp"
+#include "eval/sha256.hpp"
+#include "modules.hpp"
+
+namespace smi::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct RecordedLib {
+  std::string name, version, path, hash, commit;
+  std::map<std::string, std::string> files;
+  bool has_files = false;
+};
+
+struct Recorded {
+  std::string smi_lua, script_path, script_hash;
+  long long seed = -1;
+  bool has_seed = false;
+  std::vector<RecordedLib> libs;
+};
+
+/// A closed Lua state used only to decode JSON with smi.json (one JSON reader in the tree).
+struct JsonState {
+  lua_State* L = luaL_newstate();
+  ~JsonState() { lua_close(L); }
+};
+
+std::string field_string(lua_State* L, const char* key) {
+  lua_getfield(L, -1, key);
+  std::string v = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
+  lua_pop(L, 1);
+  return v;
+}
+
+int decode_chunk(lua_State* L) {
+  // stack: [text]; opens smi.json and decodes.
+  luaL_openlibs(L);
+  lua_newtable(L);
+  bind::open_json(L);  // [text, smi]
+  lua_getfield(L, -1, "json");
+  lua_getfield(L, -1, "decode");
+  lua_pushvalue(L, 1);
+  lua_call(L, 1, 1);
+  return 1;
+}
+
+Recorded read_recorded(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read '" + file.string() + "'");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  JsonState js;
+  lua_State* L = js.L;
+  lua_pushcfunction(L, decode_chunk);
+  lua_pushlstring(L, text.data(), text.size());
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK)
+    throw Error("'" + file.string() + "' is not valid JSON: " + (lua_tostring(L, -1) ? lua_tostring(L, -1) : "?"));
+  if (!lua_istable(L, -1)) throw Error("'" + file.string() + "' does not hold a JSON object");
+  lua_getfield(L, -1, "provenance");
+  if (!lua_istable(L, -1))
+    throw Error("'" + file.string() +
+                "' has no 'provenance' object: it was not written by a study that records smi.provenance() "
+                "(smi.study does; a hand-written results file can add provenance = smi.provenance())");
+  Recorded r;
+  r.smi_lua = field_string(L, "smi_lua");
+  lua_getfield(L, -1, "seed");
+  if (lua_isnumber(L, -1)) {
+    r.seed = static_cast<long long>(lua_tonumber(L, -1));
+    r.has_seed = true;
+  }
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "script");
+  if (lua_istable(L, -1)) {
+    r.script_path = field_string(L, "path");
+    r.script_hash = field_string(L, "hash");
+  }
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "libraries");
+  if (lua_istable(L, -1)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -1, i);
+      if (lua_istable(L, -1)) {
+        RecordedLib l;
+        l.name = field_string(L, "name");
+        l.version = field_string(L, "version");
+        l.path = field_string(L, "path");
+        l.hash = field_string(L, "hash");
+        l.commit = field_string(L, "commit");
+        lua_getfield(L, -1, "files");
+        if (lua_istable(L, -1)) {
+          l.has_files = true;
+          lua_pushnil(L);
+          while (lua_next(L, -2)) {
+            if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TSTRING)
+              l.files[lua_tostring(L, -2)] = lua_tostring(L, -1);
+            lua_pop(L, 1);
+          }
+        }
+        lua_pop(L, 1);
+        r.libs.push_back(std::move(l));
+      }
+      lua_pop(L, 1);
+    }
+  }
+  return r;
+}
+
+std::string short_commit(const std::string& c) { return c.empty() ? "no commit" : "commit " + c.substr(0, 12); }
+
+}  // namespace
+
+int cmd_verify(const Args& a, const std::vector<std::string>& args) {
+  if (args.size() != 1) {
+    std::fprintf(stderr, "usage: smi-lua verify RESULTS.json   (the results file a study wrote, e.g. smi-out/study/results.json)\n");
+    return 2;
+  }
+  const Recorded rec = read_recorded(args[0]);
+  const vm::LibrarySet here = current_libraries(a);
+  int changed = 0, missing = 0;
+  std::printf("verifying %s: %zu librar%s recorded", args[0].c_str(), rec.libs.size(), rec.libs.size() == 1 ? "y" : "ies");
+  if (!rec.smi_lua.empty()) std::printf(", smi-lua %s", rec.smi_lua.c_str());
+  if (rec.has_seed) std::printf(", seed %lld", rec.seed);
+  std::printf("\n");
+
+  for (const RecordedLib& r : rec.libs) {
+    // The library at hand: the one on the library path now, else the recorded folder.
+    const vm::Library* cur = here.find(r.name);
+    std::optional<vm::LibrarySet> at_recorded;
+    std::string where = "on the library path";
+    std::error_code ec;
+    if (!cur && !r.path.empty() && fs::is_regular_file(fs::path(r.path) / vm::kManifestName, ec)) {
+      at_recorded = vm::LibrarySet::discover({{r.path, "recorded path"}});
+      cur = at_recorded->find(r.name);
+      where = "at its recorded path";
+    }
+    if (!cur) {
+      ++missing;
+      std::printf("MISSING  %s %s: not on the library path and not at %s; add its folder with --lib DIR\n",
+                  r.name.c_str(), r.version.c_str(), r.path.empty() ? "(no recorded path)" : r.path.c_str());
+      continue;
+    }
+    const vm::FolderHash& h = cur->hash();
+    const std::string& ver = cur->manifest.version.text;
+    if (h.digest == r.hash) {
+      std::printf("ok       %s %s %s (%s), %s\n", r.name.c_str(), ver.c_str(), where.c_str(), cur->folder.string().c_str(),
+                  h.digest.substr(0, 19).c_str());
+      if (!r.commit.empty() && cur->git.commit != r.commit)
+        std::printf("         same content, but the checkout is at %s (recorded %s)\n", short_commit(cur->git.commit).c_str(),
+                    short_commit(r.commit).c_str());
+      continue;
+    }
+    ++changed;
+    std::printf("CHANGED  %s %s (%s): content differs from the recorded %s", r.name.c_str(), ver.c_str(),
+                cur->folder.string().c_str(), r.version.c_str());
+    if (ver != r.version) std::printf(" (version %s now)", ver.c_str());
+    if (!r.commit.empty() || !cur->git.commit.empty())
+      std::printf("; recorded %s, now %s", short_commit(r.commit).c_str(), short_commit(cur->git.commit).c_str());
+    std::printf("\n");
+    if (!r.has_files) {
+      std::printf("         (the results file has no per-file digests, so the changed files cannot be named)\n");
+      continue;
+    }
+    for (const auto& [rel, digest] : r.files) {
+      const auto it = h.files.find(rel);
+      if (it == h.files.end()) std::printf("         removed: %s\n", rel.c_str());
+      else if (it->second != digest) std::printf("         changed: %s\n", rel.c_str());
+    }
+    for (const auto& [rel, digest] : h.files)
+      if (!r.files.count(rel)) std::printf("         added:   %s\n", rel.c_str());
+  }
+
+  bool script_changed = false;
+  if (!rec.script_path.empty()) {
+    std::error_code ec;
+    if (!fs::is_regular_file(rec.script_path, ec)) {
+      std::printf("note     study script %s is not here (not checked)\n", rec.script_path.c_str());
+    } else if ("sha256:" + eval::sha256_file(rec.script_path) != rec.script_hash) {
+      script_changed = true;
+      std::printf("CHANGED  study script %s differs from the one that produced the results\n", rec.script_path.c_str());
+    } else {
+      std::printf("ok       study script %s\n", rec.script_path.c_str());
+    }
+  }
+  if (!rec.smi_lua.empty() && rec.smi_lua != vm::host_version())
+    std::printf("note     recorded with smi-lua %s, this is %s\n", rec.smi_lua.c_str(), vm::host_version());
+
+  const bool all_ok = changed == 0 && missing == 0 && !script_changed;
+  if (all_ok && rec.has_seed)
+    std::printf("verify: everything matches; rerun with --seed %lld to reproduce the results\n", rec.seed);
+  else if (all_ok)
+    std::printf("verify: everything matches\n");
+  else
+    std::printf("verify: %d librar%s changed, %d missing%s: the code at hand is not the code that produced the results\n",
+                changed, changed == 1 ? "y" : "ies", missing, script_changed ? ", study script changed" : "");
+  return all_ok ? 0 : 1;
+}
+
+}  // namespace smi::cli

@@ -1,0 +1,171 @@
+#include "vm/library_lua.hpp"
+
+#include <string>
+
+#include "eval/sha256.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
+#include "vm/searchers.hpp"
+
+namespace smi::vm {
+namespace fs = std::filesystem;
+namespace {
+
+const LibrarySet& libs_of(lua_State* L) {
+  return *static_cast<const LibrarySet*>(lua_touserdata(L, lua_upvalueindex(1)));
+}
+
+void set_string(lua_State* L, const char* key, const std::string& v) {
+  lua_pushlstring(L, v.data(), v.size());
+  lua_setfield(L, -2, key);
+}
+
+/// package.searchers entry: modules of libraries. Returns nothing for names whose first
+/// component is no library, so the next searcher takes over without noise in the message.
+int library_searcher(lua_State* L) {
+  const std::string name = luaL_checkstring(L, 1);
+  const LibrarySet& set = libs_of(L);
+  const std::size_t dot = name.find('.');
+  const Library* lib = set.find(name.substr(0, dot));
+  if (!lib) return 0;
+  std::string tried, found;
+  lua::protect(L, "require", [&] {
+    std::vector<fs::path> cands;
+    if (dot == std::string::npos) {
+      cands.push_back(lib->folder / "init.lua");
+    } else {
+      const fs::path rel = module_relpath(name.c_str() + dot + 1);
+      fs::path rel_lua = rel;
+      rel_lua += ".lua";
+      cands.push_back(lib->folder / rel_lua);
+      cands.push_back(lib->folder / rel / "init.lua");
+    }
+    for (const fs::path& c : cands) {
+      std::error_code ec;
+      if (fs::is_regular_file(c, ec)) {
+        // a module reached through a symlink out of the library folder is refused like io.open
+        lua::policy(L).check_read(c.string(), "require");
+        found = c.string();
+        return 0;
+      }
+      tried += (tried.empty() ? "" : "\n\t") + ("no file '" + c.string() + "'");
+    }
+    tried += " (library " + lib->name() + " " + lib->manifest.version.text + ")";
+    return 0;
+  });
+  if (found.empty()) {
+    lua_pushstring(L, tried.c_str());
+    return 1;
+  }
+  if (luaL_loadfilex(L, found.c_str(), "t") != LUA_OK)
+    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name.c_str(), found.c_str(),
+                      lua_tostring(L, -1));
+  lib->used = true;
+  lua_pushstring(L, found.c_str());
+  return 2;
+}
+
+/// The common fields of one library; stack: [..., t].
+void push_library_fields(lua_State* L, const Library& l) {
+  set_string(L, "name", l.name());
+  set_string(L, "version", l.manifest.version.text);
+  set_string(L, "path", l.folder.string());
+  if (!l.git.commit.empty()) set_string(L, "commit", l.git.commit);
+  if (!l.git.branch.empty()) set_string(L, "branch", l.git.branch);
+  lua_pushboolean(L, l.used);
+  lua_setfield(L, -2, "used");
+}
+
+int smi_libraries(lua_State* L) {
+  const LibrarySet& set = libs_of(L);
+  lua_createtable(L, static_cast<int>(set.all().size()), 0);
+  int i = 0;
+  for (const Library& l : set.all()) {
+    lua_newtable(L);
+    push_library_fields(L, l);
+    if (!l.manifest.description.empty()) set_string(L, "description", l.manifest.description);
+    lua_createtable(L, static_cast<int>(l.manifest.requires_.size()), 0);
+    int k = 0;
+    for (const auto& r : l.manifest.requires_) {
+      lua_pushstring(L, r.text.c_str());
+      lua_rawseti(L, -2, ++k);
+    }
+    lua_setfield(L, -2, "requires");
+    lua_rawseti(L, -2, ++i);
+  }
+  return 1;
+}
+
+int smi_provenance(lua_State* L) {
+  bool files = true;
+  if (lua_istable(L, 1)) {
+    lua_getfield(L, 1, "files");
+    if (!lua_isnil(L, -1)) files = lua_toboolean(L, -1);
+    lua_pop(L, 1);
+  } else if (!lua_isnoneornil(L, 1)) {
+    return luaL_argerror(L, 1, "expected an options table like {files = false}");
+  }
+  const LibrarySet& set = libs_of(L);
+  const Policy& pol = lua::policy(L);
+  // Hash everything first (C++ work that may throw), then build the table.
+  std::string script_hash;
+  lua::protect(L, "smi.provenance", [&] {
+    for (const Library& l : set.all()) l.hash();
+    if (!pol.script_path.empty()) script_hash = "sha256:" + eval::sha256_file(pol.script_path);
+    return 0;
+  });
+  lua_newtable(L);
+  set_string(L, "smi_lua", host_version());
+  set_string(L, "lua", LUA_RELEASE);
+  lua_pushinteger(L, static_cast<lua_Integer>(pol.seed));
+  lua_setfield(L, -2, "seed");
+  if (!pol.script_path.empty()) {
+    lua_newtable(L);
+    set_string(L, "path", resolve_path(pol.script_path).string());  // absolute: verify runs from anywhere
+    set_string(L, "hash", script_hash);
+    lua_setfield(L, -2, "script");
+  }
+  lua_createtable(L, static_cast<int>(set.all().size()), 0);
+  int i = 0;
+  for (const Library& l : set.all()) {
+    lua_newtable(L);
+    push_library_fields(L, l);
+    set_string(L, "hash", l.hash().digest);
+    if (files) {
+      lua_newtable(L);
+      for (const auto& [rel, digest] : l.hash().files) set_string(L, rel.c_str(), digest);
+      lua_setfield(L, -2, "files");
+    }
+    lua_rawseti(L, -2, ++i);
+  }
+  lua_setfield(L, -2, "libraries");
+  return 1;
+}
+
+}  // namespace
+
+void install_libraries(lua_State* L, const LibrarySet* libs) {
+  void* ud = const_cast<LibrarySet*>(libs);
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "searchers");  // [package, searchers]
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+  for (lua_Integer i = n; i >= 3; --i) {  // shift the path searcher(s) up by one
+    lua_rawgeti(L, -1, i);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_pushlightuserdata(L, ud);
+  lua_pushcclosure(L, library_searcher, 1);
+  lua_rawseti(L, -2, 3);
+  lua_pop(L, 2);
+
+  lua_getglobal(L, "smi");
+  lua_pushlightuserdata(L, ud);
+  lua_pushcclosure(L, smi_libraries, 1);
+  lua_setfield(L, -2, "libraries");
+  lua_pushlightuserdata(L, ud);
+  lua_pushcclosure(L, smi_provenance, 1);
+  lua_setfield(L, -2, "provenance");
+  lua_pop(L, 1);
+}
+
+}  // namespace smi::vm

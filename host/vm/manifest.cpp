@@ -1,0 +1,158 @@
+#include "vm/manifest.hpp"
+
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <lua.hpp>
+
+#include "core/errors.hpp"
+
+namespace smi::vm {
+namespace {
+
+constexpr std::size_t kMemoryCeiling = 1 << 20;  // bytes of Lua heap a manifest may use
+constexpr int kInstructionBudget = 100000;       // a manifest is a few assignments
+
+struct Heap {
+  std::size_t used = 0;
+};
+
+void* manifest_alloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
+  auto* h = static_cast<Heap*>(ud);
+  const std::size_t old = ptr ? osize : 0;
+  if (nsize == 0) {
+    std::free(ptr);
+    h->used -= old;
+    return nullptr;
+  }
+  if (nsize > old && h->used + (nsize - old) > kMemoryCeiling) return nullptr;
+  void* p = std::realloc(ptr, nsize);
+  if (p) h->used = h->used - old + nsize;
+  return p;
+}
+
+void budget_hook(lua_State* L, lua_Debug*) {
+  luaL_error(L, "the manifest ran more than %d instructions (a manifest holds data only)", kInstructionBudget);
+}
+
+/// Owns the throwaway state.
+struct State {
+  Heap heap;
+  lua_State* L = lua_newstate(manifest_alloc, &heap);
+  ~State() {
+    if (L) lua_close(L);
+  }
+};
+
+std::string where(const std::filesystem::path& file) { return "library manifest '" + file.string() + "'"; }
+
+std::string string_field(lua_State* L, const std::filesystem::path& file, const char* field, bool required) {
+  lua_getfield(L, -1, field);
+  std::string v;
+  if (lua_type(L, -1) == LUA_TSTRING) {
+    v = lua_tostring(L, -1);
+  } else if (!lua_isnil(L, -1) || required) {
+    const std::string got = lua_isnil(L, -1) ? "nothing" : std::string("a ") + luaL_typename(L, -1);
+    lua_pop(L, 1);
+    throw Error(where(file) + ": field '" + field + "' must be a string, got " + got +
+                (required ? std::string(" (add e.g. ") + field + " = \"" +
+                                (std::string(field) == "version" ? "0.1.0" : "mylib") + "\")"
+                          : ""));
+  }
+  lua_pop(L, 1);
+  return v;
+}
+
+}  // namespace
+
+bool valid_library_name(const std::string& n) {
+  if (n.empty() || std::isdigit(static_cast<unsigned char>(n[0]))) return false;
+  for (char c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+  return true;
+}
+
+Manifest parse_manifest(const std::string& text, const std::filesystem::path& file) {
+  State st;
+  lua_State* L = st.L;
+  if (!L) throw Error("cannot create a Lua state to read " + where(file));
+  const std::string chunk = "@" + file.string();
+  if (luaL_loadbufferx(L, text.data(), text.size(), chunk.c_str(), "t") != LUA_OK)
+    throw Error(where(file) + " does not load: " + std::string(lua_tostring(L, -1)));
+  lua_newtable(L);  // the environment: empty, so the manifest sees no function at all
+  lua_pushvalue(L, -1);
+  lua_setupvalue(L, -3, 1);  // _ENV of the main chunk; stack: [chunk, env]
+  lua_insert(L, -2);         // [env, chunk]
+  lua_sethook(L, budget_hook, LUA_MASKCOUNT, kInstructionBudget);
+  if (lua_pcall(L, 0, 1, 0) != LUA_OK) {
+    const char* msg = lua_tostring(L, -1);
+    throw Error(where(file) + " failed: " + (msg ? msg : "out of memory") +
+                " (a manifest only assigns name, version, description and requires)");
+  }
+  lua_sethook(L, nullptr, 0, 0);
+  // A returned table wins; otherwise the globals the manifest assigned.
+  if (!lua_istable(L, -1)) lua_pop(L, 1);  // [env]
+  else lua_remove(L, -2);                  // [returned]
+
+  static const char* const kKnown[] = {"name", "version", "description", "requires", "license", "authors", "homepage"};
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    lua_pop(L, 1);
+    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(a non-string key)";
+    bool known = false;
+    for (const char* k : kKnown) known = known || key == k;
+    if (!known) {
+      std::string hint = key == "require" || key == "requirements" || key == "depends" || key == "dependencies"
+                             ? " (did you mean 'requires'?)"
+                             : "";
+      throw Error(where(file) + ": unknown field '" + key + "'" + hint +
+                  "; known fields: name, version, description, requires, license, authors, homepage");
+    }
+  }
+
+  Manifest m;
+  m.file = file;
+  m.name = string_field(L, file, "name", true);
+  if (!valid_library_name(m.name))
+    throw Error(where(file) + ": name '" + m.name +
+                "' is not a valid library name (letters, digits and '_', not starting with a digit: it is "
+                "the first part of module names, require \"" + m.name + ".module\")");
+  const std::string ver = string_field(L, file, "version", true);
+  try {
+    m.version = Version::parse(ver);
+  } catch (const Error& e) {
+    throw Error(where(file) + ": field 'version': " + e.what());
+  }
+  m.description = string_field(L, file, "description", false);
+  lua_getfield(L, -1, "requires");
+  if (lua_istable(L, -1)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -1, i);
+      if (lua_type(L, -1) != LUA_TSTRING)
+        throw Error(where(file) + ": requires[" + std::to_string(i) + "] must be a string like \"other >= 1.2\", got a " +
+                    luaL_typename(L, -1));
+      try {
+        m.requires_.push_back(Requirement::parse(lua_tostring(L, -1)));
+      } catch (const Error& e) {
+        throw Error(where(file) + ": requires[" + std::to_string(i) + "]: " + e.what());
+      }
+      lua_pop(L, 1);
+    }
+  } else if (!lua_isnil(L, -1)) {
+    throw Error(where(file) + ": field 'requires' must be a list of strings like {\"other >= 1.2\"}, got a " +
+                luaL_typename(L, -1));
+  }
+  return m;
+}
+
+Manifest read_manifest(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error("cannot read " + where(file));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_manifest(ss.str(), file);
+}
+
+}  // namespace smi::vm
