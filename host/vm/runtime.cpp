@@ -1,5 +1,6 @@
 #include "vm/runtime.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -86,6 +87,14 @@ int smi_out(lua_State* L) {
   return 1;
 }
 
+/// smi.now(): wall-clock seconds from a monotonic clock, for timing steps that wait on solver
+/// processes (os.clock counts only this process's CPU time).
+int smi_now(lua_State* L) {
+  const auto t = std::chrono::steady_clock::now().time_since_epoch();
+  lua_pushnumber(L, std::chrono::duration<double>(t).count());
+  return 1;
+}
+
 /// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
@@ -103,6 +112,10 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "script_dir");
   lua_pushcfunction(L, smi_out);
   lua_setfield(L, -2, "out");
+  lua_pushcfunction(L, smi_now);
+  lua_setfield(L, -2, "now");
+  lua_pushstring(L, host_version());
+  lua_setfield(L, -2, "version");
   lua_pop(L, 1);
   if (cfg.sandbox) sandbox::install(L);
   return 0;
