@@ -56,8 +56,9 @@ int mat_identity(lua_State* L) {
   return 1;
 }
 
-/// smi.mat.hcat{a, b, ...}: columns side by side (each a vec, a table of numbers or a mat).
-int mat_hcat(lua_State* L) {
+/// Joins the blocks of the table at index 1 side by side (columns) or stacked (rows); each block
+/// is a vec, a table of numbers or a mat. `name` is the Lua function, for messages.
+int join_blocks(lua_State* L, bool side_by_side, const char* name) {
   luaL_checktype(L, 1, LUA_TTABLE);
   const lua_Integer n = luaL_len(L, 1);
   Mat out;
@@ -69,10 +70,15 @@ int mat_hcat(lua_State* L) {
       out = std::move(block);
       continue;
     }
-    if (block.rows() != out.rows())
-      return luaL_error(L, "smi.mat.hcat: block %d has %d rows, block 1 has %d", (int)k, (int)block.rows(),
-                        (int)out.rows());
-    Mat joined(out.rows(), out.cols() + block.cols());
+    const Eigen::Index have = side_by_side ? out.rows() : out.cols();
+    const Eigen::Index got = side_by_side ? block.rows() : block.cols();
+    if (got != have)
+      return luaL_error(L, "%s: block %d has %d %s, block 1 has %d", name, (int)k, (int)got,
+                        side_by_side ? "rows" : "columns", (int)have);
+    Mat joined(side_by_side ? out.rows() : out.rows() + block.rows(),
+               side_by_side ? out.cols() + block.cols() : out.cols());
+    // Eigen's comma initializer places `block` right of `out` when the row has room for it,
+    // below it otherwise: the same line serves both joins.
     joined << out, block;
     out = std::move(joined);
   }
@@ -80,29 +86,10 @@ int mat_hcat(lua_State* L) {
   return 1;
 }
 
+/// smi.mat.hcat{a, b, ...}: columns side by side.
+int mat_hcat(lua_State* L) { return join_blocks(L, true, "smi.mat.hcat"); }
 /// smi.mat.vcat{a, b, ...}: rows stacked.
-int mat_vcat(lua_State* L) {
-  luaL_checktype(L, 1, LUA_TTABLE);
-  const lua_Integer n = luaL_len(L, 1);
-  Mat out;
-  for (lua_Integer k = 1; k <= n; ++k) {
-    lua_rawgeti(L, 1, k);
-    Mat block = lua::to_matrix(L, -1, "block");
-    lua_pop(L, 1);
-    if (k == 1) {
-      out = std::move(block);
-      continue;
-    }
-    if (block.cols() != out.cols())
-      return luaL_error(L, "smi.mat.vcat: block %d has %d columns, block 1 has %d", (int)k, (int)block.cols(),
-                        (int)out.cols());
-    Mat joined(out.rows() + block.rows(), out.cols());
-    joined << out, block;
-    out = std::move(joined);
-  }
-  push_mat(L, std::move(out));
-  return 1;
-}
+int mat_vcat(lua_State* L) { return join_blocks(L, false, "smi.mat.vcat"); }
 
 int mat_rows(lua_State* L) {
   lua_pushinteger(L, self(L).rows());

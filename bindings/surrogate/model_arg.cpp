@@ -204,4 +204,20 @@ std::vector<propagate::Input> to_inputs(lua_State* L, int idx, const std::vector
   return out;
 }
 
+ModelAndInputs read_model_and_inputs(lua_State* L, const lua::Options& o, const char* fname) {
+  if (o.push("model") == LUA_TNIL) luaL_error(L, "%s: field 'model' is required", fname);
+  const int model_idx = lua_gettop(L);  // stays on the stack while the model runs
+  ModelArg model = to_model(L, model_idx, fname);
+  std::vector<std::string> order = model.input_names;
+  if (o.has("order")) {
+    o.push("order");
+    order = lua::to_strings(L, -1, "order");
+    lua_pop(L, 1);
+  }
+  if (o.push("inputs") == LUA_TNIL) luaL_error(L, "%s: field 'inputs' is required", fname);
+  std::vector<propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
+  lua_pop(L, 1);
+  return {std::move(model), model_idx, std::move(inputs)};
+}
+
 }  // namespace smi::bind::surrogate

@@ -7,6 +7,7 @@
 #include <vector>
 #include <lua.hpp>
 
+#include "luax/luax.hpp"
 #include "surrogate/propagate.hpp"
 
 namespace smi::bind::surrogate {
@@ -27,5 +28,15 @@ ModelArg to_model(lua_State* L, int idx, const char* fname);
 /// names, else by sorted names.
 std::vector<propagate::Input> to_inputs(lua_State* L, int idx, const std::vector<std::string>& order,
                                         const char* fname);
+
+/// The `model`, `order` and `inputs` fields shared by smi.propagate and smi.screen, read from
+/// the options table `o`. The model value is left on the stack (at model_idx) for as long as
+/// the caller uses model.fn.
+struct ModelAndInputs {
+  ModelArg model;
+  int model_idx;
+  std::vector<propagate::Input> inputs;
+};
+ModelAndInputs read_model_and_inputs(lua_State* L, const lua::Options& o, const char* fname);
 
 }  // namespace smi::bind::surrogate

@@ -13,18 +13,7 @@ int propagate_call(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
   lua::Options o(L, 1, fname);
   o.check_known({"model", "inputs", "n", "seed", "order"});
-  if (o.push("model") == LUA_TNIL) luaL_error(L, "%s: field 'model' is required", fname);
-  const int model_idx = lua_gettop(L);  // stays on the stack while the model runs
-  ModelArg model = to_model(L, model_idx, fname);
-  std::vector<std::string> order = model.input_names;
-  if (o.has("order")) {
-    o.push("order");
-    order = lua::to_strings(L, -1, "order");
-    lua_pop(L, 1);
-  }
-  if (o.push("inputs") == LUA_TNIL) luaL_error(L, "%s: field 'inputs' is required", fname);
-  const std::vector<propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
-  lua_pop(L, 1);
+  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   const lua_Integer n = o.integer("n", 10000);
   if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));

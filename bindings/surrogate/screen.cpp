@@ -93,18 +93,7 @@ int screen_call(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
   lua::Options o(L, 1, fname);
   o.check_known({"model", "inputs", "n", "seed", "fix", "sobol", "bootstrap", "level", "output", "order", "grid"});
-  if (o.push("model") == LUA_TNIL) luaL_error(L, "%s: field 'model' is required", fname);
-  const int model_idx = lua_gettop(L);
-  ModelArg model = to_model(L, model_idx, fname);
-  std::vector<std::string> order = model.input_names;
-  if (o.has("order")) {
-    o.push("order");
-    order = lua::to_strings(L, -1, "order");
-    lua_pop(L, 1);
-  }
-  if (o.push("inputs") == LUA_TNIL) luaL_error(L, "%s: field 'inputs' is required", fname);
-  const std::vector<propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
-  lua_pop(L, 1);
+  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   screen::Options so;
   so.n = static_cast<Eigen::Index>(o.integer("n", 10000));
   so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
