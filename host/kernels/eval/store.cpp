@@ -101,25 +101,34 @@ Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(
     db_ = nullptr;
     throw Error(fmt::format("cannot open evaluation store '{}'{}: {}", path, read_only ? " (read-only)" : "", msg));
   }
-  sqlite3_busy_timeout(db_, 10000);  // two studies writing one store wait for each other
-  if (read_only) {
-    // Reading a WAL database needs its -shm file; in a folder we may not write, fall back to
-    // reading the file as immutable (a snapshot: fine for a shared, read-only cache).
-    if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
-      sqlite3_close(db_);
-      db_ = nullptr;
-      const std::string uri = "file:" + path + "?immutable=1";
-      if (sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK)
-        fail("cannot open read-only");
+  // A constructor that throws runs no destructor: release what is open before rethrowing (a
+  // reader polling a store that another process is still creating meets this).
+  try {
+    sqlite3_busy_timeout(db_, 10000);  // two studies writing one store wait for each other
+    if (read_only) {
+      // Reading a WAL database needs its -shm file; in a folder we may not write, fall back to
+      // reading the file as immutable (a snapshot: fine for a shared, read-only cache).
+      if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
+        sqlite3_close(db_);
+        db_ = nullptr;
+        const std::string uri = "file:" + path + "?immutable=1";
+        if (sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK)
+          fail("cannot open read-only");
+      }
+    } else {
+      exec("PRAGMA journal_mode=WAL");
+      exec("PRAGMA synchronous=NORMAL");
+      exec(kSchema);
+      if (sqlite3_prepare_v2(db_, kPut, -1, &put_, nullptr) != SQLITE_OK) fail("prepare insert");
     }
-  } else {
-    exec("PRAGMA journal_mode=WAL");
-    exec("PRAGMA synchronous=NORMAL");
-    exec(kSchema);
-    if (sqlite3_prepare_v2(db_, kPut, -1, &put_, nullptr) != SQLITE_OK) fail("prepare insert");
+    if (sqlite3_prepare_v2(db_, kFind, -1, &find_, nullptr) != SQLITE_OK)
+      fail(read_only ? "not an evaluation store (no 'evaluations' table)" : "prepare lookup");
+  } catch (...) {  // plain C++ and SQLite only: no Lua here
+    sqlite3_finalize(find_);
+    sqlite3_finalize(put_);
+    sqlite3_close(db_);
+    throw;
   }
-  if (sqlite3_prepare_v2(db_, kFind, -1, &find_, nullptr) != SQLITE_OK)
-    fail(read_only ? "not an evaluation store (no 'evaluations' table)" : "prepare lookup");
 }
 
 Store::~Store() {
