@@ -26,13 +26,7 @@ local function sample()
   return r
 end
 
-local function by_class(root, name, class)
-  local out = {}
-  for _, e in ipairs(X.find_all(root, name)) do
-    if (" " .. (e.attrs.class or "") .. " "):find(" " .. class .. " ", 1, true) then out[#out + 1] = e end
-  end
-  return out
-end
+local by_class = X.find_by_class
 
 T.case("the page is well-formed and self-contained", function()
   local s = sample():html()

@@ -20,13 +20,7 @@ local function path_points(d)
   return pts, m
 end
 
-local function by_class(root, name, class)
-  local out = {}
-  for _, e in ipairs(X.find_all(root, name)) do
-    if (" " .. (e.attrs.class or "") .. " "):find(" " .. class .. " ", 1, true) then out[#out + 1] = e end
-  end
-  return out
-end
+local by_class = X.find_by_class
 
 -- The plot frame: the rect with stroke and no fill after the background.
 local function frame(root)

@@ -137,6 +137,15 @@ function M.find_all(el, name, out)
   return out
 end
 
+--- Every element named `name` under `root` whose class attribute lists `class`.
+function M.find_by_class(root, name, class)
+  local out = {}
+  for _, e in ipairs(M.find_all(root, name)) do
+    if (" " .. (e.attrs.class or "") .. " "):find(" " .. class .. " ", 1, true) then out[#out + 1] = e end
+  end
+  return out
+end
+
 --- The text content of `el` and all its descendants.
 function M.text(el)
   local parts = {}
