@@ -13,7 +13,8 @@
 //                 data = {response = vec | smi.dist}, metric = "pr" | "loglik" | function(pred, data),
 //                 n = 2000, crn = "random" | "quantiles", grid = {lo, hi, nodes} | {response = {...}},
 //                 grid_nodes = 4001, bandwidth = "silverman", threads = 1, design_bounds = {x = {lo, hi}},
-//                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =}, ...}
+//                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
+//                 penalty = function(theta) return number end (prior knowledge, added), ...}
 // Common: method = "slsqp"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
 //         ftol_abs, fd_step, initial_step, identifiability = true|false|{points, rel_tol, abs_tol},
 //         progress = function(row) end.
@@ -28,6 +29,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/errors.hpp"
 #include "improve/design_bounds.hpp"
 #include "improve/lua_callbacks.hpp"
 #include "luax/luax.hpp"
@@ -67,6 +69,26 @@ std::function<void(const HistoryEntry&)> progress_observer(lua_State* L, const C
   };
 }
 
+/// The statistical objective plus the analyst's penalty(theta), when given: the penalty is
+/// added to the value and reported as one more part ("penalty"), so histories and results show
+/// how much of the optimum is prior and how much is fit.
+Objective with_penalty(lua_State* L, const CalibrateSpec& s, Objective metric) {
+  if (!s.penalty_slot) return metric;
+  std::vector<std::string> names;
+  for (const auto& p : s.params) names.push_back(p.name);
+  auto pen = std::make_shared<LuaObjective>(L, s.penalty_slot, names, "penalty");
+  return [metric = std::move(metric), pen](const Eigen::VectorXd& t) {
+    Evaluation e = metric(t);
+    if (e.parts.size() == 0) e.parts = Eigen::VectorXd::Constant(1, e.value);  // a metric without parts
+    const double p = (*pen)(t).value;
+    if (!std::isfinite(p)) throw InvalidArgument(fmt::format("penalty returned {} (it must be a finite number)", p));
+    e.value += p;
+    e.parts.conservativeResize(e.parts.size() + 1);
+    e.parts[e.parts.size() - 1] = p;
+    return e;
+  };
+}
+
 }  // namespace
 
 CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
@@ -89,9 +111,14 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
     out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
     const StatisticalObjective& obj = *out.stat;
-    f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+    f = with_penalty(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
     out.opt = minimize(s.params, f, oo);
     out.part_names = responses;
+    if (s.penalty_slot) {
+      // per-response parts, or one "metric" part when a custom metric returned a bare number
+      if (out.opt.parts.size() != static_cast<Eigen::Index>(responses.size()) + 1) out.part_names = {"metric"};
+      out.part_names.push_back("penalty");
+    }
   }
   out.warnings = out.opt.warnings;
 
@@ -114,9 +141,9 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     if (s.bootstrap) {
       std::vector<Eigen::VectorXd> data;
       for (const auto& r : obj.responses()) data.push_back(r.data);
-      ObjectiveFactory make = [&obj](const std::vector<Eigen::VectorXd>& d) -> Objective {
+      ObjectiveFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) -> Objective {
         auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
-        return [o](const Eigen::VectorXd& t) { return (*o)(t); };
+        return with_penalty(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
       };
       out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, *s.bootstrap);
       out.warnings.insert(out.warnings.end(), out.boot->warnings.begin(), out.boot->warnings.end());

@@ -318,7 +318,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -336,6 +336,8 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   if (has_objective) {
     if (o.has("inputs") || o.has("data") || o.has("metric"))
       throw InvalidArgument("inputs/data/metric belong to the model form; with objective = ... give parameters only");
+    if (o.has("penalty"))
+      throw InvalidArgument("penalty belongs to the model form; with objective = ... add it to the objective's value");
     read_parameters(L, idx, s);
     if (lua_getfield(L, idx, "objective") != LUA_TFUNCTION) throw InvalidArgument("objective must be a function(theta) returning a number");
     s.objective_slot = lua_gettop(L);
@@ -365,6 +367,13 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
       s.stat.metric = parse_metric(read_string(L, "metric", "pr"));
       lua_pop(L, 1);
     }
+    // penalty = function(theta) return number end: prior knowledge on the parameters themselves
+    // (a weighed mass, a handbook value), added to the metric's sum; its names are the
+    // parameters' ("k.mean", "k.std").
+    const int pen = lua_getfield(L, idx, "penalty");
+    if (pen == LUA_TFUNCTION) s.penalty_slot = lua_gettop(L);
+    else if (pen == LUA_TNIL) lua_pop(L, 1);
+    else throw InvalidArgument(fmt::format("penalty must be a function(theta) returning a number, got a {}", luaL_typename(L, -1)));
     for (const auto& r : s.responses)
       if (!r.f_exp_from_data && r.f_exp && r.data.size() == 0 && s.stat.metric == MetricKind::loglik)
         throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));

@@ -36,6 +36,7 @@ struct CalibrateSpec {
   int data_slot = 0;          ///< the data table as given
   int metric_slot = 0;        ///< a Lua metric function, 0 for "pr"/"loglik"
   int progress_slot = 0;      ///< progress(row) called after each optimiser step (not probes), or 0
+  int penalty_slot = 0;       ///< penalty(theta) added to the metric (model form), or 0
   std::vector<smi::improve::DesignRange> design;
 
   // Diagnostics.

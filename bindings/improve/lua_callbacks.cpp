@@ -33,7 +33,8 @@ Evaluation read_evaluation(lua_State* L, const char* who, std::vector<std::strin
 
 }  // namespace
 
-LuaObjective::LuaObjective(lua_State* L, int fn_slot, std::vector<std::string> names) : L_(L), fn_(fn_slot), names_(std::move(names)) {}
+LuaObjective::LuaObjective(lua_State* L, int fn_slot, std::vector<std::string> names, const char* who)
+    : L_(L), fn_(fn_slot), names_(std::move(names)), who_(who) {}
 
 Evaluation LuaObjective::operator()(const Eigen::VectorXd& theta) {
   StackGuard guard(L_);
@@ -46,7 +47,7 @@ Evaluation LuaObjective::operator()(const Eigen::VectorXd& theta) {
   lua::call(L_, 1, 2);
   const bool learn = *first_;
   *first_ = false;
-  return read_evaluation(L_, "objective", *parts_, learn, true);
+  return read_evaluation(L_, who_, *parts_, learn, true);
 }
 
 LuaModel::LuaModel(lua_State* L, std::vector<ModelPart> parts, int names_slot, std::vector<std::string> responses)

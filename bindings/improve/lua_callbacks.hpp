@@ -18,7 +18,8 @@ namespace smi::bind::improve {
 /// {response = value} of parts (keys taken in sorted order at the first call).
 class LuaObjective {
  public:
-  LuaObjective(lua_State* L, int fn_slot, std::vector<std::string> names);
+  /// `who` names the function in error messages ("objective", "penalty").
+  LuaObjective(lua_State* L, int fn_slot, std::vector<std::string> names, const char* who = "objective");
   smi::improve::Evaluation operator()(const Eigen::VectorXd& theta);
   const std::vector<std::string>& part_names() const { return *parts_; }
 
@@ -26,6 +27,7 @@ class LuaObjective {
   lua_State* L_;
   int fn_;
   std::vector<std::string> names_;
+  const char* who_;
   std::shared_ptr<std::vector<std::string>> parts_ = std::make_shared<std::vector<std::string>>();
   std::shared_ptr<bool> first_ = std::make_shared<bool>(true);
 };

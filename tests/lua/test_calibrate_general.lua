@@ -117,6 +117,38 @@ T.case("custom metric: squared mean and std mismatch, written in Lua", function(
   T.eq(r.metric, "custom")
 end)
 
+T.case("penalty: prior knowledge on the parameters is added to the metric (closed form)", function()
+  -- y = x, x ~ N(mu, 1) on a symmetric quantile CRN sample (mean of z exactly 0): the metric
+  -- (mean(y) - 3)^2 plus the penalty lambda (mu - 5)^2 is least at mu = (3 + 5 lambda)/(1 + lambda).
+  for _, lambda in ipairs{1, 3} do
+    local r = smi.calibrate{
+      model = function(M) return {y = M:col(1)} end,
+      inputs = {x = {mean = {0, 10, 1}, std = 1}},
+      data = {y = {1, 2, 3}},
+      metric = function(pred) return (pred.y:mean() - 3) ^ 2 end,
+      penalty = function(th) return lambda * (th["x.mean"] - 5) ^ 2 end,
+      n = 1001, crn = "quantiles", xtol_rel = 1e-12, ftol_abs = 1e-15, identifiability = false,
+    }
+    local mu = (3 + 5 * lambda) / (1 + lambda)
+    T.near(r.params["x.mean"], mu, 1e-5, "optimum with lambda = " .. lambda)
+    T.near(r.metrics.penalty, lambda * (mu - 5) ^ 2, 1e-6, "penalty part")
+    T.near(r.objective, (mu - 3) ^ 2 + lambda * (mu - 5) ^ 2, 1e-6, "objective = metric + penalty")
+    T.near(r.history[#r.history].metrics.penalty + 0, r.history[#r.history].objective - (r.history[#r.history].params["x.mean"] - 3) ^ 2,
+           1e-9, "history rows carry the penalty part")
+  end
+  T.raises(function()
+    smi.calibrate{model = function(M) return {y = M:col(1)} end, inputs = {x = {mean = {0, 10, 1}, std = 1}}, data = {y = {1, 2, 3}},
+                  penalty = 2}
+  end, "penalty must be a function")
+  T.raises(function()
+    smi.calibrate{parameters = {{"a", 0, 1}}, objective = function() return 1 end, penalty = function() return 0 end}
+  end, "penalty belongs to the model form")
+  T.raises(function()
+    smi.calibrate{model = function(M) return {y = M:col(1)} end, inputs = {x = {mean = {0, 10, 1}, std = 1}}, data = {y = {1, 2, 3}},
+                  metric = function(pred) return 0 end, penalty = function() return 1 / 0 end}
+  end, "penalty")
+end)
+
 T.case("bootstrap intervals and design-range warnings", function()
   local X = {30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20}
   local r = smi.calibrate{
