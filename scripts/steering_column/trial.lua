@@ -64,7 +64,8 @@ function M.krigings(s)
 end
 
 --- Calibration: t {unknowns, data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist},
--- kriging, design_bounds, n, seed, maxeval, bootstrap, boot_maxeval}. Stage 1 is smi.calibrate
+-- kriging, design_bounds, n, seed, maxeval, bootstrap, boot_maxeval, metric = "pr"|"loglik",
+-- multistart}. Stage 1 is smi.calibrate
 -- and stage 2 are smi.calibrate in its objective form: the prior penalty depends on the
 -- parameters themselves, which the model form's metrics never see.
 function M.calibrate(t)
@@ -114,19 +115,26 @@ function M.calibrate(t)
   for _, m in ipairs{ "mode1", "mode4" } do
     grids[m] = { lower = t.data[m]:min() - 25, upper = t.data[m]:max() + 25, nodes = 6001 }
   end
-  local function stage2(f_exp, start, maxeval, identifiability)
+  -- The metric per mode: "pr" (the paper's, against the experimental PDF f_exp) or "loglik"
+  -- (minus the mean log-likelihood of the data points under the predicted KDE).
+  local metric = t.metric or "pr"
+  local function part(m, f_exp, data, Y)
+    if metric == "pr" then return smi.metric.pr(f_exp[m], smi.kde(Y[m]), { grid = grids[m] }) end
+    return -smi.metric.loglik(data[m], smi.kde(Y[m])) / #data[m]
+  end
+  local function stage2(f_exp, data, start, maxeval, identifiability, multistart)
     local params2 = {}
     for _, q in ipairs(params1) do params2[#params2 + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
     return smi.calibrate{
       parameters = params2, method = "slsqp", maxeval = maxeval, identifiability = identifiability,
+      multistart = multistart or 1, seed = t.seed,
       objective = function(th)
         local dists = {}
         for i, n in ipairs(t.unknowns) do
           dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
         end
         local Y = smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
-        local p1 = smi.metric.pr(f_exp.mode1, smi.kde(Y.mode1), { grid = grids.mode1 })
-        local p4 = smi.metric.pr(f_exp.mode4, smi.kde(Y.mode4), { grid = grids.mode4 })
+        local p1, p4 = part("mode1", f_exp, data, Y), part("mode4", f_exp, data, Y)
         local pen = inputs.prior_penalty(th, t.unknowns, lambda)
         return p1 + p4 + pen, { mode1 = p1, mode4 = p4, prior = pen }
       end,
@@ -135,7 +143,7 @@ function M.calibrate(t)
   -- Identifiability profiles: a parameter is weak when sweeping it over its whole range moves
   -- the objective by less than 0.05 (PR units). An absolute rule, because the weighing prior's
   -- large range would make smi.calibrate's default relative rule flag everything else.
-  local r = stage2(t.f_exp, r1.params, t.maxeval, { rel_tol = 1e-9, abs_tol = 0.05 })
+  local r = stage2(t.f_exp, t.data, r1.params, t.maxeval, { rel_tol = 1e-9, abs_tol = 0.05 }, t.multistart)
   local params = {}
   for _, n in ipairs(t.unknowns) do
     local u = inputs.unknown[n]
@@ -164,7 +172,7 @@ function M.calibrate(t)
   local out = { objective = r.metrics.mode1 + r.metrics.mode4, prior_penalty = prior, metrics = { mode1 = r.metrics.mode1, mode4 = r.metrics.mode4 },
     evaluations = r.evaluations, converged = r.converged, status = r.status, warnings = warnings, at_bounds = r.at_bounds,
     params = params, theta = r.params, history = history, weak = r.identifiability and r.identifiability.weak or {},
-    n = t.n, seed = t.seed, maxeval = t.maxeval, cover_mass_ratio = rho and tc and inputs.cover_mass_ratio(rho, tc),
+    n = t.n, seed = t.seed, maxeval = t.maxeval, metric = metric, starts = r.starts, cover_mass_ratio = rho and tc and inputs.cover_mass_ratio(rho, tc),
     moments_stage = { objective = r1.objective, evaluations = r1.evaluations, params = r1.params, status = r1.status,
                       cover_mass_ratio = inputs.cover_mass_ratio(r1.params["wheel_cover_rho.mean"], r1.params["wheel_cover_thickness.mean"]) } }
   -- Bootstrap CIs (beyond the paper): the 9 data rows resampled with replacement (paired across
@@ -180,7 +188,8 @@ function M.calibrate(t)
         local j = math.min(n, math.floor(idx[i]) + 1)
         d.mode1[i], d.mode4[i] = t.data.mode1[j], t.data.mode4[j]
       end
-      local ok, rb = pcall(stage2, { mode1 = smi.kde(smi.vec(d.mode1)), mode4 = smi.kde(smi.vec(d.mode4)) }, r.params, t.boot_maxeval or 60, false)
+      local dv = { mode1 = smi.vec(d.mode1), mode4 = smi.vec(d.mode4) }
+      local ok, rb = pcall(stage2, { mode1 = smi.kde(dv.mode1), mode4 = smi.kde(dv.mode4) }, dv, r.params, t.boot_maxeval or 60, false)
       if ok then samples[#samples + 1] = rb.params else failed = failed + 1 end
     end
     local lower, upper, sd = {}, {}, {}

@@ -29,6 +29,11 @@
 --   - predicted stds within a factor 2 of the data stds: the std lower bounds of Table 8
 --     (column_frame_E ≥ 7790 MPa alone gives ≈ 0.5 Hz in mode 1) and the KDE smoothing keep the
 --     predicted spread above the data's, and 9 data estimate a std to ±25 % only.
+-- * Every calibrated mean within 10 % of its true value. The 9 data hold 3 wheels and 3 columns,
+--   so the true values are only seen through 3-specimen sample means, which scatter by
+--   sd/√3: wheel_cover_rho 0.12/1.25/√3 = 5.5 %, column_frame_E 5/√3 = 2.9 %, thickness 1.9 %,
+--   airbag 1.7 %, ECU bracket 1.5 %; the density-thickness and E-bracket valleys add trade-offs
+--   that the weighing prior bounds (cover mass ±5 %). 10 % is about twice the largest of these.
 local T = require "smi.testing"
 local json = require "smi.report.json"
 
@@ -82,10 +87,12 @@ T.case("trial 2 passes all three modes; the study says what mode 2 rests on", fu
   T.near(S.trial2_calibration.result.cover_mass_ratio, 1, 0.15, "cover mass ratio")
 end)
 
-T.case("trial 2: identifiable calibrated quantities near the truth", function()
+T.case("trial 2: calibrated means and identifiable quantities near the truth", function()
   local p = {}
   for _, q in ipairs(S.trial2_calibration.result.params) do p[q.input] = q end
-  T.rel(p.airbag_stiffness.mean, 850, 0.10, "airbag_stiffness mean")
+  local truth = { wheel_cover_rho = 1.25e-9, wheel_cover_thickness = 4.6, airbag_stiffness = 850,
+                  column_frame_E = 240000, ecu_bracket_thickness = 3.9 }
+  for name, v in pairs(truth) do T.rel(p[name].mean, v, 0.10, name .. " mean within 10 % of the truth") end
   local ei = p.column_frame_E.mean * p.ecu_bracket_thickness.mean ^ 3
   T.rel(ei, 240000 * 3.9 ^ 3, 0.20, "ECU bracket stiffness E·t³")
   local v = S.trial2_validation.result.modes
