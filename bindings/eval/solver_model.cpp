@@ -262,11 +262,15 @@ int evaluate_solver(lua_State* L, Model& m) {
     };
 
   // Ctrl-C (and the other aborts of the runtime) arm a count hook firing at every instruction;
-  // while we wait on solvers no Lua runs, so we look for that hook ourselves.
+  // while we wait on solvers no Lua runs, so we look for that hook ourselves, and ask the
+  // runtime whether --timeout has passed (its own check lives in that hook).
   lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
   lua_State* main = lua_tothread(L, -1);
   lua_pop(L, 1);
-  m.ev->set_interrupt_check([L, main] {
+  auto stop_reason = std::make_shared<std::string>();
+  m.ev->set_interrupt_check([L, main, stop = pol.stop_reason, stop_reason] {
+    if (stop) *stop_reason = stop();
+    if (!stop_reason->empty()) return true;
     for (lua_State* s : {L, main})
       if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return true;
     return false;
@@ -281,7 +285,14 @@ int evaluate_solver(lua_State* L, Model& m) {
       std::fflush(stdout);
       add_planned(L, plan);
     }
-    r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
+    try {
+      r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
+    } catch (const smi::Interrupted& e) {
+      // say why: the evaluator only knows it was asked to stop ("interrupted; N runs stored ...")
+      const std::string what = e.what();
+      if (stop_reason->rfind("timeout", 0) != 0 || what.rfind("interrupted", 0) != 0) throw;
+      throw smi::Interrupted(*stop_reason + what.substr(std::string("interrupted").size()));
+    }
     if (r.failed > 0) {
       summary = fmt::format("model '{}': {} of {} point{} failed{}:", m.name, r.failed, X.rows(), X.rows() == 1 ? "" : "s",
                             r.stopped ? " (on_failure = 'stop')" : " (skipped)");

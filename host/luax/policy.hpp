@@ -4,6 +4,7 @@
 // programs). It lives in the Lua registry so that every bound function can reach it.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 #include <lua.hpp>
@@ -29,6 +30,11 @@ struct Policy {
   std::string store_path;                          // --store PATH: evaluation store to use (issue 5)
   bool dry_run = false;                            // --dry-run: count solver runs, launch none
   std::string script_path;                         // the study being run ("" for -e / REPL)
+  /// Set by the runtime: "" while the run may go on, else why it must stop ("timeout: ...",
+  /// "interrupted!"). C++ code that waits without running Lua (solver runs) polls it, because
+  /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.
+  /// Once it is non-empty, the next Lua instruction raises that message as well.
+  std::function<std::string()> stop_reason;
 
   /// Resolves `path` (relative to the working directory; "..", symlinks) and returns it if it
   /// lies under a read root (write roots are readable too); throws SandboxDenied otherwise.

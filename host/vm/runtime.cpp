@@ -198,6 +198,14 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   lua_atpanic(L_, panic);
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
+  policy_.stop_reason = [this]() -> std::string {
+    if (limits_.abort == Abort::none && limits_.interrupted) return "interrupted!";
+    if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
+      trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
+    char buf[200];
+    const char* msg = abort_message(limits_, buf, sizeof buf);
+    return msg ? msg : "";
+  };
   lua::set_policy(L_, &policy_);
   lua_pushcfunction(L_, init_state);
   lua_pushlightuserdata(L_, this);
