@@ -12,7 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
-#include "eval/sha256.hpp"
+#include "core/sha256.hpp"
 #include "modules.hpp"
 
 namespace smi::cli {
@@ -189,7 +189,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& args) {
     std::error_code ec;
     if (!fs::is_regular_file(rec.script_path, ec)) {
       std::printf("note     study script %s is not here (not checked)\n", rec.script_path.c_str());
-    } else if ("sha256:" + eval::sha256_file(rec.script_path) != rec.script_hash) {
+    } else if ("sha256:" + sha256_file(rec.script_path) != rec.script_hash) {
       script_changed = true;
       std::printf("CHANGED  study script %s differs from the one that produced the results\n", rec.script_path.c_str());
     } else {

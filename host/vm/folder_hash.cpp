@@ -1,13 +1,13 @@
 #include "vm/folder_hash.hpp"
 
 #include "core/errors.hpp"
-#include "eval/sha256.hpp"  // the evaluation store's SHA-256 (one implementation in the tree)
+#include "core/sha256.hpp"  // the evaluation store's SHA-256 (one implementation in the tree)
 
 namespace smi::vm {
 namespace fs = std::filesystem;
 
 std::string combine_file_hashes(const std::map<std::string, std::string>& files) {
-  eval::Sha256 h;
+  Sha256 h;
   h.field("smi-lib-folder-v1");
   for (const auto& [rel, digest] : files) h.field(rel).field(digest);  // std::map: sorted by path
   return "sha256:" + h.hex();
@@ -29,7 +29,7 @@ FolderHash hash_folder(const fs::path& folder) {
     }
     if (leaf == ".git") continue;  // a worktree's or submodule's "gitdir:" file
     if (!it->is_regular_file(ec)) continue;
-    out.files[p.lexically_relative(folder).generic_string()] = eval::sha256_file(p.string());
+    out.files[p.lexically_relative(folder).generic_string()] = sha256_file(p.string());
   }
   out.digest = combine_file_hashes(out.files);
   return out;

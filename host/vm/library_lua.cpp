@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "eval/sha256.hpp"
+#include "core/sha256.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "vm/searchers.hpp"
@@ -111,7 +111,7 @@ int smi_provenance(lua_State* L) {
   std::string script_hash;
   lua::protect(L, "smi.provenance", [&] {
     for (const Library& l : set.all()) l.hash();
-    if (!pol.script_path.empty()) script_hash = "sha256:" + eval::sha256_file(pol.script_path);
+    if (!pol.script_path.empty()) script_hash = "sha256:" + sha256_file(pol.script_path);
     return 0;
   });
   lua_newtable(L);

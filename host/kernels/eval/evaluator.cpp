@@ -9,7 +9,7 @@
 
 #include "eval/process.hpp"
 #include "eval/scheduler.hpp"
-#include "eval/sha256.hpp"
+#include "core/sha256.hpp"
 #include "eval/text_parsers.hpp"
 #include "eval/work_dir.hpp"
 

@@ -1,13 +1,14 @@
 #pragma once
-// SHA-256 (FIPS 180-4), written here so the evaluation store needs no crypto library. It keys
-// solver runs by content (rendered deck, program, version), so a collision-resistant hash is
-// what lets a store be shared between studies and teammates without false hits.
+// SHA-256 (FIPS 180-4), written here so smi-lua needs no crypto library. The evaluation store
+// keys solver runs by content (rendered deck, program, version), and provenance hashes scripts
+// and libraries: a collision-resistant hash is what lets a store be shared between studies and
+// teammates without false hits, and what lets `smi-lua verify` catch a changed file.
 #include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-namespace smi::eval {
+namespace smi {
 
 class Sha256 {
  public:
@@ -36,4 +37,4 @@ std::string sha256_hex(std::string_view bytes);
 /// Hex SHA-256 of a file's contents; throws smi::Error naming the file if it cannot be read.
 std::string sha256_file(const std::string& path);
 
-}  // namespace smi::eval
+}  // namespace smi

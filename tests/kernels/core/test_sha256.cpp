@@ -2,10 +2,10 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "eval/sha256.hpp"
+#include "core/sha256.hpp"
 
-using smi::eval::Sha256;
-using smi::eval::sha256_hex;
+using smi::Sha256;
+using smi::sha256_hex;
 
 TEST_CASE("sha256 matches the FIPS 180-2 test vectors") {
   CHECK(sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");

@@ -1,4 +1,4 @@
-#include "eval/sha256.hpp"
+#include "core/sha256.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 
-namespace smi::eval {
+namespace smi {
 namespace {
 
 constexpr std::uint32_t kK[64] = {
@@ -116,4 +116,4 @@ std::string sha256_file(const std::string& path) {
   return h.hex();
 }
 
-}  // namespace smi::eval
+}  // namespace smi
