@@ -254,7 +254,8 @@ local function calibration_step(name)
       rows[#rows + 1] = { p.input, p.dist, p.unit, ("[%.4g, %.4g]"):format(p.mean_bounds[1], p.mean_bounds[2]), ("[%.4g, %.4g]"):format(p.std_bounds[1], p.std_bounds[2]),
                           p.mean_start, p.std_start, p.stage1_mean, p.stage1_std, p.mean, p.std, ci }
     end
-    r:table{ caption = ("Calibrated statistical parameters (the paper's Table %s analog). CI: %s bootstrap over the 9 data (mean / std)."):format(name == "trial1" and "4" or "8", res.bootstrap and "90 %" or "no"),
+    r:table{ caption = ("Calibrated statistical parameters (the paper's Table %s analog). CI: %s."):format(name == "trial1" and "4" or "8",
+               res.bootstrap and ("90 %% bootstrap over the 9 data (mean / std), estimate ± 1.645 sd of %d replicates that restart SLSQP at the optimum with %d evaluations each: the local pull of the data, which understates the spread along the directions modes 1 and 4 leave undetermined"):format(res.bootstrap.replicates, res.bootstrap.maxeval) or "none (--quick)"),
              columns = { "Input", "Type", "Unit", "Mean bounds", "Std bounds", "Initial mean", "Initial std", "Stage-1 mean", "Stage-1 std", "Calibrated mean", "Calibrated std", "Bootstrap CI" }, rows = rows }
     if res.cover_mass_ratio then
       r:text(("Wheel cover mass relative to nominal (density × cover tube area): %.3f after stage 1, %.3f at the optimum (the weighing prior: 1 ± 0.05). Prior penalty at the optimum %.4f (the objective above excludes it)."):format(res.moments_stage.cover_mass_ratio, res.cover_mass_ratio, res.prior_penalty))

@@ -192,14 +192,26 @@ function M.calibrate(t)
       local ok, rb = pcall(stage2, { mode1 = smi.kde(dv.mode1), mode4 = smi.kde(dv.mode4) }, dv, r.params, t.boot_maxeval or 60, false)
       if ok then samples[#samples + 1] = rb.params else failed = failed + 1 end
     end
-    local lower, upper, sd = {}, {}, {}
-    for name in pairs(r.params) do
+    -- The interval is the normal one, estimate ± 1.645 sd of the replicates (clipped to the
+    -- bounds): each replicate restarts SLSQP at the optimum with a small budget, so the
+    -- replicates show the local pull of the data, and their percentiles can sit to one side of
+    -- the estimate (seen: a thickness estimate of 4.385 with percentiles [4.387, 4.429]).
+    -- The percentiles are kept too.
+    local lower, upper, sd, plo, phi = {}, {}, {}, {}, {}
+    local bounds = {}
+    for _, q in ipairs(params1) do bounds[q.name] = { q.lower, q.upper } end
+    for name, est in pairs(r.params) do
       local v = {}
       for i, th in ipairs(samples) do v[i] = th[name] end
       local vv = smi.vec(v)
-      lower[name], upper[name], sd[name] = vv:quantile(0.05), vv:quantile(0.95), #v > 1 and vv:std() or 0
+      sd[name] = #v > 1 and vv:std() or 0
+      plo[name], phi[name] = vv:quantile(0.05), vv:quantile(0.95)
+      lower[name] = math.max(bounds[name][1], est - 1.645 * sd[name])
+      upper[name] = math.min(bounds[name][2], est + 1.645 * sd[name])
     end
-    out.bootstrap = { level = 0.9, replicates = #samples, failed = failed, lower = lower, upper = upper, std = sd }
+    out.bootstrap = { level = 0.9, kind = "normal (estimate ± 1.645 sd)", replicates = #samples, failed = failed,
+                      maxeval = t.boot_maxeval or 60, lower = lower, upper = upper, std = sd,
+                      percentile = { lower = plo, upper = phi } }
   end
   out.sensitivity = M.sensitivity(k, out)
   return out, r
