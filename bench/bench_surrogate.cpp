@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
   }
   const std::string dir = argv[1];
   std::vector<int> sizes = {50, 200, 1000};
+  // SMI_BENCH_CASE=borehole|ishigami|none limits the Kriging cases (while iterating).
+  const char* only = std::getenv("SMI_BENCH_CASE");
   if (argc > 2) {
     sizes.clear();
     for (int i = 2; i < argc; ++i) sizes.push_back(std::atoi(argv[i]));
@@ -79,6 +82,7 @@ int main(int argc, char** argv) {
   js << "{\"cases\": [\n";
   bool first = true;
   for (const Case& c : cases) {
+    if (only && c.name != only) continue;
     const Eigen::Index d = c.lo.size();
     smi::Rng rng(20200214, smi::hash_label("bench/test/" + c.name));
     const Eigen::MatrixXd Xt = smi::doe::scale_to_bounds(rng.uniform_matrix(10000, d), c.lo, c.hi);
@@ -122,14 +126,23 @@ int main(int argc, char** argv) {
       in.push_back({"x" + std::to_string(j + 1), std::make_shared<smi::Normal>(0.0, 1.0), 0.0});
     auto t0 = Clock::now();
     const Eigen::MatrixXd S = smi::propagate::crn_sample(in, 1000000, 1);
+    const double t_sample = since(t0);
     const Eigen::VectorXd ys = smi::kriging::predict_mean(m, S);
+    const double t_predict = since(t0) - t_sample;
     const double h = smi::bandwidth_normal_reference(ys);
     const smi::Grid g = smi::Grid::covering(ys.minCoeff(), ys.maxCoeff(), h, 512);
-    const Eigen::VectorXd pdf = smi::kde_pdf_grid(ys, h, g);
+    // The Auto rule users get from smi.kde: 1e6 x 512 takes the binned path (error bound below).
+    const smi::KdeOptions kopt;
+    const Eigen::VectorXd pdf = smi::kde_pdf_grid(ys, h, g, kopt);
     const double t_prop = since(t0);
-    std::fprintf(stderr, "propagation 1e6 x 5 + KDE 512: %.3fs (mean %.5f, sd %.5f, pdf mass %.6f)\n", t_prop,
-                 ys.mean(), std::sqrt((ys.array() - ys.mean()).square().mean()), g.trapezoid(pdf));
-    js << "\"propagation\": {\"time\": " << t_prop << ", \"mean\": " << ys.mean()
+    const double bound = smi::kde_uses_binned(ys.size(), g.n, kopt) ? smi::binned_error_bound(h, smi::kde_bin_width(h, kopt)) : 0.0;
+    const double err = (pdf - smi::kde_pdf_grid(ys, h, g)).cwiseAbs().maxCoeff();
+    std::fprintf(stderr, "propagation KDE: max |auto - exact| = %.3g (bound %.3g, peak %.4g)\n", err, bound, pdf.maxCoeff());
+    std::fprintf(stderr, "propagation 1e6 x 5 + KDE 512: %.3fs = sample %.3f + predict %.3f + kde %.3f (mean %.5f, sd %.5f, pdf mass %.6f)\n",
+                 t_prop, t_sample, t_predict, t_prop - t_sample - t_predict, ys.mean(),
+                 std::sqrt((ys.array() - ys.mean()).square().mean()), g.trapezoid(pdf));
+    js << "\"propagation\": {\"time\": " << t_prop << ", \"sample\": " << t_sample << ", \"predict\": " << t_predict
+       << ", \"kde_error\": " << err << ", \"kde_bound\": " << bound << ", \"mean\": " << ys.mean()
        << ", \"sd\": " << std::sqrt((ys.array() - ys.mean()).square().mean()) << "}}\n";
   }
   return 0;

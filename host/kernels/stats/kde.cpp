@@ -31,16 +31,26 @@ std::pair<double, double> Kde::support() const {
   return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 }
 
-namespace {
-bool use_binned(const Kde& k, Eigen::Index m) {
-  switch (k.options().method) {
+bool kde_uses_binned(Eigen::Index n_data, Eigen::Index n_points, const KdeOptions& opt) {
+  switch (opt.method) {
     case KdeMethod::Exact: return false;
     case KdeMethod::Binned: return true;
     case KdeMethod::Auto: break;
   }
-  return k.data().size() > 2000 && static_cast<double>(k.data().size()) * static_cast<double>(m) > 2e7;
+  return n_data > 2000 && static_cast<double>(n_data) * static_cast<double>(n_points) > 2e7;
 }
-double bin_width(const Kde& k) { return k.bandwidth() * std::sqrt(8.0 * k.options().binned_tol); }
+
+double kde_bin_width(double h, const KdeOptions& opt) { return h * std::sqrt(8.0 * opt.binned_tol); }
+
+Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, const KdeOptions& opt) {
+  if (!kde_uses_binned(data.size(), g.n, opt)) return kde_pdf_grid(data, h, g, opt.threads);
+  g.validate();
+  return kde_pdf_binned(data, h, g.nodes(), kde_bin_width(h, opt), opt.threads);
+}
+
+namespace {
+bool use_binned(const Kde& k, Eigen::Index m) { return kde_uses_binned(k.data().size(), m, k.options()); }
+double bin_width(const Kde& k) { return kde_bin_width(k.bandwidth(), k.options()); }
 }  // namespace
 
 Eigen::VectorXd Kde::pdf(const Eigen::VectorXd& x) const {

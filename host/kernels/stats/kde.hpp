@@ -49,8 +49,15 @@ Eigen::VectorXd kde_pdf_binned(ConstVec data, double h, ConstVec x, double bin, 
 /// Bound on |binned − exact| density for bin width δ: δ² φ(0) / (8 h³) (the second derivative
 /// of the kernel in t is at most φ(0)/h³; linear interpolation error is δ²/8 times that).
 double binned_error_bound(double h, double bin);
-/// KDE density on a §0 grid (the form screening, PR and calibration use).
+/// KDE density on a §0 grid (the form screening, PR and calibration use): exact sums.
 Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, int threads = 2);
+/// KDE density on a grid by opt.method: Auto takes the binned path on the same rule as Kde::pdf
+/// (N > 2000 and N·M > 2e7), with absolute error <= binned_error_bound(h, kde_bin_width(h, opt)).
+Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, const KdeOptions& opt);
+/// Whether opt.method selects the binned path for n_data points evaluated at n_points.
+bool kde_uses_binned(Eigen::Index n_data, Eigen::Index n_points, const KdeOptions& opt);
+/// Bin width meeting opt.binned_tol: h sqrt(8 tol), so that the bound is tol · φ(0)/h.
+double kde_bin_width(double h, const KdeOptions& opt);
 
 class Kde : public Distribution {
  public:

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <Eigen/QR>
 #include <nlopt.hpp>
 #include <numeric>
 #include <vector>
@@ -83,17 +84,35 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   std::stable_sort(order.begin(), order.end(), [&](long a, long b) { return cval[a] < cval[b]; });
 
   const int m = static_cast<int>(pb.m());
+  // Automatic: 8 / 4 / 2 local searches from the best candidates by size. Small designs run
+  // all 8: their likelihood is often multimodal with the best basin reached from few starts
+  // (spec 8.4's 2-D example: 1 start in 8) and their evaluations are cheap. Above m = 150
+  // the searches go in rounds of two (one per core) and stop as soon as the best optimum has
+  // been reached from two different starts. Given `starts`: exactly that many. The rounds do
+  // not depend on the thread count, so neither does the result.
+  const bool confirm = starts <= 0 && pb.m() > 150;
   if (starts <= 0) starts = m <= 150 ? 8 : (m <= 400 ? 4 : 2);
   starts = std::min<int>(starts, static_cast<int>(ncand));
+  if (confirm) {
+    // Starts no better than uncorrelated points (theta -> infinity: R = I, psi = the
+    // least-squares residual variance) sit on the plateau where the gradient vanishes and a
+    // local search stalls: beyond the first round, only candidates below it are searched.
+    const Eigen::VectorXd res0 = pb.Y - pb.F * pb.F.colPivHouseholderQr().solve(pb.Y);
+    const double plateau = std::log(std::max(res0.squaredNorm() / static_cast<double>(m),
+                                             std::numeric_limits<double>::min())) - 1e-3;
+    const int below = static_cast<int>(std::count_if(cval.begin(), cval.end(), [&](double v) { return v < plateau; }));
+    starts = std::min(starts, std::max(2, below));
+  }
+  const int round = confirm ? 2 : starts;
   std::vector<Local> runs(starts, Local{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()});
-  smi::detail::parallel_for(starts, threads, [&](long r) {
+  auto local = [&](long r) {
     Local& loc = runs[r];
     nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(dim));
     opt.set_lower_bounds(zlo);
     opt.set_upper_bounds(zhi);
     opt.set_min_objective(&Local::thunk, &loc);
-    opt.set_ftol_rel(1e-10);
-    opt.set_xtol_rel(1e-7);
+    opt.set_ftol_rel(1e-9);
+    opt.set_xtol_rel(1e-6);
     opt.set_maxeval(maxeval > 0 ? maxeval : (m > 500 ? 80 : 150));
     std::vector<double> z = cand[order[r]];
     double fz = 0;
@@ -102,9 +121,22 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
     } catch (const std::exception&) {
       // roundoff_limited and friends: the best point seen so far stands
     }
-  });
+  };
+  int done = 0;
+  while (done < starts) {
+    const int k = std::min(round, starts - done);
+    smi::detail::parallel_for(k, threads, [&](long r) { local(done + r); });
+    done += k;
+    if (!confirm) continue;
+    double fbest = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < done; ++r) fbest = std::min(fbest, runs[r].best);
+    int hits = 0;
+    for (int r = 0; r < done; ++r)
+      if (runs[r].best <= fbest + 1e-6 * std::max(1.0, std::abs(fbest))) ++hits;
+    if (hits >= 2 && fbest < kPenalty) break;
+  }
+  runs.resize(done);
   MlResult res;
-  res.log_psi = std::numeric_limits<double>::infinity();
   std::vector<double> best = cand[order[0]];
   res.log_psi = cval[order[0]];
   for (auto& r : runs) {

@@ -1,8 +1,9 @@
 #pragma once
-// A minimal deterministic parallel loop: tasks 0..n-1 go to `threads` workers by stride, and
+// A minimal deterministic parallel loop: tasks 0..n-1 go to `threads` workers as they free up, and
 // each task writes only its own outputs, so results never depend on the thread count. The
 // first exception of any worker is rethrown on the caller's thread.
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <thread>
 #include <vector>
@@ -17,9 +18,12 @@ void parallel_for(long n, int threads, F&& task) {
     return;
   }
   std::vector<std::exception_ptr> errors(threads);
+  // Tasks are handed out in order as workers free up (their costs vary: local searches,
+  // blocks); which worker runs a task never changes what the task computes.
+  std::atomic<long> next{0};
   auto worker = [&](int w) {
     try {
-      for (long i = w; i < n; i += threads) task(i);
+      for (long i = next++; i < n; i = next++) task(i);
     } catch (...) {  // plain C++ only (no Lua here): carried to the caller and rethrown
       errors[w] = std::current_exception();
     }

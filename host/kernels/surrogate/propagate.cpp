@@ -1,10 +1,12 @@
 // Common-random-number samples for propagation, screening and calibration.
 #include "surrogate/propagate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "surrogate/parallel.hpp"
 
 namespace smi::propagate {
 
@@ -14,19 +16,36 @@ Eigen::VectorXd crn_uniforms(const std::string& name, Eigen::Index n, std::uint6
 }
 
 Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std::uint64_t seed,
-                           const std::string& stream) {
+                           const std::string& stream, int threads) {
   if (n < 1) throw InvalidArgument("sample size n must be at least 1, got " + std::to_string(n));
   if (inputs.empty()) throw InvalidArgument("no inputs to sample");
-  Eigen::MatrixXd X(n, static_cast<Eigen::Index>(inputs.size()));
-  for (std::size_t k = 0; k < inputs.size(); ++k) {
-    const Input& in = inputs[k];
-    if (!in.dist) {
-      if (!std::isfinite(in.value)) throw InvalidArgument("input '" + in.name + "' is a constant that is not finite");
-      X.col(static_cast<Eigen::Index>(k)).setConstant(in.value);
-      continue;
-    }
-    X.col(static_cast<Eigen::Index>(k)) = in.dist->quantile(crn_uniforms(in.name, n, seed, stream));
-    if (!X.col(static_cast<Eigen::Index>(k)).allFinite())
+  const auto k = static_cast<long>(inputs.size());
+  for (const Input& in : inputs)
+    if (!in.dist && !std::isfinite(in.value))
+      throw InvalidArgument("input '" + in.name + "' is a constant that is not finite");
+  // Each column's uniforms come from its own stream (one task per column); the quantiles, the
+  // costly part, are then split into chunks so that both workers stay busy whatever k is.
+  // Every element is computed by exactly one task: the sample does not depend on `threads`.
+  Eigen::MatrixXd X(n, k);
+  smi::detail::parallel_for(k, threads, [&](long c) {
+    const Input& in = inputs[static_cast<std::size_t>(c)];
+    if (in.dist)
+      X.col(c) = crn_uniforms(in.name, n, seed, stream);
+    else
+      X.col(c).setConstant(in.value);
+  });
+  constexpr Eigen::Index kChunk = 1 << 15;
+  const Eigen::Index per = (n + kChunk - 1) / kChunk;
+  smi::detail::parallel_for(k * per, threads, [&](long t) {
+    const long c = t / per;
+    const DistributionPtr& dist = inputs[static_cast<std::size_t>(c)].dist;
+    if (!dist) return;
+    const Eigen::Index r0 = (t % per) * kChunk, nr = std::min(kChunk, n - r0);
+    X.col(c).segment(r0, nr) = dist->quantile(Eigen::VectorXd(X.col(c).segment(r0, nr)));
+  });
+  for (long c = 0; c < k; ++c) {
+    const Input& in = inputs[static_cast<std::size_t>(c)];
+    if (in.dist && !X.col(c).allFinite())
       throw InvalidArgument("input '" + in.name + "' (" + in.dist->describe() + ") gave non-finite quantiles");
   }
   return X;

@@ -20,9 +20,10 @@ struct Input {
   double value = 0.0;
 };
 
-/// The n x k sample (columns in the order of `inputs`).
+/// The n x k sample (columns in the order of `inputs`). `threads` workers share the quantile
+/// evaluations (the sample does not depend on the count).
 Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std::uint64_t seed,
-                           const std::string& stream = "base");
+                           const std::string& stream = "base", int threads = 2);
 /// The fixed uniforms behind crn_sample's column for `name` (in (0, 1)).
 Eigen::VectorXd crn_uniforms(const std::string& name, Eigen::Index n, std::uint64_t seed, const std::string& stream);
 
