@@ -128,7 +128,7 @@ int k_save(lua_State* L) {
   const std::string path = luaL_checkstring(L, 2);
   return lua::protect(L, "save", [&] {
     const auto p = lua::policy(L).check_write(path, "smi.Kriging:save");
-    kriging::save(k.model, p.string());
+    kriging::save(k.model, p.string(), {k.inputs, k.output});
     return 0;
   });
 }
@@ -138,7 +138,10 @@ int k_load(lua_State* L) {
   return lua::protect(L, "smi.kriging.load", [&] {
     const auto p = lua::policy(L).check_read(path, "smi.kriging.load");
     KrigingBox box;
-    box.model = kriging::load(p.string());
+    kriging::ModelNames names;
+    box.model = kriging::load(p.string(), &names);
+    box.inputs = std::move(names.inputs);
+    if (!names.output.empty()) box.output = std::move(names.output);
     lua::push_box(L, kKrigingType, std::move(box));
     return 1;
   });

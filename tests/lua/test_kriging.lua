@@ -58,6 +58,15 @@ T.case("save / load round trip through the sandbox", function()
   local a2, b2 = l:predict({{0.4, 0.5}})
   T.eq(a1[1], a2[1]); T.eq(b1[1], b2[1])
   T.raises(function() m:save("/etc/smi_forbidden_model.txt") end, "is not allowed")
+  -- names travel with the file: a loaded model still maps named inputs to its columns
+  local named = smi.kriging.fit(S2, Y2, {trend = "linear", inputs = {"a", "b"}, output = "f"})
+  named:save(path)
+  local ln = smi.kriging.load(path)
+  T.eq(table.concat(ln.inputs, ","), "a,b"); T.eq(ln.output, "f")
+  local ins = {{"b", 0.25}, {"a", smi.dist.uniform{mean = 0.5, std = 0.1}}}  -- given out of column order
+  local y1 = smi.propagate{model = named, inputs = ins, n = 100, seed = 4}
+  local y2 = smi.propagate{model = ln, inputs = ins, n = 100, seed = 4}
+  T.eq((y1.f - y2.f):abs():max(), 0, "same outputs from the loaded model")
 end)
 
 T.case("errors name the culprit", function()

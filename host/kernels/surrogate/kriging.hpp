@@ -80,8 +80,17 @@ struct LooResult {
 };
 LooResult loo(const Model& m);
 
-/// Plain-text model file (all numbers with 17 significant digits); load refactorises.
-void save(const Model& m, const std::string& path);
-Model load(const std::string& path);
+/// Names a model file carries beside the numbers: the inputs' names (empty, or one per input)
+/// and the output's. They travel with the file so that a loaded surrogate still maps named
+/// inputs (smi.propagate, smi.calibrate) to the right columns.
+struct ModelNames {
+  std::vector<std::string> inputs;
+  std::string output;
+};
+
+/// Plain-text model file (all numbers with 17 significant digits); load refactorises. Version 2
+/// files carry names; version 1 files (no names) still load.
+void save(const Model& m, const std::string& path, const ModelNames& names = {});
+Model load(const std::string& path, ModelNames* names = nullptr);
 
 }  // namespace smi::kriging

@@ -6,6 +6,8 @@
 //   inputs <n> / points <m>
 //   theta ... / mS ... / sS ... / mY <x> / sY <x>
 //   S (m lines of n numbers) / Y (m numbers)
+//   (version 2) names <k> then k lines of one input name each (k = 0 or n) / output <name>
+//   end
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -58,12 +60,21 @@ struct Reader {
 
 }  // namespace
 
-void save(const Model& md, const std::string& path) {
+void save(const Model& md, const std::string& path, const ModelNames& names) {
   if (md.S.size() == 0) throw InvalidArgument("cannot save an empty model");
+  if (!names.inputs.empty() && static_cast<Eigen::Index>(names.inputs.size()) != md.inputs())
+    throw InvalidArgument("cannot save " + std::to_string(names.inputs.size()) + " input names for a model of " +
+                          std::to_string(md.inputs()) + " inputs");
+  auto check_name = [](const std::string& s) {  // one name per line: a line break would split it
+    if (s.find_first_of("\r\n") != std::string::npos || s.empty())
+      throw InvalidArgument("cannot save the name '" + s + "': names must be non-empty and on one line");
+  };
+  for (const auto& s : names.inputs) check_name(s);
+  if (!names.output.empty()) check_name(names.output);
   std::ofstream os(path);
   if (!os) throw InvalidArgument("cannot open '" + path + "' for writing");
   const Eigen::Index m = md.size(), n = md.inputs();
-  os << "smi-kriging 1\ntrend " << trend_name(md.trend) << "\ncorr " << corr_name(md.corr) << "\nmethod "
+  os << "smi-kriging 2\ntrend " << trend_name(md.trend) << "\ncorr " << corr_name(md.corr) << "\nmethod "
      << md.method << "\nevaluations " << md.evaluations << "\nnugget";
   put(os, md.nugget);
   os << "\ninputs " << n << "\npoints " << m << "\ntheta";
@@ -86,18 +97,20 @@ void save(const Model& md, const std::string& path) {
     put(os, md.Y[i]);
     os << "\n";
   }
-  os << "end\n";
+  os << "names " << names.inputs.size() << "\n";
+  for (const auto& s : names.inputs) os << s << "\n";
+  os << "output " << (names.output.empty() ? "y" : names.output) << "\nend\n";
   if (!os) throw InvalidArgument("writing '" + path + "' failed");
 }
 
-Model load(const std::string& path) {
+Model load(const std::string& path, ModelNames* names) {
   std::ifstream is(path);
   if (!is) throw InvalidArgument("cannot open '" + path + "'");
   Reader rd{is, path};
   std::string magic, version;
   is >> magic >> version;
   if (magic != "smi-kriging") rd.fail("not a Kriging model file (no 'smi-kriging' header)");
-  if (version != "1") rd.fail("unsupported version " + version);
+  if (version != "1" && version != "2") rd.fail("unsupported version " + version + " (this smi-lua reads 1 and 2)");
   Model md;
   md.trend = parse_trend(rd.word("trend"));
   md.corr = parse_corr(rd.word("corr"));
@@ -128,7 +141,22 @@ Model load(const std::string& path) {
   rd.expect("Y");
   md.Y.resize(m);
   for (long i = 0; i < m; ++i) md.Y[i] = rd.number();
+  ModelNames nm;
+  if (version == "2") {
+    const long k = rd.count("names");
+    if (k != 0 && k != n) rd.fail(std::to_string(k) + " input names for " + std::to_string(n) + " inputs");
+    std::string line;
+    std::getline(is, line);  // the rest of the 'names' line
+    for (long j = 0; j < k; ++j) {
+      if (!std::getline(is, line) || line.empty()) rd.fail("missing input name " + std::to_string(j + 1));
+      nm.inputs.push_back(line);
+    }
+    rd.expect("output");
+    is >> std::ws;
+    if (!std::getline(is, nm.output) || nm.output.empty()) rd.fail("missing output name");
+  }
   rd.expect("end");
+  if (names) *names = std::move(nm);
   const detail::Problem pb(md.S, md.Y, md.trend, md.corr);
   const Eigen::VectorXd theta = md.theta;  // not md.theta: md is moved in the same call
   const double nugget = md.nugget;

@@ -2,6 +2,8 @@
 // diagnoses (duplicates, near-singular R) and their ways out; nugget estimation on noise.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <cstdio>
 
 #include "core/rng.hpp"
@@ -59,6 +61,34 @@ TEST_CASE("save and load give the same predictions bit for bit") {
   CHECK(a.mse == b.mse);
   CHECK(l.method == m.method);
   CHECK_THROWS_WITH(load("no/such/model.txt"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("model files carry the input and output names; version 1 files still load") {
+  smi::Rng rng(6);
+  const Eigen::MatrixXd X = rng.uniform_matrix(12, 2);
+  const Model m = fit(X, f(X));
+  const std::string path = "test_kriging_names.txt";
+  save(m, path, {{"column frame E", "ecu_bracket_thickness"}, "mode 4"});
+  ModelNames nm;
+  const Model l = load(path, &nm);
+  CHECK(nm.inputs == std::vector<std::string>{"column frame E", "ecu_bracket_thickness"});
+  CHECK(nm.output == "mode 4");
+  CHECK(predict_mean(l, X) == predict_mean(m, X));
+  // The same file as version 1 wrote it: no names section.
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  text.replace(text.find("smi-kriging 2"), 13, "smi-kriging 1");
+  text.erase(text.find("names 2"), text.find("end\n") - text.find("names 2"));
+  std::ofstream(path) << text;
+  ModelNames none{{"stale"}, "stale"};
+  const Model v1 = load(path, &none);
+  CHECK(none.inputs.empty());
+  CHECK(none.output.empty());
+  CHECK(predict_mean(v1, X) == predict_mean(m, X));
+  std::remove(path.c_str());
+  CHECK_THROWS_WITH(save(m, path, {{"only one"}, "y"}), Catch::Contains("1 input names for a model of 2 inputs"));
+  CHECK_THROWS_WITH(save(m, path, {{"a", "b\nc"}, "y"}), Catch::Contains("on one line"));
 }
 
 TEST_CASE("duplicate design points: a diagnosis naming the rows, and nugget as the way out") {
