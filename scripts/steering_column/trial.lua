@@ -28,6 +28,9 @@ function M.surrogate(t)
   local k, diag = {}, {}
   for _, m in ipairs(M.modes) do
     k[m] = smi.kriging.fit(X, Y[m], { trend = t.trend, corr = "gauss", inputs = t.unknowns, output = m, seed = t.seed })
+    -- saved beside the report: smi.kriging.load(file) gives the analyst this very surrogate
+    local file = smi.out(("%s_%s.kriging"):format(t.name, m))
+    k[m]:save(file)
     local loo = k[m]:loo()
     local pred = k[m]:predict(Xt)
     local se, ymin, ymax = 0, math.huge, -math.huge
@@ -38,7 +41,7 @@ function M.surrogate(t)
     local loo_pred = {}
     for i = 1, #loo.residuals do loo_pred[i] = Y[m][i] - loo.residuals[i] end
     diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = math.sqrt(se / #pred), test_range = { ymin, ymax },
-                theta = col_table(k[m].theta), observed = col_table(Y[m]), loo_predicted = loo_pred,
+                theta = col_table(k[m].theta), observed = col_table(Y[m]), loo_predicted = loo_pred, model_file = file,
                 warnings = k[m].warnings }
   end
   local design = {}
@@ -49,16 +52,24 @@ function M.surrogate(t)
            trend = t.trend, unknowns = t.unknowns }
 end
 
---- The Kriging models of a surrogate step's results: the live objects, or, when the step ran
--- in an earlier process, refitted from the saved design and solver outputs with the saved
--- hyperparameters (no search: the same model). smi.kriging.load would be the natural way but
--- crashes (reported to the surrogate area), so the models are not saved to files.
+--- The Kriging models of a surrogate step's results: the live objects or, when the step ran in
+-- an earlier process, its saved model files; a results.json without them (or whose files were
+-- removed) gets them refitted from the saved design and solver outputs at the saved
+-- hyperparameters (no search, no solver run: the same model).
 function M.krigings(s)
   if s.kriging and type(s.kriging.mode1) == "userdata" then return s.kriging end
-  local k, X = {}, smi.mat(s.design)
+  local k, X = {}, nil
   for _, m in ipairs(M.modes) do
-    k[m] = smi.kriging.fit(X, smi.vec(s.diagnostics[m].observed), { trend = s.trend, corr = "gauss", theta = smi.vec(s.diagnostics[m].theta),
-                                                                    inputs = s.unknowns, output = m })
+    local file = s.diagnostics[m].model_file
+    local ok, loaded = false, nil
+    if file then ok, loaded = pcall(smi.kriging.load, file) end
+    if ok then
+      k[m] = loaded
+    else
+      X = X or smi.mat(s.design)
+      k[m] = smi.kriging.fit(X, smi.vec(s.diagnostics[m].observed), { trend = s.trend, corr = "gauss", theta = smi.vec(s.diagnostics[m].theta),
+                                                                      inputs = s.unknowns, output = m })
+    end
   end
   return k
 end
