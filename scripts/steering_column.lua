@@ -249,8 +249,9 @@ local function calibration_step(name)
     r:figure(figs.history(res, T.label), T.label .. ": calibration history.")
     local rows = {}
     for _, p in ipairs(res.params) do
-      local ci = res.bootstrap and ("[%.4g, %.4g] / [%.4g, %.4g]"):format(res.bootstrap.lower[p.input .. ".mean"], res.bootstrap.upper[p.input .. ".mean"],
-        res.bootstrap.lower[p.input .. ".std"], res.bootstrap.upper[p.input .. ".std"]) or "not computed (--quick)"
+      local ci = res.bootstrap and res.bootstrap.replicates > 0 and ("[%.4g, %.4g] / [%.4g, %.4g]"):format(res.bootstrap.lower[p.input .. ".mean"], res.bootstrap.upper[p.input .. ".mean"],
+        res.bootstrap.lower[p.input .. ".std"], res.bootstrap.upper[p.input .. ".std"])
+        or (res.bootstrap and ("all %d replicates failed"):format(res.bootstrap.failed) or "not computed (--quick)")
       rows[#rows + 1] = { p.input, p.dist, p.unit, ("[%.4g, %.4g]"):format(p.mean_bounds[1], p.mean_bounds[2]), ("[%.4g, %.4g]"):format(p.std_bounds[1], p.std_bounds[2]),
                           p.mean_start, p.std_start, p.stage1_mean, p.stage1_std, p.mean, p.std, ci }
     end
