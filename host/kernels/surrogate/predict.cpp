@@ -2,7 +2,7 @@
 //   yhat = mY + sY (F_x beta + R_x gamma)                       (GEMM)
 //   Rt = C^-1 R_x^T, U = G^-T (Ft^T Rt - F_x^T)                  (TRSM + GEMM)
 //   mse = sigma2 sY^2 (1 + |U|^2 - |Rt|^2) per column, clamped at 0.
-// Blocks go to the workers by stride; each writes its own rows only.
+// Blocks go to the workers as they free up; each writes its own rows only.
 #include <algorithm>
 
 #include "core/errors.hpp"
@@ -31,35 +31,50 @@ void blocks(const Eigen::MatrixXd& X, int threads, Body&& body) {
   });
 }
 
-}  // namespace
-
-namespace {
-/// Mean for the Gaussian family by the fused kernel (fused_mean.hpp): no correlation matrix.
-Eigen::VectorXd predict_mean_fused(const Model& md, const Eigen::MatrixXd& X, int threads) {
-  Eigen::VectorXd mean(X.rows());
-  const Eigen::RowVectorXd w = md.theta.cwiseSqrt().transpose();
-  const detail::RowMatrix Sw = md.S.array().rowwise() * w.array();
-  blocks(X, threads, [&](Eigen::Index r0, Eigen::Index nr) {
-    const Eigen::MatrixXd Xn = (X.middleRows(r0, nr).rowwise() - md.mS).array().rowwise() / md.sS.array();
-    const Eigen::MatrixXd Xw = Xn.array().rowwise() * w.array();
-    Eigen::VectorXd r(nr);
-    detail::fused_gauss_sum(Xw, Sw, md.gamma, r.data());
-    const Eigen::MatrixXd Fx = trend_basis(md.trend, Xn);
-    mean.segment(r0, nr) = (md.mY + md.sY * (Fx * md.beta + r).array()).matrix();
-  });
-  return mean;
+/// Rows r0 .. r0+nr-1 of X in the model's normalised units.
+Eigen::MatrixXd normalised(const Model& md, const Eigen::MatrixXd& X, Eigen::Index r0, Eigen::Index nr) {
+  return (X.middleRows(r0, nr).rowwise() - md.mS).array().rowwise() / md.sS.array();
 }
+
+/// The predicted mean of a block, one kernel for predict_mean and predict so that both give the
+/// same numbers: the Gaussian family by the fused kernel where the CPU has it (fused_mean.hpp:
+/// no correlation matrix), any other by R_x gamma (R_x computed here unless given).
+class Mean {
+ public:
+  explicit Mean(const Model& md) : md_(md), fused_(md.corr == Corr::gauss && detail::fused_gauss_available()) {
+    if (!fused_) return;
+    w_ = md.theta.cwiseSqrt().transpose();
+    Sw_ = md.S.array().rowwise() * w_.array();
+  }
+  Eigen::VectorXd operator()(const Eigen::MatrixXd& Xn, const Eigen::MatrixXd& Fx, const Eigen::MatrixXd* Rx = nullptr) const {
+    Eigen::VectorXd r(Xn.rows());
+    if (fused_) {
+      const Eigen::MatrixXd Xw = Xn.array().rowwise() * w_.array();
+      detail::fused_gauss_sum(Xw, Sw_, md_.gamma, r.data());
+    } else if (Rx) {
+      r.noalias() = *Rx * md_.gamma;
+    } else {
+      r.noalias() = cross_correlation(md_.corr, md_.theta, Xn, md_.S) * md_.gamma;
+    }
+    return (md_.mY + md_.sY * (Fx * md_.beta + r).array()).matrix();
+  }
+
+ private:
+  const Model& md_;
+  bool fused_;
+  Eigen::RowVectorXd w_;
+  detail::RowMatrix Sw_;
+};
+
 }  // namespace
 
 Eigen::VectorXd predict_mean(const Model& md, const Eigen::MatrixXd& X, int threads) {
   check_input(md, X);
-  if (md.corr == Corr::gauss && detail::fused_gauss_available()) return predict_mean_fused(md, X, threads);
+  const Mean mean_of(md);
   Eigen::VectorXd mean(X.rows());
   blocks(X, threads, [&](Eigen::Index r0, Eigen::Index nr) {
-    const Eigen::MatrixXd Xn = (X.middleRows(r0, nr).rowwise() - md.mS).array().rowwise() / md.sS.array();
-    const Eigen::MatrixXd Rx = cross_correlation(md.corr, md.theta, Xn, md.S);
-    const Eigen::MatrixXd Fx = trend_basis(md.trend, Xn);
-    mean.segment(r0, nr) = (md.mY + md.sY * (Fx * md.beta + Rx * md.gamma).array()).matrix();
+    const Eigen::MatrixXd Xn = normalised(md, X, r0, nr);
+    mean.segment(r0, nr) = mean_of(Xn, trend_basis(md.trend, Xn));
   });
   return mean;
 }
@@ -70,22 +85,12 @@ Prediction predict(const Model& md, const Eigen::MatrixXd& X, int threads) {
   out.mean.resize(X.rows());
   out.mse.resize(X.rows());
   const double s2 = md.process_variance();
-  // The mean by the same kernel as predict_mean, so that both give the same numbers.
-  const bool fused = md.corr == Corr::gauss && detail::fused_gauss_available();
-  const Eigen::RowVectorXd w = md.theta.cwiseSqrt().transpose();
-  const detail::RowMatrix Sw = md.S.array().rowwise() * w.array();
+  const Mean mean_of(md);
   blocks(X, threads, [&](Eigen::Index r0, Eigen::Index nr) {
-    const Eigen::MatrixXd Xn = (X.middleRows(r0, nr).rowwise() - md.mS).array().rowwise() / md.sS.array();
+    const Eigen::MatrixXd Xn = normalised(md, X, r0, nr);
     const Eigen::MatrixXd Rx = cross_correlation(md.corr, md.theta, Xn, md.S);
     const Eigen::MatrixXd Fx = trend_basis(md.trend, Xn);
-    Eigen::VectorXd r(nr);
-    if (fused) {
-      const Eigen::MatrixXd Xw = Xn.array().rowwise() * w.array();
-      detail::fused_gauss_sum(Xw, Sw, md.gamma, r.data());
-    } else {
-      r.noalias() = Rx * md.gamma;
-    }
-    out.mean.segment(r0, nr) = (md.mY + md.sY * (Fx * md.beta + r).array()).matrix();
+    out.mean.segment(r0, nr) = mean_of(Xn, Fx, &Rx);
     Eigen::MatrixXd Rt = Rx.transpose();
     md.C.triangularView<Eigen::Lower>().solveInPlace(Rt);
     Eigen::MatrixXd U = md.Ft.transpose() * Rt - Fx.transpose();
