@@ -267,13 +267,11 @@ int evaluate_solver(lua_State* L, Model& m) {
   lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
   lua_State* main = lua_tothread(L, -1);
   lua_pop(L, 1);
-  auto stop_reason = std::make_shared<std::string>();
-  m.ev->set_interrupt_check([L, main, stop = pol.stop_reason, stop_reason] {
-    if (stop) *stop_reason = stop();
-    if (!stop_reason->empty()) return true;
+  m.ev->set_stop_check([L, main, stop = pol.stop_reason]() -> std::string {
+    if (std::string why = stop ? stop() : ""; !why.empty()) return why;
     for (lua_State* s : {L, main})
-      if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return true;
-    return false;
+      if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return "interrupted";
+    return "";
   });
 
   se::EvalResult r;
@@ -285,14 +283,7 @@ int evaluate_solver(lua_State* L, Model& m) {
       std::fflush(stdout);
       add_planned(L, plan);
     }
-    try {
-      r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
-    } catch (const smi::Interrupted& e) {
-      // say why: the evaluator only knows it was asked to stop ("interrupted; N runs stored ...")
-      const std::string what = e.what();
-      if (stop_reason->rfind("timeout", 0) != 0 || what.rfind("interrupted", 0) != 0) throw;
-      throw smi::Interrupted(*stop_reason + what.substr(std::string("interrupted").size()));
-    }
+    r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
     if (r.failed > 0) {
       summary = fmt::format("model '{}': {} of {} point{} failed{}:", m.name, r.failed, X.rows(), X.rows() == 1 ? "" : "s",
                             r.stopped ? " (on_failure = 'stop')" : " (skipped)");

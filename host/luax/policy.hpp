@@ -31,7 +31,7 @@ struct Policy {
   bool dry_run = false;                            // --dry-run: count solver runs, launch none
   std::string script_path;                         // the study being run ("" for -e / REPL)
   /// Set by the runtime: "" while the run may go on, else why it must stop ("timeout: ...",
-  /// "interrupted!"). C++ code that waits without running Lua (solver runs) polls it, because
+  /// "interrupted"). C++ code that waits without running Lua (solver runs) polls it, because
   /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.
   /// Once it is non-empty, the next Lua instruction raises that message as well.
   std::function<std::string()> stop_reason;

@@ -199,7 +199,7 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
   policy_.stop_reason = [this]() -> std::string {
-    if (limits_.abort == Abort::none && limits_.interrupted) return "interrupted!";
+    if (limits_.interrupted || limits_.abort == Abort::interrupt) return "interrupted";
     if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
       trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
     char buf[200];

@@ -316,9 +316,11 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
   };
 
   auto check_interrupt = [&] {
-    if (interrupted_ && interrupted_())
-      throw Interrupted(fmt::format("interrupted; {} finished run{} of model '{}' are stored, running the study again "
-                                    "resumes from there", prog.done, prog.done == 1 ? "" : "s", cfg_.name));
+    if (!stop_check_) return;
+    const std::string why = stop_check_();
+    if (!why.empty())
+      throw Interrupted(fmt::format("{}; {} finished run{} of model '{}' are stored, running the study again "
+                                    "resumes from there", why, prog.done, prog.done == 1 ? "" : "s", cfg_.name));
   };
 
   auto on_done = [&](const Outcome& o) {

@@ -93,10 +93,11 @@ class Evaluator {
   /// What evaluate(X) would run, without running anything (--dry-run).
   Plan plan(const Eigen::MatrixXd& X);
 
-  /// A check polled while runs go on (every tick and after each run): when it returns true,
-  /// evaluate() kills the running process groups and throws smi::Interrupted. Records of the
-  /// runs that finished are in the store already, so running the study again resumes.
-  void set_interrupt_check(std::function<bool()> check) { interrupted_ = std::move(check); }
+  /// A check polled while runs go on (every tick and after each run): "" to go on, else why the
+  /// run must stop ("interrupted", "timeout: ..."). Then evaluate() kills the running process
+  /// groups and throws smi::Interrupted with that reason. Records of the runs that finished are
+  /// in the store already, so running the study again resumes.
+  void set_stop_check(std::function<std::string()> check) { stop_check_ = std::move(check); }
 
   /// The content key of row `x` (tests and reports).
   std::string key(const Eigen::VectorXd& x) const;
@@ -114,7 +115,7 @@ class Evaluator {
   CommandConfig cfg_;
   std::string key_prefix_;  // hash state of everything but the point, as text fed first
   std::unique_ptr<Store> store_, shared_;
-  std::function<bool()> interrupted_;
+  std::function<std::string()> stop_check_;
 };
 
 }  // namespace smi::eval
