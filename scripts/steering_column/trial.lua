@@ -103,20 +103,24 @@ function M.calibrate(t)
     params1[#params1 + 1] = { name = n .. ".std", lower = u.std[1], upper = u.std[2], start = u.std[3] }
   end
   local lambda = t.tie_break or 1e-2
+  -- Modes 1 and 4 of the CRN sample through the Krigings at parameters th (both stages).
+  local function predicted(th)
+    local dists = {}
+    for i, n in ipairs(t.unknowns) do
+      dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
+    end
+    return smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+  end
   local r1 = smi.calibrate{
     parameters = params1, method = "slsqp", maxeval = t.maxeval_moments or 400, identifiability = false,
     objective = function(th)
-      local dists = {}
-      for i, n in ipairs(t.unknowns) do
-        dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
-      end
-      local Y = smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
-      local fit, pen = 0, 0
+      local Y = predicted(th)
+      local fit = 0
       for _, m in ipairs{ "mode1", "mode4" } do
         local sd = dm[m][2]
         fit = fit + ((Y[m]:mean() - dm[m][1]) / sd) ^ 2 + ((Y[m]:std() - sd) / sd) ^ 2
       end
-      pen = inputs.prior_penalty(th, t.unknowns, lambda)
+      local pen = inputs.prior_penalty(th, t.unknowns, lambda)
       return fit + pen, { fit = fit, penalty = pen }
     end,
   }
@@ -142,11 +146,7 @@ function M.calibrate(t)
       parameters = params2, method = "slsqp", maxeval = maxeval, identifiability = identifiability,
       multistart = multistart or 1, seed = t.seed,
       objective = function(th)
-        local dists = {}
-        for i, n in ipairs(t.unknowns) do
-          dists[i] = { n, smi.dist[inputs.unknown[n].dist]{ mean = th[n .. ".mean"], std = th[n .. ".std"] } }
-        end
-        local Y = smi.propagate{ model = { mode1 = k.mode1, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+        local Y = predicted(th)
         local p1, p4 = part("mode1", f_exp, data, Y), part("mode4", f_exp, data, Y)
         local pen = inputs.prior_penalty(th, t.unknowns, lambda)
         return p1 + p4 + pen, { mode1 = p1, mode4 = p4, prior = pen }

@@ -90,7 +90,7 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   // the searches go in rounds of two (one per core) and stop as soon as the best optimum has
   // been reached from two different starts. Given `starts`: exactly that many. The rounds do
   // not depend on the thread count, so neither does the result.
-  const bool confirm = starts <= 0 && pb.m() > 150;
+  const bool confirm = starts <= 0 && m > 150;
   if (starts <= 0) starts = m <= 150 ? 8 : (m <= 400 ? 4 : 2);
   starts = std::min<int>(starts, static_cast<int>(ncand));
   if (confirm) {
