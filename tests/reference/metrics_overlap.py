@@ -56,9 +56,10 @@ def overlap(a, b):
     return l1, inter
 
 
-here = os.path.dirname(os.path.abspath(__file__))
-with open(os.path.join(here, "metrics_overlap.csv"), "w") as f:
-    f.write("pair,pr,intersection\n")
-    for name, (a, b) in PAIRS.items():
-        l1, inter = overlap(a, b)
-        f.write(f"{name},{l1!r},{inter!r}\n")
+if __name__ == "__main__":
+    here = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(here, "metrics_overlap.csv"), "w") as f:
+        f.write("pair,pr,intersection\n")
+        for name, (a, b) in PAIRS.items():
+            l1, inter = overlap(a, b)
+            f.write(f"{name},{l1!r},{inter!r}\n")
