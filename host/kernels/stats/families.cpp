@@ -174,8 +174,18 @@ TruncNormal::TruncNormal(double mu, double sigma, double lower, double upper) : 
 }
 double TruncNormal::pdf(double x) const { return x < a_ || x > b_ ? 0.0 : normal_pdf((x - mu_) / sig_) / (sig_ * z_); }
 // Masses as Φ-differences by normal_mass: on [6, ∞) Φ(x) − Φ(6) would cancel to 1e-7 garbage.
-double TruncNormal::cdf(double x) const { return x <= a_ ? 0.0 : x >= b_ ? 1.0 : normal_mass(al_, (x - mu_) / sig_) / z_; }
-double TruncNormal::sf(double x) const { return x <= a_ ? 1.0 : x >= b_ ? 0.0 : normal_mass((x - mu_) / sig_, be_) / z_; }
+// Widths from the bound, (x − a)/σ, keep their precision where (x − μ)/σ − α would not.
+double TruncNormal::cdf(double x) const {
+  if (x <= a_) return 0.0;
+  if (x >= b_) return 1.0;
+  return (std::isfinite(a_) ? normal_mass_width(al_, (x - a_) / sig_) : normal_cdf((x - mu_) / sig_)) / z_;
+}
+double TruncNormal::sf(double x) const {
+  if (x <= a_) return 1.0;
+  if (x >= b_) return 0.0;
+  const double xi = (x - mu_) / sig_;
+  return (std::isfinite(b_) ? normal_mass_width(xi, (b_ - x) / sig_) : normal_cdf(-xi)) / z_;
+}
 double TruncNormal::logpdf(double x) const {
   if (x < a_ || x > b_) return -kInf;
   const double z = (x - mu_) / sig_;

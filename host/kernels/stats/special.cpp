@@ -123,26 +123,32 @@ double log_normal_cdf(double x) {
 
 double normal_mass(double a, double b) {
   if (!(a < b)) return 0.0;
-  // Work on the side where the tail values are small: mirror so that a + b <= 0.
-  if (a + b > 0.0) {
-    const double t = a;
-    a = -b;
-    b = -t;
+  if (!std::isfinite(a) || !std::isfinite(b)) {
+    if (a + b > 0.0) return normal_cdf(-a) - normal_cdf(-b);  // [a, ∞): the upper tail
+    return normal_cdf(b) - normal_cdf(a);
   }
-  const double fa = normal_cdf(a), fb = normal_cdf(b);
+  return normal_mass_width(a, b - a);
+}
+
+double normal_mass_width(double a, double w) {
+  if (!(w > 0.0)) return 0.0;
+  if (!std::isfinite(w)) return normal_cdf(-a);
+  // Work on the side where the tail values are small: mirror [a, a + w] to [−a − w, −a].
+  if (a + 0.5 * w > 0.0) a = -a - w;
+  const double fa = normal_cdf(a), fb = normal_cdf(a + w);
   const double d = fb - fa;
-  if (d > 0.25 * fb || !std::isfinite(a) || !std::isfinite(b)) return d;  // at most 2 bits lost
-  // a and b close: ∫_a^b φ by Gauss–Legendre on panels short enough that φ is smooth on each
-  // (φ varies by a factor e^{-|x| h} across a panel of width h).
-  const double scale = std::max(1.0, std::max(std::abs(a), std::abs(b)));
-  const int panels = std::max(1, static_cast<int>(std::ceil((b - a) * scale / 0.5)));
-  const double h = (b - a) / panels;
+  if (d > 0.25 * fb) return d;  // at most 2 bits lost to the subtraction
+  // A narrow interval: ∫ φ by Gauss–Legendre over panels on which φ varies by at most e^{1/2};
+  // the width w enters exactly (a − w, x − lower would round it away near a bound).
+  const double scale = std::max(1.0, std::abs(a) + w);
+  const int panels = std::max(1, static_cast<int>(std::ceil(w * scale / 0.5)));
+  const double h = w / panels, hw = 0.5 * h;
   double s = 0.0;
   for (int k = 0; k < panels; ++k) {
-    const double c = a + (k + 0.5) * h, hw = 0.5 * h;
+    const double c = a + (k + 0.5) * h;
     for (int j = 0; j < 5; ++j) s += kGlw[j] * (normal_pdf(c - hw * kGlx[j]) + normal_pdf(c + hw * kGlx[j]));
   }
-  return s * 0.5 * h;
+  return s * hw;
 }
 
 }  // namespace smi

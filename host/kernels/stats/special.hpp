@@ -33,5 +33,8 @@ double log_normal_cdf(double x);
 /// Φ(b) − Φ(a) for a <= b to full relative precision: complements in the upper tail, and a
 /// Gauss–Legendre integral of φ when a and b are so close that the difference cancels.
 double normal_mass(double a, double b);
+/// Φ(a + w) − Φ(a) with the width w >= 0 given on its own: near a truncation bound the width
+/// (x − lower)/σ is known to full relative precision while a + w is not.
+double normal_mass_width(double a, double w);
 
 }  // namespace smi
