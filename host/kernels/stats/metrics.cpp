@@ -41,7 +41,8 @@ Eigen::VectorXd pdf_grid(const Distribution& d, const Grid& g) {
       const double x = g.node(i);
       f[i] = mass_between(d, x - 0.5 * h, x + 0.5 * h) / h;
     }
-    if (std::isnan(f[i]) || f[i] < 0.0)
+    // (Tiny negative values of a binned KDE are its stated error, not a broken pdf.)
+    if (std::isnan(f[i]))
       throw InvalidArgument(fmt::format("the pdf of {} is {} at x = {}: it cannot be integrated; check its parameters", d.describe(),
                                         f[i], g.node(i)));
   }
@@ -80,7 +81,7 @@ GridComparison compare_on_grid(const Distribution& a, const Distribution& b, con
     if (!f->allFinite()) {
       Eigen::Index i = 0;
       while (std::isfinite((*f)[i])) ++i;
-      if (std::isnan((*f)[i]) || (*f)[i] < 0)
+      if (std::isnan((*f)[i]))
         throw InvalidArgument(fmt::format("the pdf of {} is {} at x = {}: it cannot be integrated; check its parameters",
                                           d->describe(), (*f)[i], x[i]));
       out.warnings.push_back(fmt::format("the pdf of {} is infinite at the grid node {}; integrated exactly between the pdf "

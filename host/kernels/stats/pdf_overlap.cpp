@@ -19,7 +19,8 @@ void add_scan_points(const Distribution& d, std::vector<double>& x) {
   if (const auto* k = dynamic_cast<const Kde*>(&d)) {
     const auto& t = k->data();
     const double h = k->bandwidth(), lo = t[0] - 8.0 * h, hi = t[t.size() - 1] + 8.0 * h;
-    const Eigen::Index n = std::min<Eigen::Index>(kMaxKdeScan, static_cast<Eigen::Index>(std::ceil((hi - lo) / (0.25 * h))) + 1);
+    const Eigen::Index n =
+        static_cast<Eigen::Index>(std::clamp(std::ceil((hi - lo) / (0.25 * h)) + 1.0, 2.0, static_cast<double>(kMaxKdeScan)));
     for (Eigen::Index i = 0; i < n; ++i) x.push_back(lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(n - 1));
   } else {
     for (int i = 0; i <= kQuantileScan; ++i) {

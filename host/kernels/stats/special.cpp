@@ -1,5 +1,6 @@
 #include "stats/special.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -138,10 +139,12 @@ double normal_mass_width(double a, double w) {
   const double fa = normal_cdf(a), fb = normal_cdf(a + w);
   const double d = fb - fa;
   if (d > 0.25 * fb) return d;  // at most 2 bits lost to the subtraction
+  if (fb == 0.0) return 0.0;    // both ends beyond Φ's underflow (|x| > 38)
   // A narrow interval: ∫ φ by Gauss–Legendre over panels on which φ varies by at most e^{1/2};
   // the width w enters exactly (a − w, x − lower would round it away near a bound).
   const double scale = std::max(1.0, std::abs(a) + w);
-  const int panels = std::max(1, static_cast<int>(std::ceil(w * scale / 0.5)));
+  // (Here Φ(a) > ¾ Φ(a + w), which bounds w·|a| by about 0.3: one or a few panels.)
+  const int panels = static_cast<int>(std::clamp(std::ceil(w * scale / 0.5), 1.0, 1e6));
   const double h = w / panels, hw = 0.5 * h;
   double s = 0.0;
   for (int k = 0; k < panels; ++k) {
