@@ -199,6 +199,8 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
   policy_.stop_reason = [this]() -> std::string {
+    if (limits_.interrupted && limits_.interrupted != SIGINT)
+      return std::string("interrupted by ") + signal_name(limits_.interrupted);
     if (limits_.interrupted || limits_.abort == Abort::interrupt) return "interrupted";
     if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
       trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
@@ -257,8 +259,18 @@ int Runtime::report(int status) {
   } else {
     std::fprintf(stderr, "smi-lua: %s\n", msg ? msg : "(error object is not a string)");
   }
-  std::fflush(stderr);
   lua_pop(L_, 1);
+  if (limits_.interrupted > 0) {
+    // Stopped by a signal: say what survives and how to go on; exit 128 + signal, as a shell does.
+    const std::string store = (policy_.out_dir / "evaluations.sqlite").string();  // the local store of the runs
+    std::fprintf(stderr,
+                 "smi-lua: stopped by %s. Kept: every finished solver run (in %s) and the study steps that "
+                 "finished (a study keeps them in %s). To resume, run the same command again: stored runs are reused, not rerun.\n",
+                 signal_name(limits_.interrupted), store.c_str(), (policy_.out_dir / "results.json").string().c_str());
+    std::fflush(stderr);
+    return 128 + limits_.interrupted;
+  }
+  std::fflush(stderr);
   return 1;
 }
 
