@@ -5,6 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/atomic_file.hpp"
 #include "modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
@@ -95,6 +96,22 @@ int smi_now(lua_State* L) {
   return 1;
 }
 
+/// smi.write_file(path, text): writes the whole file atomically (temporary file, fsync, rename;
+/// core/atomic_file.hpp) after the sandbox's write check; raises naming the file and the reason
+/// (disk full) and leaves the old file as it was. Stack: [path, text] -> [path].
+int smi_write_file(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  std::size_t len = 0;
+  const char* text = luaL_checklstring(L, 2, &len);
+  lua::protect(L, "smi.write_file", [&] {
+    const std::string p = lua::policy(L).check_write(path, "smi.write_file").string();
+    write_file_atomic(p, std::string_view(text, len));
+    return 0;
+  });
+  lua_settop(L, 1);
+  return 1;
+}
+
 /// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
@@ -114,6 +131,8 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "out");
   lua_pushcfunction(L, smi_now);
   lua_setfield(L, -2, "now");
+  lua_pushcfunction(L, smi_write_file);
+  lua_setfield(L, -2, "write_file");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
   lua_pop(L, 1);
