@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "eval/folder_lock.hpp"
 #include "eval/process.hpp"
 #include "eval/progress_line.hpp"
 #include "luax/luax.hpp"
@@ -142,6 +143,8 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
       c.deck = std::make_shared<se::DeckTemplate>(template_text, "(template_string)");
     const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
     c.runs_dir = pol.check_write((out / "runs" / c.name).string(), fname).string();
+    // Work folders live under --out: one process per output folder keeps them unique.
+    se::lock_output_folder(pol.check_write(out.string(), fname).string());
     c.store_path = pol.check_write(store.empty() ? (out / "evaluations.sqlite").string() : store, fname).string();
     if (!pol.store_path.empty()) {
       const std::string shared = pol.check_read(pol.store_path, fname).string();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
+#include "eval/folder_lock.hpp"
 #include "modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
@@ -112,6 +113,19 @@ int smi_write_file(lua_State* L) {
   return 1;
 }
 
+/// smi.lock_out([folder]): takes this process's lock on the output folder (default --out;
+/// eval/folder_lock.hpp); a study calls it before its first step. Raises naming the holder if
+/// another process has it.
+int smi_lock_out(lua_State* L) {
+  const char* folder = luaL_optstring(L, 1, nullptr);
+  lua::protect(L, "smi.lock_out", [&] {
+    const Policy& pol = lua::policy(L);
+    smi::eval::lock_output_folder(folder ? pol.check_write(folder, "smi.lock_out").string() : pol.ensure_out_dir().string());
+    return 0;
+  });
+  return 0;
+}
+
 /// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
@@ -133,6 +147,8 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "now");
   lua_pushcfunction(L, smi_write_file);
   lua_setfield(L, -2, "write_file");
+  lua_pushcfunction(L, smi_lock_out);
+  lua_setfield(L, -2, "lock_out");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
   lua_pop(L, 1);

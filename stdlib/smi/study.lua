@@ -136,6 +136,8 @@ function Study:run(opts)
   if opts.quiet ~= nil then self.quiet = opts.quiet end
   if #self.steps == 0 then error(("study '%s': no steps; add some with study:step(name, fn)"):format(self.name), 2) end
   local selected = self:_selection(opts)
+  -- one study per output folder at a time (the lock names the holder; it lasts until exit)
+  if type(smi) == "table" and type(smi.lock_out) == "function" then smi.lock_out(self.out) end
   local partial = false
   for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
 
