@@ -149,6 +149,8 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "write_file");
   lua_pushcfunction(L, smi_lock_out);
   lua_setfield(L, -2, "lock_out");
+  lua_pushboolean(L, cfg.dry_run);  // a study neither saves results nor writes a report then
+  lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
   lua_pop(L, 1);
@@ -242,6 +244,10 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
     char buf[200];
     const char* msg = abort_message(limits_, buf, sizeof buf);
     return msg ? msg : "";
+  };
+  policy_.request_exit = [this](int code) {
+    limits_.exit_code = code;
+    trip(L_, Abort::exit);
   };
   lua::set_policy(L_, &policy_);
   lua_pushcfunction(L_, init_state);

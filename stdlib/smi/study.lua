@@ -99,6 +99,7 @@ end
 -- results.json is replaced whole or not at all (smi.file: temporary file, checked writes, fsync,
 -- rename): a full disk or a kill mid-write leaves the previous file, and the error says so.
 function Study:_save(saved)
+  if type(smi) == "table" and smi.dry_run then return end -- a dry run's numbers are not results
   local text = json.lua_encode(saved, { indent = "  ", root = "results" })
   require("smi.file").write(self.results_path, text .. "\n", ("study '%s'"):format(self.name))
 end
@@ -241,7 +242,7 @@ function Study:run(opts)
   local total = now() - t_start
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
   for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
-  if self.report then self:_finish_report(partial, selected, total) end
+  if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total) end
 
   local out = {}
   for _, st in ipairs(self.steps) do
