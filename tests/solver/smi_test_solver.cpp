@@ -6,7 +6,7 @@
 //     f = sum of x_i^2        g = sum of i * x_i (i = 1.. in deck order)
 //     start = t0   end = t1   (CLOCK_MONOTONIC seconds, so tests can see runs overlap)
 // and results.csv with columns f,g. Behaviour keys:
-//     mode = ok | crash | exit | hang | hang_group | hang_setsid | garbage | no_output | flaky
+//     mode = ok | crash | exit | hang | hang_group | hang_setsid | garbage | no_output | stderr_only | flaky
 //     hang_setsid: like hang, with a child that leaves the group and session (setsid) and
 //     appends "<its pid> escape" to `log`, as a solver's licence daemon would
 //     sleep = seconds before writing    exit_code = n (mode = exit)
@@ -174,6 +174,10 @@ int main(int argc, char** argv) {
     for (;;) pause();
   }
   if (mode == "no_output") return 0;
+  if (mode == "stderr_only") {  // a solver that exits 0 after a fatal error, saying so on stderr only
+    std::fprintf(stderr, "smi-test-solver: reading deck\nsmi-test-solver: licence expired (on purpose)\n");
+    return 0;
+  }
   std::ofstream out(out_path);
   if (mode == "garbage") {
     out << "f = banana\ng = ####\n";
