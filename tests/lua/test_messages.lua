@@ -63,4 +63,19 @@ T.case("smi.vec(1e12) says what it would take and what was probably meant", func
   T.eq(smi.vec.ones(2)[2], 1.0)
 end)
 
+T.case("data far outside the model's range: a units warning naming the likely factor", function()
+  local sanity = require "smi.sanity"
+  local model_lo, model_hi = 28.2, 32.9 -- Hz, over the input bounds
+  local hz = {29.6, 30.1, 30.4, 29.9}
+  local khz = {0.0296, 0.0301, 0.0304, 0.0299}
+  T.eq(sanity.units("mode 1", hz, model_lo, model_hi), nil, "data in range: quiet")
+  T.eq(sanity.units("mode 4", {71.0, 70.2}, 80.1, 95.3), nil, "a real model error (71 Hz vs 80..95 Hz) is not a units problem")
+  local w = sanity.units("mode 1", khz, model_lo, model_hi)
+  T.truthy(w and w:find("lie 940 times below", 1, true) and w:find("factor of 1000 (kHz vs Hz", 1, true), tostring(w))
+  local rad = {}
+  for i, v in ipairs(hz) do rad[i] = v * 2 * math.pi end
+  w = sanity.units("mode 1", rad, model_lo, model_hi)
+  T.truthy(w and w:find("2π (rad/s vs Hz?)", 1, true), tostring(w))
+end)
+
 T.finish()
