@@ -33,9 +33,13 @@ function M.units(label, data, model_lo, model_hi, factor)
   local ratio
   if med > model_hi then ratio = med / model_hi elseif med < model_lo then ratio = model_lo / med else return nil end
   if ratio < factor then return nil end
+  -- the likely factor, from the middle of the model's range (a wide design box makes the
+  -- distance to its nearest bound a poor estimate)
+  local mid = math.sqrt(model_lo * model_hi)
+  local r_mid = med > mid and med / mid or mid / med
   local guess = ""
   for _, k in ipairs(KNOWN) do
-    if math.abs(math.log(ratio / k[1])) < 0.15 then guess = "; that is close to " .. k[2] break end
+    if math.abs(math.log(r_mid / k[1])) < 0.4 then guess = "; that is close to " .. k[2] break end
   end
   return ("%s: the data (median %.6g) lie %.3g times %s everything the model gives over its input bounds (%.6g … %.6g)%s. Likely a units mistake: check the data file's units before reading any verdict."):format(
     label, med, ratio, med > model_hi and "above" or "below", model_lo, model_hi, guess)
