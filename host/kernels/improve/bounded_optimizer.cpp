@@ -268,12 +268,31 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
                                          p.name, res.theta[i], p.lower, p.upper));
     }
   }
-  if (opt.multistart > 1) {
+  // Distinct optima: starts clustered by objective and by scaled distance.
+  std::vector<int> order(res.starts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return res.starts[static_cast<std::size_t>(a)].value < res.starts[static_cast<std::size_t>(b)].value; });
+  auto scaled = [&](const Eigen::VectorXd& t) {
+    Eigen::VectorXd u(k);
+    for (Eigen::Index i = 0; i < k; ++i) u[i] = (t[i] - params[static_cast<std::size_t>(i)].lower) / (params[static_cast<std::size_t>(i)].upper - params[static_cast<std::size_t>(i)].lower);
+    return u;
+  };
+  for (int s : order) {
+    const StartResult& a = res.starts[static_cast<std::size_t>(s)];
+    bool known = false;
+    for (int o : res.optima) {
+      const StartResult& b = res.starts[static_cast<std::size_t>(o)];
+      known = known || (std::abs(a.value - b.value) <= 1e-6 + 1e-4 * std::abs(b.value) && (scaled(a.theta) - scaled(b.theta)).norm() <= 1e-2 * std::sqrt(static_cast<double>(k)));
+    }
+    if (!known) res.optima.push_back(s);
+  }
+  res.starts_agree = res.optima.size() == 1;
+  if (!res.starts_agree) {
     int agree = 0;
     for (const StartResult& s : res.starts) agree += std::abs(s.value - res.value) <= 1e-6 + 1e-4 * std::abs(res.value);
-    if (agree < opt.multistart)
-      res.warnings.push_back(fmt::format("{} of {} starts reached the best objective {}: the problem is multimodal or flat; keep several starts",
-                                         agree, opt.multistart, res.value));
+    res.warnings.push_back(fmt::format("the {} starts ended at {} distinct optima ({} of them at the best objective {}): the problem is "
+                                       "multimodal or flat along some direction; see optima and identifiability.directions",
+                                       opt.multistart, res.optima.size(), agree, res.value));
   }
   return res;
 }

@@ -83,6 +83,11 @@ struct OptimizationResult {
   std::vector<std::string> warnings;
   /// θ where each parameter sits on (or within 1e-6 of the range of) a bound.
   std::vector<std::string> at_bounds;
+  /// Distinct optima over the starts (indices into `starts`, best first): two starts end at the
+  /// same optimum when their objectives agree to 1e-6 + 1e-4 |f| and their points to 1e-2 (times sqrt k) of
+  /// the box (scaled distance).
+  std::vector<int> optima;
+  bool starts_agree = true;  ///< one distinct optimum
 };
 
 /// Checks names, finiteness and lower < upper, start within bounds; throws InvalidArgument naming
