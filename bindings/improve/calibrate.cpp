@@ -36,6 +36,7 @@
 #include "core/errors.hpp"
 #include "improve/design_bounds.hpp"
 #include "improve/lua_callbacks.hpp"
+#include "improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {
@@ -172,6 +173,7 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
     const StatisticalObjective& obj = *out.stat;
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
+    if (s.overlap_start) oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
     out.opt = minimize(s.params, f, oo);
     // per-response parts, or one "metric" part when a custom metric returned a bare number
     out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");

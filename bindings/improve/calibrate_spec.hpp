@@ -51,6 +51,7 @@ struct CalibrateSpec {
   std::vector<smi::improve::DesignRange> design;
   std::vector<PriorSpec> priors;  ///< prior = {...} (both forms)
   double prior_weight = 1.0;
+  bool overlap_start = true;  ///< move a start where PR saturates at 2 (overlap_start = false: keep it)
 
   // Diagnostics.
   bool identifiability = true;

@@ -146,6 +146,7 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   push_named(L, out.part_names, r.parts);
   lua_setfield(L, -2, "metrics");
   lua::set_integer(L, "evaluations", r.evaluations);
+  lua::set_integer(L, "start_evaluations", r.start_evaluations);
   lua::set_boolean(L, "converged", r.converged);
   lua::set_string(L, "status", r.status);
   lua::set_string(L, "method", method_name(s.optimizer.method));
