@@ -36,6 +36,7 @@
 #include "core/errors.hpp"
 #include "improve/design_bounds.hpp"
 #include "improve/lua_callbacks.hpp"
+#include "improve/model_gradient.hpp"
 #include "improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 
@@ -102,29 +103,66 @@ class PriorSum {
   std::vector<std::shared_ptr<LuaObjective>> fns_;
 };
 
-/// The metric plus the analyst's penalty(theta) and prior terms, when given: each is added to the
-/// value and reported as one more part ("penalty", then "prior"), so histories and results show
-/// how much of the optimum is prior knowledge and how much is fit.
-Objective with_extras(lua_State* L, const CalibrateSpec& s, Objective metric) {
-  if (!s.penalty_slot && s.priors.empty()) return metric;
-  std::vector<std::string> names;
-  for (const auto& p : s.params) names.push_back(p.name);
-  auto pen = s.penalty_slot ? std::make_shared<LuaObjective>(L, s.penalty_slot, names, "penalty") : nullptr;
-  auto prior = s.priors.empty() ? nullptr : std::make_shared<PriorSum>(L, s);
-  return [metric = std::move(metric), pen, prior](const Eigen::VectorXd& t) {
-    Evaluation e = metric(t);
+/// The analyst's penalty(theta) and prior terms, added to the metric: each is reported as one
+/// more part ("penalty", then "prior"), so histories and results show how much of the optimum is
+/// prior knowledge and how much is fit.
+struct Extras {
+  std::shared_ptr<LuaObjective> pen;
+  std::shared_ptr<PriorSum> prior;
+
+  Extras(lua_State* L, const CalibrateSpec& s) {
+    std::vector<std::string> names;
+    for (const auto& p : s.params) names.push_back(p.name);
+    if (s.penalty_slot) pen = std::make_shared<LuaObjective>(L, s.penalty_slot, names, "penalty");
+    if (!s.priors.empty()) prior = std::make_shared<PriorSum>(L, s);
+  }
+  bool any() const { return pen || prior; }
+  double penalty(const Eigen::VectorXd& t) const {
+    const double p = (*pen)(t).value;
+    if (!std::isfinite(p)) throw InvalidArgument(fmt::format("penalty returned {} (it must be a finite number)", p));
+    return p;
+  }
+  void add(Evaluation& e, const Eigen::VectorXd& t) const {
+    if (!any()) return;
     if (e.parts.size() == 0) e.parts = Eigen::VectorXd::Constant(1, e.value);  // a metric without parts
-    auto add = [&e](double v) {
+    auto push = [&e](double v) {
       e.value += v;
       e.parts.conservativeResize(e.parts.size() + 1);
       e.parts[e.parts.size() - 1] = v;
     };
-    if (pen) {
-      const double p = (*pen)(t).value;
-      if (!std::isfinite(p)) throw InvalidArgument(fmt::format("penalty returned {} (it must be a finite number)", p));
-      add(p);
-    }
-    if (prior) add((*prior)(t));
+    if (pen) push(penalty(t));
+    if (prior) push((*prior)(t));
+  }
+  double total(const Eigen::VectorXd& t) const { return (pen ? penalty(t) : 0.0) + (prior ? (*prior)(t) : 0.0); }
+};
+
+Objective with_extras(lua_State* L, const CalibrateSpec& s, Objective metric) {
+  Extras x(L, s);
+  if (!x.any()) return metric;
+  return [metric = std::move(metric), x](const Eigen::VectorXd& t) {
+    Evaluation e = metric(t);
+    x.add(e, t);
+    return e;
+  };
+}
+
+/// The analytic gradient of the metric plus the extras' gradient by central differences (Lua
+/// functions of θ only: no model run), steps 1e-7 of each range, one-sided at a bound.
+ObjectiveGradient gradient_with_extras(lua_State* L, const CalibrateSpec& s, const StatisticalObjective& obj) {
+  Extras x(L, s);
+  const std::vector<Parameter> params = s.params;
+  return [&obj, x, params](const Eigen::VectorXd& t, Eigen::VectorXd& g) {
+    Evaluation e = obj.value_and_gradient(t, g);
+    x.add(e, t);
+    if (x.any())
+      for (Eigen::Index i = 0; i < t.size(); ++i) {
+        const Parameter& p = params[static_cast<std::size_t>(i)];
+        const double h = 1e-7 * (p.upper - p.lower);
+        Eigen::VectorXd up = t, dn = t;
+        up[i] = std::min(p.upper, t[i] + h);
+        dn[i] = std::max(p.lower, t[i] - h);
+        g[i] += (x.total(up) - x.total(dn)) / (up[i] - dn[i]);
+      }
     return e;
   };
 }
@@ -171,8 +209,16 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     CustomMetric metric;
     if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
     out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
+    if (s.gradient != "differences") out.stat->set_model_jacobian(model_jacobian(L, s, responses));
     const StatisticalObjective& obj = *out.stat;
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
+    if (s.gradient == "analytic" && !obj.has_gradient())
+      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", an sd-based bandwidth (silverman, normal, 1.06, "
+                            "scott) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+    if (obj.has_gradient()) {
+      oo.gradient = gradient_with_extras(L, s, obj);
+      out.analytic_gradient = true;
+    }
     if (s.overlap_start) oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
     out.opt = minimize(s.params, f, oo);
     // per-response parts, or one "metric" part when a custom metric returned a bare number
@@ -209,7 +255,10 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
         auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
         return with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
       };
-      out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, *s.bootstrap);
+      BootstrapOptions bo = *s.bootstrap;
+      bo.optimizer.prepare_start = {};
+      bo.optimizer.gradient = {};
+      out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, bo);
       out.warnings.insert(out.warnings.end(), out.boot->warnings.begin(), out.boot->warnings.end());
     }
     if (obj.floored() > 0)

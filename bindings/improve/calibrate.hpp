@@ -23,6 +23,7 @@ struct CalibrationOutcome {
   std::optional<smi::improve::BootstrapResult> boot;
   std::optional<smi::improve::StatisticalObjective> stat;
   std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included
+  bool analytic_gradient = false;     ///< SLSQP ran on the analytic gradient
 };
 
 /// Runs optimisation and diagnostics. Calls back into Lua through the spec's slots.

@@ -215,7 +215,11 @@ void read_model_object(lua_State* L, int self, const std::string& output, bool e
   const std::string who = output.empty() ? std::string("model") : "model." + output;
   if (lua_getfield(L, self, "evaluate") != LUA_TFUNCTION)
     throw InvalidArgument(fmt::format("{} has no evaluate method: give a function(X, names) or an object with m:evaluate(X)", who));
-  s.model_parts.push_back({output, lua_gettop(L), self});
+  const int fn = lua_gettop(L);
+  int grad = 0;
+  if (lua_getfield(L, self, "gradient") == LUA_TFUNCTION) grad = lua_gettop(L);  // stays on the stack
+  else lua_pop(L, 1);
+  s.model_parts.push_back({output, fn, self, grad});
   std::vector<std::string> order;
   for (const char* key : {"input_names", "inputs"}) {
     if (lua_getfield(L, self, key) == LUA_TFUNCTION) {
@@ -370,7 +374,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -433,6 +437,9 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
 
   read_priors(L, idx, s);
   s.overlap_start = o.boolean("overlap_start", true);
+  s.gradient = o.string("gradient", "auto");
+  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
+    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
   s.prior_weight = o.number("prior_weight", 1.0);
   if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
     throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));

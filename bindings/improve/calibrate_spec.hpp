@@ -51,6 +51,9 @@ struct CalibrateSpec {
   std::vector<smi::improve::DesignRange> design;
   std::vector<PriorSpec> priors;  ///< prior = {...} (both forms)
   double prior_weight = 1.0;
+  /// "auto": analytic when the model has a gradient (Kriging, m:gradient) and the metric is PR or
+  /// loglik, else differences; "analytic" requires it; "differences" never uses it.
+  std::string gradient = "auto";
   bool overlap_start = true;  ///< move a start where PR saturates at 2 (overlap_start = false: keep it)
 
   // Diagnostics.
