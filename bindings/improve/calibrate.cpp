@@ -236,6 +236,12 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
     out.warnings.insert(out.warnings.end(), out.directions->warnings.begin(), out.directions->warnings.end());
   }
+  if (s.intervals) {
+    ProfileOptions po = *s.intervals;
+    po.optimizer.observer = {};
+    out.profile = profile_intervals(s.params, f, out.opt.theta, out.opt.value, po, oo.gradient);
+    out.warnings.insert(out.warnings.end(), out.profile->warnings.begin(), out.profile->warnings.end());
+  }
   if (out.stat) {
     const StatisticalObjective& obj = *out.stat;
     if (!s.design.empty()) {
@@ -251,13 +257,16 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     if (s.bootstrap) {
       std::vector<Eigen::VectorXd> data;
       for (const auto& r : obj.responses()) data.push_back(r.data);
-      ObjectiveFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) -> Objective {
+      ReplicateFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) {
         auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
-        return with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
+        Replicate rep;
+        rep.f = with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
+        if (o->has_gradient()) rep.gradient = gradient_with_extras(L, s, *o);
+        if (s.overlap_start) rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
+        rep.keep = o;
+        return rep;
       };
-      BootstrapOptions bo = *s.bootstrap;
-      bo.optimizer.prepare_start = {};
-      bo.optimizer.gradient = {};
+      const BootstrapOptions& bo = *s.bootstrap;
       out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, bo);
       out.warnings.insert(out.warnings.end(), out.boot->warnings.begin(), out.boot->warnings.end());
     }

@@ -20,6 +20,7 @@ struct CalibrationOutcome {
   std::vector<std::string> part_names;  ///< labels of Evaluation::parts (responses)
   std::optional<smi::improve::IdentifiabilityResult> ident;
   std::optional<smi::improve::DirectionsResult> directions;
+  std::optional<smi::improve::ProfileResult> profile;
   std::optional<smi::improve::BootstrapResult> boot;
   std::optional<smi::improve::StatisticalObjective> stat;
   std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included

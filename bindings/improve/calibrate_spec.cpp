@@ -374,7 +374,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient", "intervals"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -475,18 +475,52 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
       b.replicates = static_cast<int>(lua_tointeger(L, -1));
     } else {
       lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
-      bo.check_known({"replicates", "level", "seed", "maxeval"});
+      bo.check_known({"replicates", "level", "seed", "maxeval", "warm", "multistart"});
+      b.warm_start = bo.boolean("warm", false);
       b.replicates = static_cast<int>(bo.integer("replicates", 100));
       b.level = bo.number("level", 0.95);
       b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
       b.optimizer = s.optimizer;
       b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
+      b.optimizer.multistart = static_cast<int>(bo.integer("multistart", s.optimizer.multistart));
     }
     if (!s.statistical) throw InvalidArgument("bootstrap needs experimental data: use the model form (model, inputs, data)");
     if (bt == LUA_TNUMBER) b.optimizer = s.optimizer;
     s.bootstrap = b;
   } else if (bt != LUA_TNIL && !(bt == LUA_TBOOLEAN && !lua_toboolean(L, -1))) {
     throw InvalidArgument("bootstrap must be a number of replicates or {replicates =, level =, seed =}");
+  }
+  lua_pop(L, 1);
+  // intervals = true | {level =, delta =}: profile intervals. delta = ½ χ²₁(level) reads the
+  // objective as a negative log-likelihood (metric "loglik", or an objective that is one); PR is
+  // not one, so it needs delta (an objective increase) given.
+  const int iv = lua_getfield(L, idx, "intervals");
+  if (iv == LUA_TTABLE || (iv == LUA_TBOOLEAN && lua_toboolean(L, -1))) {
+    ProfileOptions po;
+    po.optimizer = s.optimizer;
+    po.optimizer.multistart = 1;
+    bool has_delta = false;
+    if (iv == LUA_TTABLE) {
+      lua::Options io(L, lua_gettop(L), "smi.calibrate intervals");
+      io.check_known({"level", "delta"});
+      if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
+      s.interval_level = io.number("level", 0.9);
+      has_delta = io.has("delta");
+      if (has_delta) {
+        po.delta = io.number("delta", 1.0);
+        s.interval_level = 0.0;
+        if (!(po.delta > 0.0) || !std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
+      }
+    }
+    if (!has_delta) {
+      if (s.statistical && s.stat.metric == MetricKind::pr)
+        throw InvalidArgument("intervals: PR is not a log-likelihood, so a level has no delta; give intervals = {delta = <objective increase>} "
+                              "or use metric = \"loglik\" or bootstrap");
+      po.delta = likelihood_ratio_delta(s.interval_level);
+    }
+    s.intervals = po;
+  } else if (iv != LUA_TNIL && !(iv == LUA_TBOOLEAN)) {
+    throw InvalidArgument("intervals must be true or {level = 0.9} or {delta = <objective increase>}");
   }
   lua_pop(L, 1);
   const int pt = lua_getfield(L, idx, "progress");

@@ -15,6 +15,7 @@
 #include "improve/directions.hpp"
 #include "improve/identifiability.hpp"
 #include "improve/lua_callbacks.hpp"
+#include "improve/profile_intervals.hpp"
 #include "improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
@@ -64,6 +65,9 @@ struct CalibrateSpec {
   /// per response; loglik: 1.92 = half the 95 % chi-square quantile; otherwise 1e-6 max(1, |f*|)).
   double directions_tolerance = 0.0;
   std::optional<smi::improve::BootstrapOptions> bootstrap;
+  /// intervals = true | {level = 0.9, delta =}: per-parameter profile intervals.
+  std::optional<smi::improve::ProfileOptions> intervals;
+  double interval_level = 0.9;  ///< 0 when delta was given instead
 };
 
 /// Reads the spec table at `idx`; pushes the callback values (see slots above).

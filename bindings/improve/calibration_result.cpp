@@ -242,6 +242,27 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
     lua_setfield(L, -2, "samples");
     lua_setfield(L, -2, "bootstrap");
   }
+  if (out.profile) {
+    lua_createtable(L, 0, static_cast<int>(names.size()) + 3);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const ProfileInterval& iv = out.profile->intervals[i];
+      lua_createtable(L, 0, 6);
+      lua::set_number(L, "lower", iv.lower);
+      lua::set_number(L, "upper", iv.upper);
+      lua::set_boolean(L, "determined", iv.determined);
+      lua::set_boolean(L, "lower_open", iv.lower_open);
+      lua::set_boolean(L, "upper_open", iv.upper_open);
+      lua_createtable(L, 0, 2);
+      lua::set_vec(L, "nodes", iv.nodes);
+      lua::set_vec(L, "objective", iv.values);
+      lua_setfield(L, -2, "profile");
+      lua_setfield(L, -2, names[i].c_str());
+    }
+    lua::set_number(L, "delta", s.intervals->delta);
+    if (s.interval_level > 0.0) lua::set_number(L, "level", s.interval_level);
+    lua::set_integer(L, "evaluations", out.profile->evaluations);
+    lua_setfield(L, -2, "intervals");
+  }
   if (out.stat) push_statistical(L, s, out);
 }
 

@@ -66,10 +66,28 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
   if (src.size() == 1 && src[0].output.empty() && src[0].kriging && responses.size() != 1) return {};
   return [L, src, responses](const Eigen::MatrixXd& X) {
     std::vector<Eigen::MatrixXd> J(responses.size());
+    // A part of all responses is called once and read for each.
+    if (src.size() == 1 && src[0].output.empty()) {
+      const Source& part = src[0];
+      if (part.kriging) {
+        J[0] = kriging::predict_gradient(*part.kriging, X, 2);
+        return J;
+      }
+      StackGuard guard(L);
+      lua_pushvalue(L, part.grad_slot);
+      lua_pushvalue(L, part.self_slot);
+      lua::push_mat(L, X);
+      lua::call(L, 2, 1);
+      if (responses.size() > 1 && lua::test_mat(L, -1))
+        throw InvalidArgument(fmt::format("the model's gradient returned one matrix for {} responses: return {{response = mat, ...}}",
+                                          responses.size()));
+      for (std::size_t r = 0; r < responses.size(); ++r) J[r] = read_jacobian(L, responses[r], false, X.rows(), X.cols());
+      return J;
+    }
     for (std::size_t r = 0; r < responses.size(); ++r) {
       const Source* part = nullptr;
       for (const Source& p : src)
-        if (p.output.empty() || p.output == responses[r]) part = &p;
+        if (p.output == responses[r]) part = &p;
       if (!part) throw InvalidArgument(fmt::format("no model part predicts response '{}'", responses[r]));
       if (part->kriging) {
         J[r] = kriging::predict_gradient(*part->kriging, X, 2);
@@ -80,7 +98,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
       lua_pushvalue(L, part->self_slot);
       lua::push_mat(L, X);
       lua::call(L, 2, 1);
-      J[r] = read_jacobian(L, responses[r], !part->output.empty(), X.rows(), X.cols());
+      J[r] = read_jacobian(L, responses[r], true, X.rows(), X.cols());
     }
     return J;
   };

@@ -35,11 +35,11 @@ T.case("a model object's own gradient method is used; a function model falls bac
     evaluate = function(self, M) return {y1 = M:col(1) + M:col(2) * M:col(2), y2 = M:col(1) * 3 - M:col(2)} end,
     gradient = function(self, M)
       calls = calls + 1
-      local n = M:rows()
-      local J1, J2 = smi.mat(n, 2), smi.mat(n, 2)
-      for i = 1, n do
-        J1[i][1], J1[i][2] = 1, 2 * M[i][2]
-        J2[i][1], J2[i][2] = 3, -1
+      local J1, J2 = {}, {}  -- tables of rows
+      local b = M:col(2)
+      for i = 1, M:rows() do
+        J1[i] = {1, 2 * b[i]}
+        J2[i] = {3, -1}
       end
       return {y1 = J1, y2 = J2}
     end,
@@ -59,3 +59,5 @@ T.case("a model object's own gradient method is used; a function model falls bac
   end, "needs metric")
   T.raises(function() smi.calibrate{model = model, inputs = spec.inputs, data = data, gradient = "exact"} end, "gradient must be")
 end)
+
+T.finish()

@@ -22,3 +22,5 @@ T.case("no overlap at the start: moved by moment matching, then calibrated", fun
   local stuck = smi.calibrate(spec)
   T.truthy(stuck.objective > 1.99, "without it the optimiser cannot leave PR = 2")
 end)
+
+T.finish()
