@@ -229,12 +229,14 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   if (s.identifiability) {
     out.ident = identifiability(s.params, f, out.opt.theta, s.ident);
     out.warnings.insert(out.warnings.end(), out.ident->warnings.begin(), out.ident->warnings.end());
-    DirectionsOptions d = s.directions;
-    d.tolerance = default_tolerance(s, out.opt.value);
-    Summaries summ;
-    if (out.stat) summ = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
-    out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
-    out.warnings.insert(out.warnings.end(), out.directions->warnings.begin(), out.directions->warnings.end());
+    if (s.identifiability_directions) {
+      DirectionsOptions d = s.directions;
+      d.tolerance = default_tolerance(s, out.opt.value);
+      Summaries summ;
+      if (out.stat) summ = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
+      out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
+      out.warnings.insert(out.warnings.end(), out.directions->warnings.begin(), out.directions->warnings.end());
+    }
   }
   if (s.intervals) {
     ProfileOptions po = *s.intervals;

@@ -451,7 +451,8 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
     s.identifiability = lua_toboolean(L, -1);
   } else if (it == LUA_TTABLE) {
     lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
-    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step"});
+    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step", "directions"});
+    s.identifiability_directions = io.boolean("directions", true);
     s.ident.points = static_cast<int>(io.integer("points", 11));
     s.directions.points = s.ident.points;
     s.directions_tolerance = io.number("tolerance", 0.0);

@@ -59,6 +59,7 @@ struct CalibrateSpec {
 
   // Diagnostics.
   bool identifiability = true;
+  bool identifiability_directions = true;  ///< identifiability = {directions = false} skips them (and near_optimal)
   smi::improve::IdentifiabilityOptions ident;
   smi::improve::DirectionsOptions directions;
   /// identifiability.tolerance as given, or 0: then chosen by the metric at run time (PR: 0.01
