@@ -238,7 +238,11 @@ void read_model_object(lua_State* L, int self, const std::string& output, bool e
   const std::string who = output.empty() ? std::string("model") : "model." + output;
   if (lua_getfield(L, self, "evaluate") != LUA_TFUNCTION)
     throw InvalidArgument(fmt::format("{} has no evaluate method: give a function(X, names) or an object with m:evaluate(X)", who));
-  s.model_parts.push_back({output, lua_gettop(L), self});
+  const int fn = lua_gettop(L);
+  int grad = 0;
+  if (lua_getfield(L, self, "gradient") == LUA_TFUNCTION) grad = lua_gettop(L);  // stays on the stack
+  else lua_pop(L, 1);
+  s.model_parts.push_back({output, fn, self, grad});
   std::vector<std::string> order;
   for (const char* key : {"input_names", "inputs"}) {
     if (lua_getfield(L, self, key) == LUA_TFUNCTION) {
@@ -334,6 +338,58 @@ void read_grid(lua_State* L, int spec, CalibrateSpec& s) {
   lua_pop(L, 1);
 }
 
+/// prior = {{param = "E.mean", mean =, std =}, {name =, fn = function(theta), mean =, std =}, ...}.
+/// Functions stay on the stack (their slots are recorded).
+void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
+  const int t = lua_getfield(L, spec, "prior");
+  if (t == LUA_TNIL) {
+    lua_pop(L, 1);
+    return;
+  }
+  if (t != LUA_TTABLE || lua_rawlen(L, -1) == 0)
+    throw InvalidArgument("prior must be a list of {param = \"<name>\", mean =, std =} or {name =, fn = function(theta), mean =, std =}");
+  const int list = lua_gettop(L);
+  const auto n = static_cast<int>(lua_rawlen(L, list));
+  for (int i = 1; i <= n; ++i) {
+    const std::string where = fmt::format("prior[{}]", i);
+    luaL_checkstack(L, 4, "prior");
+    if (lua_rawgeti(L, list, i) != LUA_TTABLE) throw InvalidArgument(where + " must be a table {param =, mean =, std =}");
+    const int e = lua_gettop(L);
+    lua::Options po(L, e, where.c_str());
+    po.check_known({"param", "name", "fn", "mean", "std"});
+    PriorSpec p;
+    const bool has_param = po.has("param"), has_fn = po.has("fn");
+    if (has_param == has_fn) throw InvalidArgument(where + ": give either param = \"<parameter name>\" or fn = function(theta) (with name =)");
+    if (has_param) {
+      p.label = po.string("param", "");
+      for (std::size_t j = 0; j < s.params.size(); ++j)
+        if (s.params[j].name == p.label) p.param = static_cast<int>(j);
+      if (p.param < 0) {
+        std::string names;
+        for (const auto& q : s.params) names += (names.empty() ? "" : ", ") + q.name;
+        throw InvalidArgument(fmt::format("{}.param: no calibrated parameter named \"{}\" (the parameters are: {})", where, p.label, names));
+      }
+    } else {
+      p.label = po.string("name", "");
+      if (p.label.empty()) throw InvalidArgument(where + ": a prior on a function needs name = \"<label>\"");
+    }
+    if (!po.has("mean") || !po.has("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
+    p.mean = po.number("mean", 0.0);
+    p.std = po.number("std", 1.0);
+    if (!std::isfinite(p.mean)) throw InvalidArgument(fmt::format("{}.mean must be finite, got {}", where, p.mean));
+    if (!(p.std > 0.0) || !std::isfinite(p.std)) throw InvalidArgument(fmt::format("{}.std must be a finite number > 0, got {}", where, p.std));
+    if (has_fn) {
+      if (lua_getfield(L, e, "fn") != LUA_TFUNCTION) throw InvalidArgument(where + ".fn must be a function(theta) returning a number");
+      lua_replace(L, e);  // the function takes the entry's slot and stays on the stack
+      p.fn_slot = e;
+    } else {
+      lua_pop(L, 1);
+    }
+    s.priors.push_back(p);
+  }
+  // The list stays on the stack too, below the functions.
+}
+
 }  // namespace
 
 CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
@@ -341,7 +397,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient", "intervals"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -402,19 +458,34 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
         throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));
   }
 
-  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =};
+  read_priors(L, idx, s);
+  s.overlap_start = o.boolean("overlap_start", true);
+  s.gradient = o.string("gradient", "auto");
+  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
+    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
+  s.prior_weight = o.number("prior_weight", 1.0);
+  if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
+    throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
+
+  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =, tolerance =, step =};
   // bootstrap = replicates | {replicates =, level =, seed =}.
   const int it = lua_getfield(L, idx, "identifiability");
   if (it == LUA_TBOOLEAN) {
     s.identifiability = lua_toboolean(L, -1);
   } else if (it == LUA_TTABLE) {
     lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
-    io.check_known({"points", "rel_tol", "abs_tol"});
+    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step", "directions"});
+    s.identifiability_directions = io.boolean("directions", true);
     s.ident.points = static_cast<int>(io.integer("points", 11));
+    s.directions.points = s.ident.points;
+    s.directions_tolerance = io.number("tolerance", 0.0);
+    if (io.has("tolerance") && !(s.directions_tolerance > 0.0))
+      throw InvalidArgument(fmt::format("identifiability.tolerance must be > 0, got {}", s.directions_tolerance));
+    s.directions.step = io.number("step", 1e-3);
     s.ident.rel_tol = io.number("rel_tol", 0.01);
     s.ident.abs_tol = io.number("abs_tol", 0.0);
   } else if (it != LUA_TNIL) {
-    throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =}");
+    throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
   // PR is unit-free (range [0, 2] per response): a change below 1e-3 over a whole range is noise.
   if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = 1e-3;
@@ -428,18 +499,52 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
       b.replicates = static_cast<int>(lua_tointeger(L, -1));
     } else {
       lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
-      bo.check_known({"replicates", "level", "seed", "maxeval"});
+      bo.check_known({"replicates", "level", "seed", "maxeval", "warm", "multistart"});
+      b.warm_start = bo.boolean("warm", false);
       b.replicates = static_cast<int>(bo.integer("replicates", 100));
       b.level = bo.number("level", 0.95);
       b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
       b.optimizer = s.optimizer;
       b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
+      b.optimizer.multistart = static_cast<int>(bo.integer("multistart", s.optimizer.multistart));
     }
     if (!s.statistical) throw InvalidArgument("bootstrap needs experimental data: use the model form (model, inputs, data)");
     if (bt == LUA_TNUMBER) b.optimizer = s.optimizer;
     s.bootstrap = b;
   } else if (bt != LUA_TNIL && !(bt == LUA_TBOOLEAN && !lua_toboolean(L, -1))) {
     throw InvalidArgument("bootstrap must be a number of replicates or {replicates =, level =, seed =}");
+  }
+  lua_pop(L, 1);
+  // intervals = true | {level =, delta =}: profile intervals. delta = ½ χ²₁(level) reads the
+  // objective as a negative log-likelihood (metric "loglik", or an objective that is one); PR is
+  // not one, so it needs delta (an objective increase) given.
+  const int iv = lua_getfield(L, idx, "intervals");
+  if (iv == LUA_TTABLE || (iv == LUA_TBOOLEAN && lua_toboolean(L, -1))) {
+    ProfileOptions po;
+    po.optimizer = s.optimizer;
+    po.optimizer.multistart = 1;
+    bool has_delta = false;
+    if (iv == LUA_TTABLE) {
+      lua::Options io(L, lua_gettop(L), "smi.calibrate intervals");
+      io.check_known({"level", "delta"});
+      if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
+      s.interval_level = io.number("level", 0.9);
+      has_delta = io.has("delta");
+      if (has_delta) {
+        po.delta = io.number("delta", 1.0);
+        s.interval_level = 0.0;
+        if (!(po.delta > 0.0) || !std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
+      }
+    }
+    if (!has_delta) {
+      if (s.statistical && s.stat.metric == MetricKind::pr)
+        throw InvalidArgument("intervals: PR is not a log-likelihood, so a level has no delta; give intervals = {delta = <objective increase>} "
+                              "or use metric = \"loglik\" or bootstrap");
+      po.delta = likelihood_ratio_delta(s.interval_level);
+    }
+    s.intervals = po;
+  } else if (iv != LUA_TNIL && !(iv == LUA_TBOOLEAN)) {
+    throw InvalidArgument("intervals must be true or {level = 0.9} or {delta = <objective increase>}");
   }
   lua_pop(L, 1);
   const int pt = lua_getfield(L, idx, "progress");

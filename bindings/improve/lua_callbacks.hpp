@@ -39,6 +39,7 @@ struct ModelPart {
   std::string output;
   int fn_slot = 0;
   int self_slot = 0;
+  int grad_slot = 0;  ///< the object's gradient method (self, X) -> N×k, or 0
 };
 
 /// The model: one part returning {output = vec} (extra outputs ignored; a bare vec for a single

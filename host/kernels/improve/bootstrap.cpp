@@ -13,6 +13,13 @@ namespace smi::improve {
 BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, const Eigen::VectorXd& optimum,
                                       const std::vector<Eigen::VectorXd>& data, const ObjectiveFactory& make_objective,
                                       const BootstrapOptions& opt) {
+  ReplicateFactory make = [&make_objective](const std::vector<Eigen::VectorXd>& d) { return Replicate{make_objective(d), {}, {}, {}}; };
+  return bootstrap_calibration(params, optimum, data, make, opt);
+}
+
+BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, const Eigen::VectorXd& optimum,
+                                      const std::vector<Eigen::VectorXd>& data, const ReplicateFactory& make_replicate,
+                                      const BootstrapOptions& opt) {
   validate_parameters(params);
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   if (optimum.size() != k) throw DimensionMismatch(fmt::format("optimum has {} values for {} parameters", optimum.size(), k));
@@ -25,10 +32,13 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
     if (d.size() < 2) throw InvalidArgument(fmt::format("bootstrap needs at least 2 data per response, got {}", d.size()));
     res.paired = res.paired && d.size() == data[0].size();
   }
-  std::vector<Parameter> from_opt = params;
-  for (Eigen::Index i = 0; i < k; ++i) from_opt[static_cast<std::size_t>(i)].start = optimum[i];
+  std::vector<Parameter> starts = params;
   OptimizerOptions oo = opt.optimizer;
-  oo.multistart = 1;
+  oo.observer = {};
+  if (opt.warm_start) {
+    for (Eigen::Index i = 0; i < k; ++i) starts[static_cast<std::size_t>(i)].start = optimum[i];
+    oo.multistart = 1;
+  }
 
   Rng rng(opt.seed, hash_label("bootstrap"));
   std::vector<Eigen::VectorXd> rows;
@@ -43,7 +53,12 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
       for (Eigen::Index i = 0; i < n; ++i) sample[r][i] = data[r][res.paired ? shared[i] : rng.integer(0, n - 1)];
     }
     try {
-      const OptimizationResult o = minimize(from_opt, make_objective(sample), oo);
+      const Replicate rep = make_replicate(sample);
+      OptimizerOptions ro = oo;
+      ro.gradient = rep.gradient;
+      ro.prepare_start = rep.prepare_start;
+      ro.seed = oo.seed + static_cast<std::uint64_t>(b) + 1;  // its own multistart points
+      const OptimizationResult o = minimize(starts, rep.f, ro);
       res.evaluations += o.evaluations;
       rows.push_back(o.theta);
     } catch (const Error& e) {

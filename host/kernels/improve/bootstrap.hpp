@@ -1,12 +1,15 @@
 #pragma once
 // Bootstrap confidence intervals on calibrated parameters (beyond the paper; issue 6 item 6).
 // Each replicate resamples the experimental data with replacement (seeded), rebuilds the
-// objective on the resampled data and re-runs the calibration from the optimum; percentile
-// intervals summarise the spread. When every response has the same number of data they are
+// objective on the resampled data and re-runs the whole calibration: its own starts (the given
+// start and the seeded multistart points), not a warm start at the optimum, which would only
+// measure the local spread and miss the other optima of a flat or multimodal problem (issue 11
+// item 4). warm_start keeps the old, cheaper replicate. Percentile intervals summarise the spread. When every response has the same number of data they are
 // resampled as paired rows (one specimen gives all its responses), otherwise independently.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,7 +21,8 @@ struct BootstrapOptions {
   int replicates = 100;
   std::uint64_t seed = 0;
   double level = 0.95;          ///< two-sided percentile interval
-  OptimizerOptions optimizer;   ///< multistart is forced to 1; the start is the optimum
+  OptimizerOptions optimizer;   ///< the replicates' calibration (its starts, multistart, budget)
+  bool warm_start = false;      ///< start each replicate at the optimum, one start only
 };
 
 struct BootstrapResult {
@@ -35,6 +39,19 @@ struct BootstrapResult {
 /// Builds the objective for one set of data (one vector per response).
 using ObjectiveFactory = std::function<Objective(const std::vector<Eigen::VectorXd>& data)>;
 
+/// A replicate's problem: its objective and, optionally, its gradient and start preparation
+/// (set into the replicate's OptimizerOptions). `keep` holds whatever they refer to.
+struct Replicate {
+  Objective f;
+  ObjectiveGradient gradient;
+  std::function<PreparedStart(const Eigen::VectorXd&)> prepare_start;
+  std::shared_ptr<const void> keep;
+};
+using ReplicateFactory = std::function<Replicate(const std::vector<Eigen::VectorXd>& data)>;
+
+BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, const Eigen::VectorXd& optimum,
+                                      const std::vector<Eigen::VectorXd>& data, const ReplicateFactory& make,
+                                      const BootstrapOptions& opt);
 BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, const Eigen::VectorXd& optimum,
                                       const std::vector<Eigen::VectorXd>& data, const ObjectiveFactory& make_objective,
                                       const BootstrapOptions& opt);

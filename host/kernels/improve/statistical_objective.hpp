@@ -72,6 +72,24 @@ class StatisticalObjective {
 
   Evaluation operator()(const Eigen::VectorXd& theta) const;
 
+  /// dY_r/dX (N×k, columns in the order of the inputs) per response at the rows of X.
+  using ModelJacobian = std::function<std::vector<Eigen::MatrixXd>(const Eigen::MatrixXd& X)>;
+  /// Set when the model has a gradient (a Kriging's closed form, a model's own `gradient`).
+  void set_model_jacobian(ModelJacobian j) { jacobian_ = std::move(j); }
+  /// value_and_gradient works: metric PR or loglik, an sd-based bandwidth rule ("silverman",
+  /// "normal", "1.06", "scott"), and a model Jacobian.
+  bool has_gradient() const;
+  /// The objective (the same value as operator()) and its gradient in θ's own units, by the
+  /// chain rule through the inputs' quantile functions, the model's Jacobian, the KDE (its
+  /// bandwidth included) and the metric (objective_gradient.cpp).
+  Evaluation value_and_gradient(const Eigen::VectorXd& theta, Eigen::VectorXd& grad) const;
+
+  /// The model's N×R outputs at θ (CRN inputs), checked finite.
+  Eigen::MatrixXd predict(const Eigen::VectorXd& theta) const { return run_model(theta); }
+  /// Summaries of the predicted responses at θ for identifiability: per response the first four
+  /// Hermite moments of the prediction standardised by the data's mean and standard deviation
+  /// (f_exp's without data), each of unit variance per datum for normal data.
+  Eigen::VectorXd summaries(const Eigen::VectorXd& theta) const;
   /// The N×k input sample at θ (CRN).
   Eigen::MatrixXd inputs_at(const Eigen::VectorXd& theta) const;
   /// Mean and std of every input at θ.
@@ -100,6 +118,7 @@ class StatisticalObjective {
   Model model_;
   StatisticalOptions opt_;
   CustomMetric custom_;
+  ModelJacobian jacobian_;
   Eigen::MatrixXd z_;
   std::vector<Eigen::VectorXd> f_exp_grid_;   // f_exp at each response's grid nodes
   std::vector<double> exp_outside_;           // f_exp mass outside each grid

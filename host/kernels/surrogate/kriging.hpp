@@ -72,6 +72,9 @@ struct Prediction {
 Prediction predict(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
 /// Mean only: the fast path used by propagation.
 Eigen::VectorXd predict_mean(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
+/// Gradient of the predicted mean with respect to the inputs at the rows of X (rows x inputs),
+/// in closed form (predict_gradient.cpp).
+Eigen::MatrixXd predict_gradient(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
 
 /// Closed-form leave-one-out (Dubrule 1983) at the fitted theta: residual y_i - yhat_{-i}.
 struct LooResult {

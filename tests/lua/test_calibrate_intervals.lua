@@ -1,0 +1,63 @@
+-- smi.calibrate intervals (issue 11 item 4): profile intervals that equal the closed-form
+-- likelihood-ratio intervals, "not determined" for a flat parameter, and bootstrap replicates
+-- that are whole calibrations.
+local T = require "smi.testing"
+
+T.case("profile intervals of a normal mean: the closed-form likelihood-ratio interval", function()
+  local x = smi.rng(8):normal(25, 3, 1.5)
+  local n, xbar = #x, x:mean()
+  local s2 = 0
+  for i = 1, n do s2 = s2 + (x[i] - xbar) ^ 2 end
+  s2 = s2 / n
+  local r = smi.calibrate{
+    parameters = {{"mu", -5, 10, 0}, {"sigma", 0.3, 6, 1}, {"unused", 0, 1, 0.5}},
+    objective = function(t)
+      local s = 0
+      for i = 1, n do s = s + (x[i] - t.mu) ^ 2 end
+      return n * math.log(t.sigma) + s / (2 * t.sigma ^ 2)
+    end,
+    intervals = {level = 0.9}, xtol_rel = 1e-10, ftol_abs = 1e-12, identifiability = false,
+  }
+  local delta = 0.5 * 1.6448536269514722 ^ 2
+  T.near(r.intervals.delta, delta, 1e-9, "delta = chi2(0.9)/2")
+  local half = math.sqrt(s2 * (math.exp(2 * delta / n) - 1))
+  T.near(r.intervals.mu.lower, xbar - half, 1e-4, "lower")
+  T.near(r.intervals.mu.upper, xbar + half, 1e-4, "upper")
+  T.eq(r.intervals.mu.determined, true)
+  T.eq(r.intervals.unused.determined, false, "flat to both bounds")
+  T.eq(r.intervals.unused.lower, 0)
+  T.eq(r.intervals.unused.upper, 1)
+  local said = false
+  for _, w in ipairs(r.warnings) do said = said or w:find("'unused' is not determined by the data", 1, true) ~= nil end
+  T.truthy(said, "warned")
+end)
+
+T.case("PR needs a delta; bad interval options name the field", function()
+  local spec = {model = function(M) return {y = M:col(1)} end, inputs = {x = {mean = {0, 10, 1}, std = 1}}, data = {y = {1, 2, 3}}}
+  spec.intervals = true
+  T.raises(function() smi.calibrate(spec) end, "PR is not a log-likelihood")
+  spec.intervals = {level = 0.9, delta = 1}
+  T.raises(function() smi.calibrate(spec) end, "not both")
+  spec.intervals = {delta = -1}
+  T.raises(function() smi.calibrate(spec) end, "intervals.delta must be a number > 0")
+end)
+
+T.case("bootstrap replicates are whole calibrations from their own starts, not warm starts", function()
+  -- y = x1 + 2 x2: only mu1 + 2 mu2 is determined. Warm-started replicates stay near the optimum
+  -- (false confidence); whole calibrations spread along the valley.
+  local g = smi.rng(3)
+  local x1, x2 = g:normal(100, 1, 0.3), g:normal(100, 2, 0.3)
+  local spec = {model = function(M) return {y = M:col(1) + M:col(2) * 2} end,
+                inputs = {x1 = {mean = {0, 4, 0.5}, std = 0.3}, x2 = {mean = {0, 4, 3.0}, std = 0.3}},
+                data = {y = x1 + x2 * 2}, n = 300, grid_nodes = 1001, seed = 4, identifiability = false, multistart = 3,
+                maxeval = 120}
+  spec.bootstrap = {replicates = 6, level = 0.9, warm = true}
+  local warm = smi.calibrate(spec)
+  spec.bootstrap = {replicates = 6, level = 0.9}
+  local full = smi.calibrate(spec)
+  local ww = warm.bootstrap.upper["x1.mean"] - warm.bootstrap.lower["x1.mean"]
+  local fw = full.bootstrap.upper["x1.mean"] - full.bootstrap.lower["x1.mean"]
+  T.truthy(fw > 3 * ww and fw > 0.5, ("whole calibrations spread along the valley: %.3f vs warm %.3f"):format(fw, ww))
+end)
+
+T.finish()
