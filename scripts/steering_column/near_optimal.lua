@@ -8,10 +8,9 @@
 -- their bounds) spans what the data determine. The directions along which a validation
 -- response's summaries change most while J's are unchanged are the gradients of those
 -- summaries projected out of J's row space: the weak directions that matter for the prediction.
--- Along each, both ways, points at 1/4, 1/2, 3/4 and all of the way to the bounds, each pulled
--- back onto the optimum's calibration summaries by two Gauss-Newton steps with J (the valley
--- curves), kept while the objective stays within `tolerance` of the optimum's. Cost: 2·P + 4
--- propagations for the Jacobians, up to 3 per point (no calibration is rerun).
+-- Along each, both ways, points at 1/10, 1/4, 1/2, 3/4 and all of the way to the bounds, each
+-- pulled back onto the optimum's calibration summaries by Gauss-Newton steps (the valley curves), kept while the objective stays within `tolerance` of the optimum's. Cost: 2·P + 4
+-- propagations for the Jacobians, up to 4·(2·P + 1) + 1 per point (no calibration is rerun).
 local M = {}
 
 local function dot(a, b)
@@ -107,24 +106,39 @@ function M.by_weak_directions(t)
       directions[#directions + 1] = { v = v, summary = r, free_share = n / n0 }
     end
   end
-  -- Pull a point back onto the optimum's calibration summaries: z -= Jc^T (Jc Jc^T + mu I)^-1 r.
-  local JJ = {}
-  for a = 1, nc do
-    JJ[a] = {}
-    for b = 1, nc do JJ[a][b] = dot(J[a], J[b]) end
+  -- Pull a point back onto the optimum's calibration summaries: Gauss-Newton steps
+-- z -= Jc^T (Jc Jc^T + mu I)^-1 r with Jc re-evaluated at the current point (the valley curves:
+  -- the bracket's stiffness goes with its thickness cubed), up to 4 steps.
+  local function jac_calib(z)
+    local Jc = {}
+    for a = 1, nc do Jc[a] = {} end
+    for j = 1, P do
+      local up, dn = {}, {}
+      for i = 1, P do up[i], dn[i] = z[i], z[i] end
+      up[j], dn[j] = math.min(1, z[j] + h), math.max(0, z[j] - h)
+      local su, sd = summaries(up, t.calibration_modes), summaries(dn, t.calibration_modes)
+      for a = 1, nc do Jc[a][j] = (su[a] - sd[a]) / (up[j] - dn[j]) end
+    end
+    return Jc
   end
-  local tr = 0
-  for a = 1, nc do tr = tr + JJ[a][a] end
-  for a = 1, nc do JJ[a][a] = JJ[a][a] + 1e-8 * tr end
   local function correct(z)
-    for _ = 1, 2 do
+    for _ = 1, 4 do
       local s = summaries(z, t.calibration_modes)
-      local res = {}
-      for a = 1, nc do res[a] = s[a] - s0[a] end
+      local res, size = {}, 0
+      for a = 1, nc do res[a] = s[a] - s0[a]; size = math.max(size, math.abs(res[a])) end
+      if size < 0.02 then break end -- within 2 % of the data's std
+      local Jc = jac_calib(z)
+      local JJ, tr = {}, 0
+      for a = 1, nc do
+        JJ[a] = {}
+        for b = 1, nc do JJ[a][b] = dot(Jc[a], Jc[b]) end
+        tr = tr + JJ[a][a]
+      end
+      for a = 1, nc do JJ[a][a] = JJ[a][a] + 1e-8 * tr end
       local y = solve(JJ, res)
       for j = 1, P do
         local d = 0
-        for a = 1, nc do d = d + J[a][j] * y[a] end
+        for a = 1, nc do d = d + Jc[a][j] * y[a] end
         z[j] = math.min(1, math.max(0, z[j] - d))
       end
     end
@@ -137,16 +151,22 @@ function M.by_weak_directions(t)
     for j, q in ipairs(t.params) do loadings[q.name] = d.v[j] end
     local reach = {}
     for _, sign in ipairs{ 1, -1 } do
-      -- distance to the box along sign·v
+      -- the direction with the components that would push a parameter sitting on its bound
+      -- out of the box dropped (else the walk could not start), then the distance to the box
+      local v = {}
+      for j = 1, P do
+        v[j] = sign * d.v[j]
+        if (z0[j] >= 1 - 1e-9 and v[j] > 0) or (z0[j] <= 1e-9 and v[j] < 0) then v[j] = 0 end
+      end
       local tmax = math.huge
       for j = 1, P do
-        local v = sign * d.v[j]
-        if v > 1e-12 then tmax = math.min(tmax, (1 - z0[j]) / v) elseif v < -1e-12 then tmax = math.min(tmax, -z0[j] / v) end
+        if v[j] > 1e-12 then tmax = math.min(tmax, (1 - z0[j]) / v[j]) elseif v[j] < -1e-12 then tmax = math.min(tmax, -z0[j] / v[j]) end
       end
+      if tmax == math.huge then tmax = 0 end
       local kept = 0
-      for _, frac in ipairs{ 0.25, 0.5, 0.75, 1 } do
+      for _, frac in ipairs(tmax > 0 and { 0.1, 0.25, 0.5, 0.75, 1 } or {}) do
         local z = {}
-        for j = 1, P do z[j] = z0[j] + sign * frac * tmax * d.v[j] end
+        for j = 1, P do z[j] = z0[j] + frac * tmax * v[j] end
         z = correct(z)
         local th = theta(z)
         local f = t.objective(th)
