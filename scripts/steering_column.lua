@@ -339,12 +339,13 @@ local function calibration_step(k)
   end)
 end
 
--- The weak direction's largest loadings, in words (what a measurement would have to pin down).
+-- The largest moves of the means along the strongest near-optimal push, in words (what a
+-- measurement would have to pin down).
 local function weak_inputs(no)
   local d = no.directions and no.directions[1]
   if not d then return nil end
   local l = {}
-  for name, w in pairs(d.loadings) do l[#l + 1] = { name, w } end
+  for name, w in pairs(d.loadings) do if name:match("%.mean$") then l[#l + 1] = { name:gsub("%.mean$", ""), w } end end
   table.sort(l, function(a, b) return math.abs(a[2]) > math.abs(b[2]) end)
   local parts = {}
   for i = 1, math.min(3, #l) do parts[i] = ("%s %+.2f"):format(l[i][1], l[i][2]) end
@@ -380,8 +381,8 @@ local function validation_step(k)
         detail = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f; not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
         if v.verdict == "inconclusive" then
           local w = weak_inputs(cal.near_optimal)
-          detail = detail .. (". Modes 1 and 4 fit equally well across calibrations that predict mode 2 on both sides of the threshold%s. What would settle it: calibrate on mode 2 as well, or measure what the weak direction moves (a weighed wheel cover, the bracket's thickness) and give it as --prior"):format(
-            w and (" (weak direction: " .. w .. ")") or "")
+          detail = detail .. (". Modes 1 and 4 fit equally well across calibrations that predict mode 2 on both sides of the threshold%s. What would settle it: calibrate on mode 2 as well, or measure one of the inputs that move (e.g. weigh the wheel cover, gauge the bracket) and give it as --prior"):format(
+            w and (" (the means move most along: " .. w .. ")") or "")
         end
       else
         detail = ("U = %.4f %s %.4f (p = %.3f); used by the calibration"):format(v.metric, v.pass and "≤" or ">", v.threshold, v.p)

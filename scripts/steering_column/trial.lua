@@ -206,7 +206,7 @@ function M.calibrate(t)
     out.near_optimal = { source = "smi.calibrate (r.near_optimal)", tolerance = r.near_optimal.tolerance, points = r.near_optimal.points }
   else
     local near = require "steering_column.near_optimal"
-    out.near_optimal = near.by_weak_directions{ params = params1, optimum = r.params, objective = objective(t.f_exp, t.data),
+    out.near_optimal = near.by_prediction_extremes{ params = params1, optimum = r.params, objective = objective(t.f_exp, t.data),
       value = fit, predicted = predicted, kriging = k, tolerance = metric == "pr" and 0.05 or 0.2,
       calibration_modes = M.calibration_modes, validation_modes = M.validation_modes, data = t.data }
   end

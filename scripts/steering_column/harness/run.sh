@@ -4,7 +4,8 @@
 # (--quick: the verdict steps are those of the full run) and prints the confusion table, the
 # calibrated means against the truth and the solver runs (summarize.lua).
 #   usage: run.sh BUILD_DIR OUT_DIR [ci|full|all] [--check]
-# ci: the two experiments CI runs; full: the other twelve; all: both. --check: exit 1 unless every
+# ci: the two experiments CI runs; full: the other twelve; all: both. Exit 1 when a study does not
+# finish or writes no conclusion; with --check also unless every
 # experiment meets the issue's criteria (summarize.lua says which). The experiments run one after
 # the other in one output folder and so share its evaluation store: screening and the surrogates'
 # designs do not depend on the data, so their solver runs are made once.
@@ -16,7 +17,7 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 smi=$build/smi-lua fe=$build/column-fe gen=$build/make-steering-data
 names=$(head -1 "$here/experiments.csv" | cut -d, -f6-)
-ran=()
+ran=() failed=0
 while IFS=, read -r id eset truth noise seed rest; do
   [ "$id" = id ] && continue
   if [ "$set" != all ] && [ "$eset" != "$set" ]; then continue; fi
@@ -34,7 +35,7 @@ while IFS=, read -r id eset truth noise seed rest; do
   # results are moved to the experiment's folder
   rm -f "$out/run/results.json" "$out/run/report.html"
   (cd "$src" && "$smi" --quiet --allow-exec "$fe" --allow-read "$dir" --out "$out/run" \
-     scripts/steering_column.lua --quick --solver "$fe" --data "$dir/tests.csv") > "$dir/study.log" 2>&1 || echo "experiment $id: the study failed (see $dir/study.log)"
+     scripts/steering_column.lua --quick --solver "$fe" --data "$dir/tests.csv") > "$dir/study.log" 2>&1 || { echo "experiment $id: the study failed (see $dir/study.log)"; failed=1; }
   mkdir -p "$dir/study"
   for f in results.json report.html; do [ -f "$out/run/$f" ] && mv "$out/run/$f" "$dir/study/"; done
   echo "experiment $id ($truth truth, noise $noise): $(tail -1 "$dir/study.log") [$(( $(date +%s) - start )) s]"
@@ -42,3 +43,5 @@ while IFS=, read -r id eset truth noise seed rest; do
 done < "$here/experiments.csv"
 (cd "$src" && "$smi" --quiet --allow-read "$out" --allow-read "$here" --out "$out/summary" \
    scripts/steering_column/harness/summarize.lua "$here/experiments.csv" "$out" "$(IFS=,; echo "${ran[*]}")" $check)
+# a study that did not finish fails the harness even without --check
+exit $failed
