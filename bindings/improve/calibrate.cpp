@@ -16,11 +16,15 @@
 //                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
 //                 penalty = function(theta) return number end (prior knowledge, added), ...}
 // Common: method = "slsqp"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
-//         ftol_abs, fd_step, initial_step, identifiability = true|false|{points, rel_tol, abs_tol},
-//         progress = function(row) end.
-// Result: params, theta, names, objective, metrics, converged, status, method, evaluations,
-//         warnings, at_bounds, history, starts, identifiability, bootstrap; statistical form also
-//         inputs, distributions (smi.dist per input), grids, model_runs, n, seed, metric.
+//         ftol_abs, fd_step, initial_step,
+//         identifiability = true|false|{points, rel_tol, abs_tol, tolerance, step},
+//         prior = {{param = name, mean =, std =} | {name =, fn = function(theta), mean =, std =}, ...},
+//         prior_weight = 1, progress = function(row) end.
+// Result: params, theta, names, objective, metrics (parts; "penalty", "prior"), converged, status,
+//         method, evaluations, warnings, at_bounds, history, starts, starts_agree, optima,
+//         identifiability (span, weak, profiles; directions, tolerance), near_optimal, bootstrap;
+//         statistical form also inputs, distributions (smi.dist per input), grids, model_runs, n,
+//         seed, metric.
 #include "improve/calibrate.hpp"
 
 #include <fmt/format.h>
@@ -32,6 +36,7 @@
 #include "core/errors.hpp"
 #include "improve/design_bounds.hpp"
 #include "improve/lua_callbacks.hpp"
+#include "improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {
@@ -69,24 +74,80 @@ std::function<void(const HistoryEntry&)> progress_observer(lua_State* L, const C
   };
 }
 
-/// The statistical objective plus the analyst's penalty(theta), when given: the penalty is
-/// added to the value and reported as one more part ("penalty"), so histories and results show
-/// how much of the optimum is prior and how much is fit.
-Objective with_penalty(lua_State* L, const CalibrateSpec& s, Objective metric) {
-  if (!s.penalty_slot) return metric;
+/// The prior terms of the spec: Σ weight · ½((v − mean)/std)² over the entries, v a parameter or
+/// the value of a Lua function of the parameters.
+class PriorSum {
+ public:
+  PriorSum(lua_State* L, const CalibrateSpec& s) : priors_(s.priors), weight_(s.prior_weight) {
+    std::vector<std::string> names;
+    for (const auto& p : s.params) names.push_back(p.name);
+    for (const PriorSpec& p : priors_)
+      fns_.push_back(p.fn_slot ? std::make_shared<LuaObjective>(L, p.fn_slot, names, "prior function") : nullptr);
+  }
+  double operator()(const Eigen::VectorXd& t) const {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < priors_.size(); ++i) {
+      const PriorSpec& p = priors_[i];
+      const double v = p.param >= 0 ? t[p.param] : (*fns_[i])(t).value;
+      if (!std::isfinite(v)) throw InvalidArgument(fmt::format("prior '{}': its function returned {} (it must return a finite number)", p.label, v));
+      const double z = (v - p.mean) / p.std;
+      sum += 0.5 * z * z;
+    }
+    return weight_ * sum;
+  }
+
+ private:
+  std::vector<PriorSpec> priors_;
+  double weight_;
+  std::vector<std::shared_ptr<LuaObjective>> fns_;
+};
+
+/// The metric plus the analyst's penalty(theta) and prior terms, when given: each is added to the
+/// value and reported as one more part ("penalty", then "prior"), so histories and results show
+/// how much of the optimum is prior knowledge and how much is fit.
+Objective with_extras(lua_State* L, const CalibrateSpec& s, Objective metric) {
+  if (!s.penalty_slot && s.priors.empty()) return metric;
   std::vector<std::string> names;
   for (const auto& p : s.params) names.push_back(p.name);
-  auto pen = std::make_shared<LuaObjective>(L, s.penalty_slot, names, "penalty");
-  return [metric = std::move(metric), pen](const Eigen::VectorXd& t) {
+  auto pen = s.penalty_slot ? std::make_shared<LuaObjective>(L, s.penalty_slot, names, "penalty") : nullptr;
+  auto prior = s.priors.empty() ? nullptr : std::make_shared<PriorSum>(L, s);
+  return [metric = std::move(metric), pen, prior](const Eigen::VectorXd& t) {
     Evaluation e = metric(t);
     if (e.parts.size() == 0) e.parts = Eigen::VectorXd::Constant(1, e.value);  // a metric without parts
-    const double p = (*pen)(t).value;
-    if (!std::isfinite(p)) throw InvalidArgument(fmt::format("penalty returned {} (it must be a finite number)", p));
-    e.value += p;
-    e.parts.conservativeResize(e.parts.size() + 1);
-    e.parts[e.parts.size() - 1] = p;
+    auto add = [&e](double v) {
+      e.value += v;
+      e.parts.conservativeResize(e.parts.size() + 1);
+      e.parts[e.parts.size() - 1] = v;
+    };
+    if (pen) {
+      const double p = (*pen)(t).value;
+      if (!std::isfinite(p)) throw InvalidArgument(fmt::format("penalty returned {} (it must be a finite number)", p));
+      add(p);
+    }
+    if (prior) add((*prior)(t));
     return e;
   };
+}
+
+/// Labels of the parts: the metric's own (responses), or one "metric"/"objective" part when it
+/// gave none, then "penalty" and "prior" when present.
+std::vector<std::string> part_labels(const CalibrateSpec& s, std::vector<std::string> own, Eigen::Index parts, const char* whole) {
+  const Eigen::Index extras = (s.penalty_slot ? 1 : 0) + (s.priors.empty() ? 0 : 1);
+  if (extras == 0) return own;
+  if (parts != static_cast<Eigen::Index>(own.size()) + extras) own = {whole};
+  if (s.penalty_slot) own.push_back("penalty");
+  if (!s.priors.empty()) own.push_back("prior");
+  return own;
+}
+
+/// Tolerance of "fits as well as the optimum" when not given: PR is unit-free in [0, 2] per
+/// response (0.01 each); loglik is a log-likelihood (half the 95 % chi-square(1) quantile);
+/// anything else relative to the optimum's value.
+double default_tolerance(const CalibrateSpec& s, double optimum) {
+  if (s.directions_tolerance > 0.0) return s.directions_tolerance;
+  if (s.statistical && !s.metric_slot && s.stat.metric == MetricKind::pr) return 0.01 * static_cast<double>(s.responses.size());
+  if (s.statistical && !s.metric_slot && s.stat.metric == MetricKind::loglik) return 1.920729;
+  return 1e-6 * std::max(1.0, std::abs(optimum));
 }
 
 }  // namespace
@@ -100,9 +161,9 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     std::vector<std::string> names;
     for (const auto& p : s.params) names.push_back(p.name);
     auto obj = std::make_shared<LuaObjective>(L, s.objective_slot, names);
-    f = [obj](const Eigen::VectorXd& t) { return (*obj)(t); };
+    f = with_extras(L, s, [obj](const Eigen::VectorXd& t) { return (*obj)(t); });
     out.opt = minimize(s.params, f, oo);
-    out.part_names = obj->part_names();
+    out.part_names = part_labels(s, obj->part_names(), out.opt.parts.size(), "objective");
   } else {
     std::vector<std::string> responses;
     for (const auto& r : s.responses) responses.push_back(r.name);
@@ -111,20 +172,23 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
     out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
     const StatisticalObjective& obj = *out.stat;
-    f = with_penalty(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
+    f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
+    if (s.overlap_start) oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
     out.opt = minimize(s.params, f, oo);
-    out.part_names = responses;
-    if (s.penalty_slot) {
-      // per-response parts, or one "metric" part when a custom metric returned a bare number
-      if (out.opt.parts.size() != static_cast<Eigen::Index>(responses.size()) + 1) out.part_names = {"metric"};
-      out.part_names.push_back("penalty");
-    }
+    // per-response parts, or one "metric" part when a custom metric returned a bare number
+    out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");
   }
   out.warnings = out.opt.warnings;
 
   if (s.identifiability) {
     out.ident = identifiability(s.params, f, out.opt.theta, s.ident);
     out.warnings.insert(out.warnings.end(), out.ident->warnings.begin(), out.ident->warnings.end());
+    DirectionsOptions d = s.directions;
+    d.tolerance = default_tolerance(s, out.opt.value);
+    Summaries summ;
+    if (out.stat) summ = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
+    out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
+    out.warnings.insert(out.warnings.end(), out.directions->warnings.begin(), out.directions->warnings.end());
   }
   if (out.stat) {
     const StatisticalObjective& obj = *out.stat;
@@ -143,7 +207,7 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
       for (const auto& r : obj.responses()) data.push_back(r.data);
       ObjectiveFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) -> Objective {
         auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
-        return with_penalty(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
+        return with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
       };
       out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, *s.bootstrap);
       out.warnings.insert(out.warnings.end(), out.boot->warnings.begin(), out.boot->warnings.end());

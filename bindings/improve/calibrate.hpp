@@ -9,6 +9,7 @@
 #include "improve/bootstrap.hpp"
 #include "improve/bounded_optimizer.hpp"
 #include "improve/calibrate_spec.hpp"
+#include "improve/directions.hpp"
 #include "improve/identifiability.hpp"
 #include "improve/statistical_objective.hpp"
 
@@ -18,6 +19,7 @@ struct CalibrationOutcome {
   smi::improve::OptimizationResult opt;
   std::vector<std::string> part_names;  ///< labels of Evaluation::parts (responses)
   std::optional<smi::improve::IdentifiabilityResult> ident;
+  std::optional<smi::improve::DirectionsResult> directions;
   std::optional<smi::improve::BootstrapResult> boot;
   std::optional<smi::improve::StatisticalObjective> stat;
   std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included

@@ -311,6 +311,58 @@ void read_grid(lua_State* L, int spec, CalibrateSpec& s) {
   lua_pop(L, 1);
 }
 
+/// prior = {{param = "E.mean", mean =, std =}, {name =, fn = function(theta), mean =, std =}, ...}.
+/// Functions stay on the stack (their slots are recorded).
+void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
+  const int t = lua_getfield(L, spec, "prior");
+  if (t == LUA_TNIL) {
+    lua_pop(L, 1);
+    return;
+  }
+  if (t != LUA_TTABLE || lua_rawlen(L, -1) == 0)
+    throw InvalidArgument("prior must be a list of {param = \"<name>\", mean =, std =} or {name =, fn = function(theta), mean =, std =}");
+  const int list = lua_gettop(L);
+  const auto n = static_cast<int>(lua_rawlen(L, list));
+  for (int i = 1; i <= n; ++i) {
+    const std::string where = fmt::format("prior[{}]", i);
+    luaL_checkstack(L, 4, "prior");
+    if (lua_rawgeti(L, list, i) != LUA_TTABLE) throw InvalidArgument(where + " must be a table {param =, mean =, std =}");
+    const int e = lua_gettop(L);
+    lua::Options po(L, e, where.c_str());
+    po.check_known({"param", "name", "fn", "mean", "std"});
+    PriorSpec p;
+    const bool has_param = po.has("param"), has_fn = po.has("fn");
+    if (has_param == has_fn) throw InvalidArgument(where + ": give either param = \"<parameter name>\" or fn = function(theta) (with name =)");
+    if (has_param) {
+      p.label = po.string("param", "");
+      for (std::size_t j = 0; j < s.params.size(); ++j)
+        if (s.params[j].name == p.label) p.param = static_cast<int>(j);
+      if (p.param < 0) {
+        std::string names;
+        for (const auto& q : s.params) names += (names.empty() ? "" : ", ") + q.name;
+        throw InvalidArgument(fmt::format("{}.param: no calibrated parameter named \"{}\" (the parameters are: {})", where, p.label, names));
+      }
+    } else {
+      p.label = po.string("name", "");
+      if (p.label.empty()) throw InvalidArgument(where + ": a prior on a function needs name = \"<label>\"");
+    }
+    if (!po.has("mean") || !po.has("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
+    p.mean = po.number("mean", 0.0);
+    p.std = po.number("std", 1.0);
+    if (!std::isfinite(p.mean)) throw InvalidArgument(fmt::format("{}.mean must be finite, got {}", where, p.mean));
+    if (!(p.std > 0.0) || !std::isfinite(p.std)) throw InvalidArgument(fmt::format("{}.std must be a finite number > 0, got {}", where, p.std));
+    if (has_fn) {
+      if (lua_getfield(L, e, "fn") != LUA_TFUNCTION) throw InvalidArgument(where + ".fn must be a function(theta) returning a number");
+      lua_replace(L, e);  // the function takes the entry's slot and stays on the stack
+      p.fn_slot = e;
+    } else {
+      lua_pop(L, 1);
+    }
+    s.priors.push_back(p);
+  }
+  // The list stays on the stack too, below the functions.
+}
+
 }  // namespace
 
 CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
@@ -318,7 +370,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -379,19 +431,30 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
         throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));
   }
 
-  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =};
+  read_priors(L, idx, s);
+  s.overlap_start = o.boolean("overlap_start", true);
+  s.prior_weight = o.number("prior_weight", 1.0);
+  if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
+    throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
+
+  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =, tolerance =, step =};
   // bootstrap = replicates | {replicates =, level =, seed =}.
   const int it = lua_getfield(L, idx, "identifiability");
   if (it == LUA_TBOOLEAN) {
     s.identifiability = lua_toboolean(L, -1);
   } else if (it == LUA_TTABLE) {
     lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
-    io.check_known({"points", "rel_tol", "abs_tol"});
+    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step"});
     s.ident.points = static_cast<int>(io.integer("points", 11));
+    s.directions.points = s.ident.points;
+    s.directions_tolerance = io.number("tolerance", 0.0);
+    if (io.has("tolerance") && !(s.directions_tolerance > 0.0))
+      throw InvalidArgument(fmt::format("identifiability.tolerance must be > 0, got {}", s.directions_tolerance));
+    s.directions.step = io.number("step", 1e-3);
     s.ident.rel_tol = io.number("rel_tol", 0.01);
     s.ident.abs_tol = io.number("abs_tol", 0.0);
   } else if (it != LUA_TNIL) {
-    throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =}");
+    throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
   // PR is unit-free (range [0, 2] per response): a change below 1e-3 over a whole range is noise.
   if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = 1e-3;

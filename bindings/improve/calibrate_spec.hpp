@@ -12,11 +12,22 @@
 #include "improve/bootstrap.hpp"
 #include "improve/bounded_optimizer.hpp"
 #include "improve/design_bounds.hpp"
+#include "improve/directions.hpp"
 #include "improve/identifiability.hpp"
 #include "improve/lua_callbacks.hpp"
 #include "improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
+
+/// One entry of prior = {...}: a normal prior on a parameter (param >= 0) or on a Lua function of
+/// the parameters (fn_slot), adding weight * 0.5 ((v - mean) / std)^2 to the objective.
+struct PriorSpec {
+  std::string label;  ///< the parameter's name, or the entry's name
+  int param = -1;
+  int fn_slot = 0;
+  double mean = 0.0;
+  double std = 1.0;
+};
 
 struct CalibrateSpec {
   smi::improve::OptimizerOptions optimizer;
@@ -38,10 +49,17 @@ struct CalibrateSpec {
   int progress_slot = 0;      ///< progress(row) called after each optimiser step (not probes), or 0
   int penalty_slot = 0;       ///< penalty(theta) added to the metric (model form), or 0
   std::vector<smi::improve::DesignRange> design;
+  std::vector<PriorSpec> priors;  ///< prior = {...} (both forms)
+  double prior_weight = 1.0;
+  bool overlap_start = true;  ///< move a start where PR saturates at 2 (overlap_start = false: keep it)
 
   // Diagnostics.
   bool identifiability = true;
   smi::improve::IdentifiabilityOptions ident;
+  smi::improve::DirectionsOptions directions;
+  /// identifiability.tolerance as given, or 0: then chosen by the metric at run time (PR: 0.01
+  /// per response; loglik: 1.92 = half the 95 % chi-square quantile; otherwise 1e-6 max(1, |f*|)).
+  double directions_tolerance = 0.0;
   std::optional<smi::improve::BootstrapOptions> bootstrap;
 };
 

@@ -103,6 +103,33 @@ void push_history(lua_State* L, const std::vector<std::string>& names, const std
   lua_setfield(L, -2, "history");
 }
 
+/// identifiability.directions (strongest first) and .tolerance. Stack: [ident] -> [ident].
+void push_directions(lua_State* L, const std::vector<std::string>& names, const DirectionsResult& d) {
+  lua::set_number(L, "tolerance", d.tolerance);
+  lua_createtable(L, static_cast<int>(d.directions.size()), 0);
+  for (std::size_t i = 0; i < d.directions.size(); ++i) {
+    const Direction& dir = d.directions[i];
+    lua_createtable(L, 0, 6);
+    lua::set_boolean(L, "determined", dir.determined);
+    push_named(L, names, dir.loadings);
+    lua_setfield(L, -2, "loadings");
+    lua::set_number(L, "curvature", dir.curvature);
+    lua::set_number(L, "rise", dir.rise);
+    lua_createtable(L, 0, 2);
+    lua::set_vec(L, "t", dir.t);
+    lua::set_vec(L, "objective", dir.profile);
+    lua_setfield(L, -2, "profile");
+    lua_createtable(L, 2, 0);
+    lua_pushnumber(L, dir.t_lower);
+    lua_rawseti(L, -2, 1);
+    lua_pushnumber(L, dir.t_upper);
+    lua_rawseti(L, -2, 2);
+    lua_setfield(L, -2, "reach");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "directions");
+}
+
 }  // namespace
 
 void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
@@ -119,6 +146,7 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   push_named(L, out.part_names, r.parts);
   lua_setfield(L, -2, "metrics");
   lua::set_integer(L, "evaluations", r.evaluations);
+  lua::set_integer(L, "start_evaluations", r.start_evaluations);
   lua::set_boolean(L, "converged", r.converged);
   lua::set_string(L, "status", r.status);
   lua::set_string(L, "method", method_name(s.optimizer.method));
@@ -143,6 +171,18 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "starts");
+  lua::set_boolean(L, "starts_agree", r.starts_agree);
+  lua_createtable(L, static_cast<int>(r.optima.size()), 0);
+  for (std::size_t i = 0; i < r.optima.size(); ++i) {
+    const StartResult& st = r.starts[static_cast<std::size_t>(r.optima[i])];
+    lua_createtable(L, 0, 3);
+    push_named(L, names, st.theta);
+    lua_setfield(L, -2, "params");
+    lua::set_number(L, "objective", st.value);
+    lua::set_integer(L, "start", r.optima[i] + 1);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "optima");
 
   if (out.ident) {
     const IdentifiabilityResult& id = *out.ident;
@@ -162,8 +202,26 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
       lua_setfield(L, -2, names[i].c_str());
     }
     lua_setfield(L, -2, "profiles");
-    lua::set_integer(L, "evaluations", id.evaluations);
+    int evaluations = id.evaluations;
+    if (out.directions) {
+      push_directions(L, names, *out.directions);
+      evaluations += out.directions->evaluations;
+    }
+    lua::set_integer(L, "evaluations", evaluations);
     lua_setfield(L, -2, "identifiability");
+  }
+  if (out.directions) {
+    const DirectionsResult& d = *out.directions;
+    lua_createtable(L, 0, 3);
+    lua::set_number(L, "tolerance", d.tolerance);
+    lua_createtable(L, static_cast<int>(d.near_optimal.size()), 0);
+    for (std::size_t i = 0; i < d.near_optimal.size(); ++i) {
+      push_named(L, names, d.near_optimal[i]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -2, "points");
+    lua::set_vec(L, "objectives", Eigen::Map<const Eigen::VectorXd>(d.near_optimal_values.data(), static_cast<Eigen::Index>(d.near_optimal_values.size())));
+    lua_setfield(L, -2, "near_optimal");
   }
   if (out.boot) {
     const BootstrapResult& b = *out.boot;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -96,13 +97,23 @@ struct Run {
     return t;
   }
 
-  double eval(const double* u, bool probe) {
+  double eval(const double* u, bool probe, double* grad = nullptr) {
     if (evaluations >= opt.maxeval) {
       budget_spent = true;
       throw BudgetSpent{};
     }
     Eigen::VectorXd theta = theta_of(u);
-    Evaluation e = f(theta);
+    Evaluation e;
+    if (grad) {
+      Eigen::VectorXd g;
+      e = opt.gradient(theta, g);
+      if (g.size() != theta.size() || !g.allFinite())
+        throw InvalidArgument(fmt::format("the objective's gradient has {} values (finite: {}) for {} parameters", g.size(), g.allFinite(),
+                                          theta.size()));
+      for (std::size_t i = 0; i < params.size(); ++i) grad[i] = g[static_cast<Eigen::Index>(i)] * (params[i].upper - params[i].lower);
+    } else {
+      e = f(theta);
+    }
     ++evaluations;
     if (!std::isfinite(e.value)) {
       std::string t;
@@ -124,6 +135,7 @@ struct Run {
   double operator()(const std::vector<double>& u, std::vector<double>& grad) {
     if (error || budget_spent) return HUGE_VAL;
     try {
+      if (!grad.empty() && opt.gradient) return eval(u.data(), false, grad.data());
       const double f0 = eval(u.data(), false);
       if (!grad.empty()) {
         const double h = opt.fd_step;
@@ -244,7 +256,22 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
       const Parameter& p = params[static_cast<std::size_t>(i)];
       u0[i] = s == 0 ? (p.start - p.lower) / (p.upper - p.lower) : rng.uniform01();
     }
+    Eigen::VectorXd given(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const Parameter& p = params[static_cast<std::size_t>(i)];
+      given[i] = p.lower + u0[i] * (p.upper - p.lower);
+    }
+    if (opt.prepare_start) {
+      const PreparedStart ps = opt.prepare_start(given);
+      res.start_evaluations += ps.evaluations;
+      if (!ps.note.empty()) res.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
+      for (Eigen::Index i = 0; i < k; ++i) {
+        const Parameter& p = params[static_cast<std::size_t>(i)];
+        u0[i] = std::clamp((ps.theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
+      }
+    }
     StartResult sr = run_start(params, f, opt, u0, s, res.history, res.warnings);
+    sr.given = given;
     res.evaluations += sr.evaluations;
     if (s == 0 || sr.value < res.value) {
       res.theta = sr.theta;
@@ -268,12 +295,31 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
                                          p.name, res.theta[i], p.lower, p.upper));
     }
   }
-  if (opt.multistart > 1) {
+  // Distinct optima: starts clustered by objective and by scaled distance.
+  std::vector<int> order(res.starts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return res.starts[static_cast<std::size_t>(a)].value < res.starts[static_cast<std::size_t>(b)].value; });
+  auto scaled = [&](const Eigen::VectorXd& t) {
+    Eigen::VectorXd u(k);
+    for (Eigen::Index i = 0; i < k; ++i) u[i] = (t[i] - params[static_cast<std::size_t>(i)].lower) / (params[static_cast<std::size_t>(i)].upper - params[static_cast<std::size_t>(i)].lower);
+    return u;
+  };
+  for (int s : order) {
+    const StartResult& a = res.starts[static_cast<std::size_t>(s)];
+    bool known = false;
+    for (int o : res.optima) {
+      const StartResult& b = res.starts[static_cast<std::size_t>(o)];
+      known = known || (std::abs(a.value - b.value) <= 1e-6 + 1e-4 * std::abs(b.value) && (scaled(a.theta) - scaled(b.theta)).norm() <= 1e-2 * std::sqrt(static_cast<double>(k)));
+    }
+    if (!known) res.optima.push_back(s);
+  }
+  res.starts_agree = res.optima.size() == 1;
+  if (!res.starts_agree) {
     int agree = 0;
     for (const StartResult& s : res.starts) agree += std::abs(s.value - res.value) <= 1e-6 + 1e-4 * std::abs(res.value);
-    if (agree < opt.multistart)
-      res.warnings.push_back(fmt::format("{} of {} starts reached the best objective {}: the problem is multimodal or flat; keep several starts",
-                                         agree, opt.multistart, res.value));
+    res.warnings.push_back(fmt::format("the {} starts ended at {} distinct optima ({} of them at the best objective {}): the problem is "
+                                       "multimodal or flat along some direction; see optima and identifiability.directions",
+                                       opt.multistart, res.optima.size(), agree, res.value));
   }
   return res;
 }

@@ -23,11 +23,29 @@ struct Parameter {
 };
 
 enum class Method { slsqp, cobyla, bobyqa, neldermead };
+
+/// What the objective returns: the value minimised and, optionally, its parts (one per response).
+struct Evaluation {
+  double value = 0.0;
+  Eigen::VectorXd parts;
+};
+/// The objective, called with θ in the parameters' own units.
+using Objective = std::function<Evaluation(const Eigen::VectorXd& theta)>;
 /// "slsqp", "cobyla", "bobyqa", "neldermead" (also "nelder-mead"); throws naming the choices.
 Method parse_method(std::string_view name);
 std::string method_name(Method m);
 
 struct HistoryEntry;
+
+/// A start moved before optimising (e.g. to where predicted and experimental PDFs overlap).
+struct PreparedStart {
+  Eigen::VectorXd theta;  ///< in the parameters' own units
+  std::string note;       ///< empty when not moved; else why and where to (goes to warnings)
+  int evaluations = 0;    ///< objective or model evaluations spent deciding (not in the history)
+};
+
+/// The objective's value and its gradient in the parameters' own units.
+using ObjectiveGradient = std::function<Evaluation(const Eigen::VectorXd& theta, Eigen::VectorXd& grad)>;
 
 struct OptimizerOptions {
   Method method = Method::slsqp;
@@ -44,15 +62,13 @@ struct OptimizerOptions {
   std::uint64_t seed = 0;
   /// Called after every recorded evaluation (progress display); may throw to abort.
   std::function<void(const HistoryEntry&)> observer;
+  /// Called with every start (own units) before it is optimised; may move it.
+  std::function<PreparedStart(const Eigen::VectorXd& theta)> prepare_start;
+  /// Analytic gradient for SLSQP: when set, one call gives value and gradient (no
+  /// finite-difference probes).
+  ObjectiveGradient gradient;
 };
 
-/// What the objective returns: the value minimised and, optionally, its parts (one per response).
-struct Evaluation {
-  double value = 0.0;
-  Eigen::VectorXd parts;
-};
-/// The objective, called with θ in the parameters' own units.
-using Objective = std::function<Evaluation(const Eigen::VectorXd& theta)>;
 
 struct HistoryEntry {
   Eigen::VectorXd theta;
@@ -63,7 +79,8 @@ struct HistoryEntry {
 };
 
 struct StartResult {
-  Eigen::VectorXd start;
+  Eigen::VectorXd start;  ///< where the optimiser began (after prepare_start)
+  Eigen::VectorXd given;  ///< the start before prepare_start
   Eigen::VectorXd theta;
   double value = 0.0;
   int evaluations = 0;
@@ -76,6 +93,7 @@ struct OptimizationResult {
   double value = 0.0;
   Eigen::VectorXd parts;
   int evaluations = 0;  ///< all objective evaluations, all starts
+  int start_evaluations = 0;  ///< spent by prepare_start (checking and moving starts)
   bool converged = false;
   std::string status;  ///< status of the best start
   std::vector<HistoryEntry> history;
@@ -83,6 +101,11 @@ struct OptimizationResult {
   std::vector<std::string> warnings;
   /// θ where each parameter sits on (or within 1e-6 of the range of) a bound.
   std::vector<std::string> at_bounds;
+  /// Distinct optima over the starts (indices into `starts`, best first): two starts end at the
+  /// same optimum when their objectives agree to 1e-6 + 1e-4 |f| and their points to 1e-2 (times sqrt k) of
+  /// the box (scaled distance).
+  std::vector<int> optima;
+  bool starts_agree = true;  ///< one distinct optimum
 };
 
 /// Checks names, finiteness and lower < upper, start within bounds; throws InvalidArgument naming

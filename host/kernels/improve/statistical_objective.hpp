@@ -71,6 +71,12 @@ class StatisticalObjective {
 
   Evaluation operator()(const Eigen::VectorXd& theta) const;
 
+  /// The model's N×R outputs at θ (CRN inputs), checked finite.
+  Eigen::MatrixXd predict(const Eigen::VectorXd& theta) const { return run_model(theta); }
+  /// Summaries of the predicted responses at θ for identifiability: per response the first four
+  /// Hermite moments of the prediction standardised by the data's mean and standard deviation
+  /// (f_exp's without data), each of unit variance per datum for normal data.
+  Eigen::VectorXd summaries(const Eigen::VectorXd& theta) const;
   /// The N×k input sample at θ (CRN).
   Eigen::MatrixXd inputs_at(const Eigen::VectorXd& theta) const;
   /// Mean and std of every input at θ.
