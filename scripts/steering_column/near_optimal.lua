@@ -4,10 +4,10 @@
 -- trial.lua uses it only when smi.calibrate does not return r.near_optimal itself.
 --
 -- How: for each summary of each validation response (mean, std of mode 2, in units of the data's
--- std) and each way (up, down), a calibration from the optimum (smi.calibrate, SLSQP) pushes
--- that summary as far as it can go while a quadratic penalty holds the calibration responses'
--- summaries (means and stds of modes 1 and 4) at the optimum's; the penalty weight is raised
--- tenfold if the end point does not fit. An end point, and the points at 1/3 and 2/3 of the way
+-- std) and each way (up, down), and once towards the data's mean and std of the validation
+-- response, a calibration from the optimum (smi.calibrate, SLSQP) pushes the summaries while a
+-- quadratic penalty holds the calibration responses' summaries (means and stds of modes 1 and 4)
+-- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end point, and the points at 1/3 and 2/3 of the way
 -- to it, are kept when the calibration objective (the study's PR or log-likelihood) there is
 -- within `tolerance` of the optimum's. These are calibrations from several starts' worth of
 -- directions, each checked against the real objective: the range of the validation metric over
@@ -16,8 +16,9 @@
 local M = {}
 
 --- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
--- optimum, without prior), objective(th) -> value, predicted(th, modes) -> {mode = vec},
--- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push).
+-- optimum, with the analyst's prior terms if any), objective(th) -> value (the same), predicted(th, modes) -> {mode = vec},
+-- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
+-- prior(th) -> the analyst's prior terms (nil: none), held by the pushes like the summaries.
 -- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
 function M.by_prediction_extremes(t)
   local all = {}
@@ -49,9 +50,24 @@ function M.by_prediction_extremes(t)
     end
     return false
   end
-  local pushes = {}
+  -- The pushes: each validation summary up and down (sign = ±1, summary r), and one towards the
+  -- data (sign = 0): all validation summaries at the data's mean and std, i.e. is there a
+  -- calibration fitting modes 1 and 4 as well that predicts mode 2 as measured?
+  local plan = {}
   for r = nc + 1, #s0 do
-    for _, sign in ipairs{ 1, -1 } do
+    plan[#plan + 1] = { r, 1 }
+    plan[#plan + 1] = { r, -1 }
+  end
+  plan[#plan + 1] = { nil, 0 }
+  local target = {}
+  for i, m in ipairs(t.validation_modes) do
+    target[nc + 2 * i - 1] = t.data[m]:mean() / t.data[m]:std()
+    target[nc + 2 * i] = 1
+  end
+  local pushes = {}
+  for _, step in ipairs(plan) do
+    local r, sign = step[1], step[2]
+    do
       local start, reached, kept, status, evals = t.optimum, nil, false, nil, 0
       for _, weight in ipairs{ 100, 1000 } do
         local params = {}
@@ -62,6 +78,12 @@ function M.by_prediction_extremes(t)
             local s = summaries(th)
             local pen = 0
             for a = 1, nc do pen = pen + (s[a] - s0[a]) ^ 2 end
+            if t.prior then pen = pen + t.prior(th) end -- the analyst's prior holds too
+            if sign == 0 then
+              local miss = 0
+              for q = nc + 1, #s do miss = miss + (s[q] - target[q]) ^ 2 end
+              return miss + weight * pen
+            end
             return -sign * (s[r] - s0[r]) + weight * pen
           end,
         }
@@ -80,8 +102,9 @@ function M.by_prediction_extremes(t)
       end
       norm = math.sqrt(norm)
       if norm > 0 then for k, v in pairs(loadings) do loadings[k] = v / norm end end
-      pushes[#pushes + 1] = { response = all[math.floor((r - 1) / 2) + 1], summary = (r - nc) % 2 == 1 and "mean" or "std",
-                              way = sign > 0 and "up" or "down", kept = kept, status = status, evaluations = evals, loadings = loadings, length = norm }
+      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ") or all[math.floor((r - 1) / 2) + 1],
+                              summary = sign == 0 and "mean and std" or ((r - nc) % 2 == 1 and "mean" or "std"),
+                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept, status = status, evaluations = evals, loadings = loadings, length = norm }
     end
   end
   -- strongest first: the push that moved the parameters furthest while still fitting

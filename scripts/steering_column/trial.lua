@@ -98,6 +98,18 @@ function M.krigings(s)
   return k
 end
 
+--- The analyst's prior terms at th as smi.calibrate adds them (CONTRACT.md: Σ ½((v − mean)/std)²,
+-- v a parameter or fn(th); prior_weight 1): the near-optimal points are checked against the
+-- objective the calibration minimized, data and prior.
+local function prior_terms(entries, th)
+  local sum = 0
+  for _, e in ipairs(entries or {}) do
+    local v = e.param and th[e.param] or e.fn(th)
+    sum = sum + 0.5 * ((v - e.mean) / e.std) ^ 2
+  end
+  return sum
+end
+
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
 -- data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist}, kriging, design_bounds, n,
 -- seed, maxeval, bootstrap, boot_maxeval, metric = "pr"|"loglik", multistart, prior (the
@@ -213,8 +225,10 @@ function M.calibrate(t)
   -- (near_optimal.lua). The union: a generic set cannot know which prediction matters, and a
   -- verdict over too narrow a set would be falsely decisive.
   local near = require "steering_column.near_optimal"
-  local pushes = near.by_prediction_extremes{ params = params1, optimum = r.params, objective = objective(t.f_exp, t.data),
-    value = fit, predicted = predicted, tolerance = TOLERANCE[metric],
+  local data_objective = objective(t.f_exp, t.data)
+  local function full_objective(th) return data_objective(th) + prior_terms(t.prior, th) end
+  local pushes = near.by_prediction_extremes{ params = params1, optimum = r.params, objective = full_objective,
+    value = full_objective(r.params), predicted = predicted, prior = t.prior and function(th) return prior_terms(t.prior, th) end, tolerance = TOLERANCE[metric],
     calibration_modes = M.calibration_modes, validation_modes = M.validation_modes, data = t.data }
   local points, from_calib = {}, 0
   if r.near_optimal and r.near_optimal.points then
