@@ -3,7 +3,8 @@
 # the data generator (its truth model, true means, noise level and seed), runs the study on it
 # (--quick: the verdict steps are those of the full run) and prints the confusion table, the
 # calibrated means against the truth and the solver runs (summarize.lua).
-#   usage: run.sh BUILD_DIR OUT_DIR [ci|full|all] [--check]
+#   usage: [STUDY_ARGS="--max-refinements 1"] run.sh BUILD_DIR OUT_DIR [ci|full|all] [--check]
+# STUDY_ARGS: more options for every study run (CI caps the refinements to bound its time).
 # ci: the two experiments CI runs; full: the other twelve; all: both. Exit 1 when a study does not
 # finish or writes no conclusion; with --check also unless every
 # experiment meets the issue's criteria (summarize.lua says which). The experiments run one after
@@ -35,7 +36,7 @@ while IFS=, read -r id eset truth noise seed rest; do
   # results are moved to the experiment's folder
   rm -f "$out/run/results.json" "$out/run/report.html"
   (cd "$src" && "$smi" --quiet --allow-exec "$fe" --allow-read "$dir" --out "$out/run" \
-     scripts/steering_column.lua --quick --solver "$fe" --data "$dir/tests.csv") > "$dir/study.log" 2>&1 || { echo "experiment $id: the study failed (see $dir/study.log)"; failed=1; }
+     scripts/steering_column.lua --quick --solver "$fe" --data "$dir/tests.csv" ${STUDY_ARGS:-}) > "$dir/study.log" 2>&1 || { echo "experiment $id: the study failed (see $dir/study.log)"; failed=1; }
   mkdir -p "$dir/study"
   for f in results.json report.html; do [ -f "$out/run/$f" ] && mv "$out/run/$f" "$dir/study/"; done
   echo "experiment $id ($truth truth, noise $noise): $(tail -1 "$dir/study.log") [$(( $(date +%s) - start )) s]"
