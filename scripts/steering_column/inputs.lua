@@ -52,37 +52,27 @@ function M.screening_inputs()
   return t
 end
 
--- Unknowns (Table 4 and Table 8): type, bounds of the mean and std, start values.
+-- The initial model's unknowns (Tables 4 and 8): type, bounds of the mean and std {lower, upper,
+-- start}, unit. The unknowns a refinement adds are declared by its candidate
+-- (refinement/candidates.lua), not here.
 local unknown = {
   wheel_cover_rho = { dist = "uniform", mean = { 0.5e-9, 1.5e-9, 1.00e-9 }, std = { 0.08e-9, 0.24e-9, 0.16e-9 }, unit = "t/mm³" },
   column_frame_E = { dist = "normal", mean = { 102500, 307500, 205000 }, std = { 7790, 23370, 15580 }, unit = "MPa" },
   wheel_cover_thickness = { dist = "lognormal", mean = { 2.75, 8.25, 5.5 }, std = { 0.09, 0.26, 0.18 }, unit = "mm" },
   ecu_bracket_thickness = { dist = "lognormal", mean = { 1.6, 4.8, 3.2 }, std = { 0.07, 0.20, 0.14 }, unit = "mm" },
-  airbag_stiffness = { dist = "normal", mean = { 500, 1500, 1000 }, std = { 15.5, 46.5, 31 }, unit = "N/mm" },
 }
 M.unknown = unknown
 
-M.trial1_unknowns = { "wheel_cover_rho", "column_frame_E", "wheel_cover_thickness", "ecu_bracket_thickness" }
-M.trial2_unknowns = { "wheel_cover_rho", "column_frame_E", "wheel_cover_thickness", "ecu_bracket_thickness", "airbag_stiffness" }
+M.initial_unknowns = { "wheel_cover_rho", "column_frame_E", "wheel_cover_thickness", "ecu_bracket_thickness" }
 
---- The Kriging design box of an unknown: every value its distribution can take with a mean and
--- std inside the calibration bounds, up to 3 std (the uniform's half-width √3·std), kept > 0.
-function M.design_box(name)
-  local u = unknown[name]
+--- The Kriging design box of an unknown (spec {dist, mean, std}): every value its distribution
+-- can take with a mean and std inside the calibration bounds, up to 3 std (the uniform's
+-- half-width √3·std), kept > 0.
+function M.design_box(u)
   local reach = (u.dist == "uniform" and math.sqrt(3) or 3) * u.std[2]
   local lo = u.mean[1] - reach
   if lo <= 0 then lo = 0.5 * u.mean[1] end
   return { lo, u.mean[2] + reach }
-end
-
---- smi.calibrate inputs for a list of unknowns: {name = {dist, mean = {lo, hi, start}, std = {...}}}.
-function M.calibration_inputs(names)
-  local t = {}
-  for _, n in ipairs(names) do
-    local u = unknown[n]
-    t[n] = { dist = u.dist, mean = { u.mean[1], u.mean[2], u.mean[3] }, std = { u.std[1], u.std[2], u.std[3] } }
-  end
-  return t
 end
 
 --- Wheel cover mass per unit length relative to nominal: density × the area of the cover tube
@@ -91,21 +81,4 @@ function M.cover_mass_ratio(rho, t)
   local area = function(w) return (12 + w) ^ 2 - 12 ^ 2 end
   return (rho * area(t)) / (M.nominal.wheel_cover_rho * area(M.nominal.wheel_cover_thickness))
 end
-M.cover_mass_tolerance = 0.05 -- relative, one standard deviation of the weighing
-
---- The prior knowledge used by the calibration's first stage (trial.lua): squared
--- deviation of the wheel cover mass from nominal in units of the weighing tolerance, plus
--- lambda × the squared distance of each mean from its initial value in units of its range.
--- th: {["input.mean"] = value, ...}.
-function M.prior_penalty(th, names, lambda)
-  local pen = 0
-  for _, n in ipairs(names) do
-    local u = unknown[n]
-    pen = pen + lambda * ((th[n .. ".mean"] - u.mean[3]) / (u.mean[2] - u.mean[1])) ^ 2
-  end
-  local rho, t = th["wheel_cover_rho.mean"], th["wheel_cover_thickness.mean"]
-  if rho and t then pen = pen + ((M.cover_mass_ratio(rho, t) - 1) / M.cover_mass_tolerance) ^ 2 end
-  return pen
-end
-
 return M

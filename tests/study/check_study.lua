@@ -1,44 +1,21 @@
--- Checks of the reduced steering-column study (scripts/steering_column.lua --quick).
--- arg[1] = its results.json, arg[2] = its report.html.
+-- Checks of the reduced steering-column study (scripts/steering_column.lua --quick) on the
+-- committed data. arg[1] = its results.json, arg[2] = its report.html.
 --
 -- The true values are those of scripts/steering_column/data/make_data.cpp (the study itself
--- never reads them): wheel level wheel_cover_rho U(1.25e-9, sd 0.12e-9), wheel_cover_thickness
--- LN(4.6, 0.15), airbag_stiffness N(850, 25); column level column_frame_E N(240000, 12000),
--- ecu_bracket_thickness LN(3.9, 0.10); model B; 0.3 % noise per impact, mean of 5.
+-- never reads them): the spring airbag is the truth; airbag_stiffness N(850, 25), column_frame_E
+-- N(240000, 12000), ecu_bracket_thickness LN(3.9, 0.10), wheel_cover_rho U(1.25e-9, sd 0.12e-9),
+-- wheel_cover_thickness LN(4.6, 0.15); 0.3 % noise per impact, mean of 5.
 --
--- What is asserted, and why these tolerances:
--- * The paper's course of events: trial 1 fails the u-pooling check on mode 4, the decision
---   matrix picks the airbag modelling, trial 2 passes modes 1, 2 and 4. Modes 1 and 4 leave
---   combinations of the means undetermined (below); the mode-2 pass rests on the calibration's
---   prior that the wheel cover's mass is known from weighing (scripts/steering_column/inputs.lua),
---   and the test also checks that the study reports that dependence.
--- * Identifiable quantities only. Modes 1 and 4 cannot separate the five means: mode 1 is
---   driven by column_frame_E and by the ECU bracket (whose plate stiffness is E·t³), the wheel
---   cover's density and thickness act alike, so those means trade off along valleys of the
---   objective. Identifiable are:
---   - airbag_stiffness (mode 4 alone moves with it): within 10 % of 850. The 9 data hold only 3
---     wheels, whose sample mean of N(850, 25) scatters by 25/√3 ≈ 14 N/mm; the Kriging test
---     RMSE of mode 4 (≈ 0.1-0.3 Hz at dmode4/dk ≈ 0.013 Hz per N/mm) adds up to ≈ 25 N/mm; 10 %
---     (85 N/mm) is about 3 of these combined deviations.
---   - the ECU bracket's bending stiffness E·t³ of the calibrated means: within 20 % of
---     240000·3.9³. The column modulus also stiffens the jacket, so part of the bracket's share
---     can move to E; 20 % allows that trade without letting the calibration miss mode 1.
---   - the calibrated model's predicted mode means (Kriging, 5000 samples) within 0.5 Hz of the
---     data means (data std ≈ 0.5 Hz; 9 data give a standard error ≈ 0.17 Hz, plus the Kriging
---     RMSE ≈ 0.2 Hz), for modes 1, 4 and the unseen mode 2;
---   - predicted stds within a factor 2 of the data stds: the std lower bounds of Table 8
---     (column_frame_E ≥ 7790 MPa alone gives ≈ 0.5 Hz in mode 1) and the KDE smoothing keep the
---     predicted spread above the data's, and 9 data estimate a std to ±25 % only.
--- * Every calibrated mean near its true value, with tolerances stated per parameter. The 9 data
---   hold 3 wheels and 3 columns, so the truth is only seen through 3-specimen sample means, which
---   scatter by sd/√3: column_frame_E 2.9 %, airbag 1.7 %, ECU bracket 1.5 %, cover density 5.5 %,
---   cover thickness 1.9 %.
---   - column_frame_E, ecu_bracket_thickness, airbag_stiffness: within 10 % (about twice the
---     sampling scatter plus the Kriging error and the E-bracket trade-off bounded by E·t³ below);
---   - the wheel cover's mass (density × tube area, inputs.cover_mass_ratio): within 10 % of the
---     truth's. Density and thickness act on the modes almost only through that mass, so each
---     alone is weakly determined: within 25 % (their ranges are ±50 % of nominal; seen in
---     development: +20 % / −16 % when SLSQP is allowed 800 evaluations along that valley).
+-- What is asserted: the paper's course of events comes out of the study's loop (nothing in the
+-- script names the trials): trial 1 (initial model, rigid airbag) invalid; the decision matrix,
+-- with correctness over every calibrated response, picks the airbag modelling; the last trial is
+-- that candidate's declared revision (spring airbag, airbag_stiffness a fifth unknown), valid on
+-- the calibrated modes 1 and 4, and mode 2 valid or inconclusive, never invalid; the top-level
+-- `conclusion` of results.json has the issue's schema; no prior is used by default. The airbag
+-- stiffness is identifiable from mode 4: within 15 % of 850 (the issue's criterion; 3 wheels
+-- scatter the sample mean by 25/√3 ≈ 14 N/mm and the Kriging error adds up to ≈ 25 N/mm). The
+-- other four means are not individually determined by modes 1 and 4 without a prior, so they
+-- are not asserted; the calibrated model's predicted means of the calibrated modes are (0.5 Hz).
 local T = require "smi.testing"
 local json = require "smi.report.json"
 
@@ -51,68 +28,89 @@ end
 
 local R = json.lua_decode(read(arg[1]))
 local S = R.steps
+local C = R.conclusion
 local data = S.data.result
+local VERDICTS = { valid = true, invalid = true, inconclusive = true }
 
-T.case("every step ran", function()
-  for _, name in ipairs(R.order) do T.eq(S[name].status, "ok", name) end
-  T.eq(#R.order, 11, "eleven steps")
-end)
-
-T.case("trial 1 fails on mode 4 and holds mode 1", function()
-  local v = S.trial1_validation.result.modes
-  T.eq(v.mode4.pass, false, "mode 4 invalid")
-  T.truthy(v.mode4.metric > v.mode4.threshold, "U above the threshold")
-  T.near(v.mode4.threshold, 0.1927, 2e-3, "exact n = 9 threshold (spec §8.3)")
-  T.eq(v.mode1.pass, true, "mode 1 valid after calibration")
-  -- the rigid airbag cannot reach the measured wheel-pitch frequency
-  T.truthy(v.mode4.predicted_mean - smi.vec(data.mode4):mean() > 5, "mode 4 predicted too high by > 5 Hz")
-end)
-
-T.case("refinement picks the airbag modelling", function()
-  local r = S.refinement.result
-  T.eq(r.best_name, "airbag modelling type")
-  T.eq(r.picks_airbag_modelling, true)
-  -- eq. (13) on mode 4 with nominal inputs: spring 72.67 Hz (spec §11) vs rigid 80.23 Hz
-  T.near(r.candidates[3].prediction.mode4, 72.6656, 1e-3, "revised model run at the initial means (spec §11 model B)")
-  T.near(r.candidates[1].prediction.mode4, 80.2333, 1e-3, "candidate 1 runs as model A at the initial means (spec §11)")
-  T.truthy(r.candidates[3].magnitudes[1] < r.candidates[2].magnitudes[1], "airbag spring is the most correct")
-end)
-
-T.case("trial 2 passes all three modes; the study says what mode 2 rests on", function()
-  local v = S.trial2_validation.result.modes
-  for _, m in ipairs{ "mode1", "mode2", "mode4" } do
-    T.eq(v[m].pass, true, m)
-    T.truthy(v[m].metric <= v[m].threshold, m .. " U below threshold")
+T.case("every step ran or says why it did not", function()
+  for _, name in ipairs(R.order) do
+    T.eq(S[name].status, "ok", name)
+    if S[name].result.skipped then T.truthy(type(S[name].result.reason) == "string", name .. " gives its reason") end
   end
-  T.eq(S.summary.result.trial2_passes_all, true, "summary")
-  T.eq(S.summary.result.paper_reproduced, true, "the paper's course of events")
-  -- modes 1 and 4 leave most of mode 2's sensitivity unconstrained: the report must say so
-  T.truthy(S.trial2_calibration.result.sensitivity.mode2_unconstrained_share > 0.2, "mode 2 flagged as not determined by modes 1 and 4")
-  -- the weighing prior holds: the calibrated wheel cover mass is within 3 sigma (15 %) of nominal
-  T.near(S.trial2_calibration.result.cover_mass_ratio, 1, 0.15, "cover mass ratio")
 end)
 
-T.case("trial 2: calibrated means and identifiable quantities near the truth", function()
-  local p = {}
-  for _, q in ipairs(S.trial2_calibration.result.params) do p[q.input] = q end
-  local truth = { wheel_cover_rho = 1.25e-9, wheel_cover_thickness = 4.6, airbag_stiffness = 850,
-                  column_frame_E = 240000, ecu_bracket_thickness = 3.9 }
-  local tol = { wheel_cover_rho = 0.25, wheel_cover_thickness = 0.25, airbag_stiffness = 0.10,
-                column_frame_E = 0.10, ecu_bracket_thickness = 0.10 }
-  for name, v in pairs(truth) do
-    T.rel(p[name].mean, v, tol[name], ("%s mean within %d %% of the truth"):format(name, tol[name] * 100))
+T.case("conclusion: the issue's schema", function()
+  T.truthy(type(C) == "table", "top-level conclusion")
+  T.truthy(VERDICTS[C.verdict], "verdict " .. tostring(C.verdict))
+  T.truthy(type(C.refinements) == "table" and type(C.trials) == "table" and #C.trials >= 1, "refinements and trials")
+  T.eq(#C.trials, #C.refinements + 1, "one refinement between consecutive trials")
+  for i, t in ipairs(C.trials) do
+    T.truthy(t.airbag == "rigid" or t.airbag == "spring", "trial " .. i .. " airbag")
+    T.truthy(type(t.candidate) == "string" and type(t.unknowns) == "table" and #t.unknowns >= 4, "trial " .. i .. " candidate and unknowns")
+    for _, m in ipairs{ "mode1", "mode2", "mode4" } do T.truthy(VERDICTS[t.modes[m]], ("trial %d %s"):format(i, m)) end
+    T.truthy(type(t.calibration.converged) == "boolean" and type(t.calibration.status) == "string", "calibration status")
+    for _, n in ipairs(t.unknowns) do
+      T.truthy(type(t.calibration.means[n]) == "number" and type(t.calibration.stds[n]) == "number", "mean and std of " .. n)
+    end
   end
-  local area = function(w) return (12 + w) ^ 2 - 12 ^ 2 end  -- as scripts/steering_column/inputs.lua
-  T.rel(p.wheel_cover_rho.mean * area(p.wheel_cover_thickness.mean), truth.wheel_cover_rho * area(truth.wheel_cover_thickness),
-        0.10, "wheel cover mass within 10 % of the truth's")
-  local ei = p.column_frame_E.mean * p.ecu_bracket_thickness.mean ^ 3
-  T.rel(ei, 240000 * 3.9 ^ 3, 0.20, "ECU bracket stiffness E·t³")
-  local v = S.trial2_validation.result.modes
-  for _, m in ipairs{ "mode1", "mode2", "mode4" } do
-    local d = smi.vec(data[m])
-    T.near(v[m].predicted_mean, d:mean(), 0.5, m .. " predicted mean vs data")
-    local ratio = v[m].predicted_std / d:std()
-    T.truthy(ratio > 0.5 and ratio < 2, ("%s predicted std / data std = %.3f"):format(m, ratio))
+end)
+
+T.case("the paper's course of events comes out of the loop", function()
+  local t1, last = C.trials[1], C.trials[#C.trials]
+  T.eq(t1.candidate, "initial")
+  T.eq(t1.airbag, "rigid")
+  T.truthy(t1.modes.mode1 == "invalid" or t1.modes.mode4 == "invalid", "trial 1 invalid on a calibrated mode")
+  T.eq(C.refinements[1], "airbag modelling type", "refinement picks the airbag modelling")
+  T.eq(last.candidate, "airbag modelling type")
+  T.eq(last.airbag, "spring")
+  T.eq(last.unknowns[#last.unknowns], "airbag_stiffness", "the candidate's declared new unknown")
+  T.eq(last.modes.mode1, "valid")
+  T.eq(last.modes.mode4, "valid")
+  T.truthy(last.modes.mode2 ~= "invalid", "mode 2 valid or inconclusive, never invalid: " .. last.modes.mode2)
+  T.truthy(C.verdict == "valid" or C.verdict == "inconclusive", "conclusion " .. C.verdict)
+  T.rel(last.calibration.means.airbag_stiffness, 850, 0.15, "airbag stiffness within 15 % of the truth")
+end)
+
+T.case("refinement: correctness over every calibrated response; the revised models at the initial means", function()
+  local r = S.refinement1.result
+  T.eq(r.matrix.responses[1], "mode1")
+  T.eq(r.matrix.responses[2], "mode4")
+  T.eq(r.chosen, "airbag modelling type")
+  local by = {}
+  for _, c in ipairs(r.matrix.candidates) do by[c.name] = c end
+  -- spec §11: model B (spring, nominal) mode 4 72.6656 Hz, model A (rigid) 80.2333 Hz
+  T.near(by["airbag modelling type"].prediction.mode4, 72.6656, 1e-3, "spring airbag at the initial means")
+  T.near(by["material properties per part"].prediction.mode4, 80.2333, 1e-3, "materials candidate runs as model A")
+  -- eq. (13) averaged over modes 1 and 4
+  local obs = r.matrix.observed
+  local c = by["airbag modelling type"]
+  T.near(c.magnitudes[1], 0.5 * (math.abs(obs.mode1 - c.prediction.mode1) / obs.mode1 + math.abs(obs.mode4 - c.prediction.mode4) / obs.mode4), 1e-12, "correctness")
+  T.truthy(type(r.why) == "string" and r.why:find("correctness", 1, true) ~= nil, "the report says why it won")
+end)
+
+T.case("verdicts: decisive on calibrated modes, mode 2 from the near-optimal range", function()
+  for k = 1, #C.trials do
+    local v = S["trial" .. k .. "_validation"].result.modes
+    for _, m in ipairs{ "mode1", "mode4" } do
+      T.eq(v[m].verdict, v[m].metric <= v[m].threshold and "valid" or "invalid", ("trial %d %s"):format(k, m))
+    end
+    local r = v.mode2.range
+    T.truthy(r.points >= 2, "near-optimal points")
+    T.truthy(r.lower <= v.mode2.metric + 0.02 and r.upper >= v.mode2.metric - 0.02, "the optimum's metric lies in the range (5000 vs 20000 samples)")
+    local expect = r.upper <= r.threshold and "valid" or (r.lower > r.threshold and "invalid" or "inconclusive")
+    T.eq(v.mode2.verdict, expect, ("trial %d mode 2 from its range [%.3f, %.3f]"):format(k, r.lower, r.upper))
+  end
+end)
+
+T.case("no knowledge the analyst did not give", function()
+  T.eq(#S.summary.result.priors, 0, "no prior by default")
+  for k = 1, #C.trials do T.eq(S["trial" .. k .. "_calibration"].result.prior_part, nil, "no prior part in the objective") end
+end)
+
+T.case("the calibrated model predicts the calibrated modes", function()
+  local v = S["trial" .. #C.trials .. "_validation"].result.modes
+  for _, m in ipairs{ "mode1", "mode4" } do
+    T.near(v[m].predicted_mean, smi.vec(data[m]):mean(), 0.5, m .. " predicted mean vs data")
   end
 end)
 
@@ -120,19 +118,19 @@ T.case("screening and surrogates", function()
   local top = S.screening.result.modes.mode1.top
   T.eq(top[1], "column_frame_E", "spec §12: column_frame_E dominates mode 1")
   T.eq(top[2], "ecu_bracket_thickness", "spec §12: then the ECU bracket")
-  for _, t in ipairs{ "trial1", "trial2" } do
+  for k = 1, #C.trials do
     for _, m in ipairs{ "mode1", "mode2", "mode4" } do
-      T.truthy(S[t .. "_surrogate"].result.diagnostics[m].loo_q2 > 0.98, t .. " " .. m .. " LOO Q2")
+      T.truthy(S["trial" .. k .. "_surrogate"].result.diagnostics[m].loo_q2 > 0.98, ("trial %d %s LOO Q2"):format(k, m))
     end
   end
 end)
 
-T.case("report: one self-contained file with the study's figures and verdicts", function()
+T.case("report: one self-contained file with the study's figures and its conclusion", function()
   local html = read(arg[2])
   T.truthy(not html:find("<script[^>]-src=") and not html:find("<link[^>]-href=\"http"), "no external resources")
   local n = select(2, html:gsub("<svg", ""))
   T.truthy(n >= 20, "figures: " .. n)
-  T.truthy(html:find("Trial 2 passes modes 1, 2 and 4", 1, true) ~= nil, "summary verdict")
+  T.truthy(html:find("Conclusion: the model is " .. C.verdict, 1, true) ~= nil, "conclusion verdict")
 end)
 
 T.finish()

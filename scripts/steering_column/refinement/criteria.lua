@@ -1,8 +1,9 @@
 --- The weighted decision matrix of the steering-column study (Son et al. 2020, §4.1.5, Table 6;
 -- Oh et al. 2016): criteria, weights and magnitude functions, smaller magnitude = better.
 --   correctness      eq. (13): |E[y_exp] − y_pre(x̄)| / E[y_exp] of the revised model run at the
---                    mean x̄ of the initial unknowns, averaged over the responses that failed
---                    validation (mode 4 in trial 1)
+--                    mean x̄ of the initial unknowns, averaged over every response used in
+--                    calibration (modes 1 and 4), so the score does not depend on which of
+--                    them the calibration happened to give up
 --   robustness       number of new input variables of the revision
 --   computational    measured wall time of one run of the revised model (minutes)
 --   implementation   the analyst's estimate of the time to implement the revision (minutes)
@@ -14,7 +15,7 @@ local M = {}
 M.weights = { correctness = 0.4, robustness = 0.2, computational = 0.2, implementation = 0.2 }
 
 --- Criteria for smi.refine.decision_matrix. opts.observed = {response = E[y_exp]};
--- opts.responses = the responses that failed; opts.run(candidate) -> {response = value}, seconds.
+-- opts.responses = the responses used in calibration; opts.run(candidate) -> {response = value}, seconds.
 -- Runs are cached per candidate so each is run once.
 function M.build(opts)
   local cache = {}

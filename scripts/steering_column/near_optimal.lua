@@ -1,0 +1,116 @@
+--- The study's stand-in for smi.calibrate's r.near_optimal (CONTRACT.md, calibration issue 11
+-- item 3): calibrations that fit the calibration responses as well as the optimum, within a
+-- tolerance, chosen to show how far a validation response's prediction can move among them.
+-- trial.lua uses it only when smi.calibrate does not return r.near_optimal itself.
+--
+-- How: for each summary of each validation response (mean, std of mode 2, in units of the data's
+-- std) and each way (up, down), and once towards the data's mean and std of the validation
+-- response, a calibration from the optimum (smi.calibrate, SLSQP) pushes the summaries while a
+-- quadratic penalty holds the calibration responses' summaries (means and stds of modes 1 and 4)
+-- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end point, and the points at 1/3 and 2/3 of the way
+-- to it, are kept when the calibration objective (the study's PR or log-likelihood) there is
+-- within `tolerance` of the optimum's. These are calibrations from several starts' worth of
+-- directions, each checked against the real objective: the range of the validation metric over
+-- them is what the calibration data leave open. Cost: propagations only (no KDE) in the pushes,
+-- one objective evaluation per point checked.
+local M = {}
+
+--- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
+-- optimum, with the analyst's prior terms if any), objective(th) -> value (the same), predicted(th, modes) -> {mode = vec},
+-- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
+-- prior(th) -> the analyst's prior terms (nil: none), held by the pushes like the summaries.
+-- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
+function M.by_prediction_extremes(t)
+  local all = {}
+  for _, m in ipairs(t.calibration_modes) do all[#all + 1] = m end
+  for _, m in ipairs(t.validation_modes) do all[#all + 1] = m end
+  local function summaries(th)
+    local Y = t.predicted(th, all)
+    local s = {}
+    for _, m in ipairs(all) do
+      local sd = t.data[m]:std()
+      s[#s + 1] = Y[m]:mean() / sd
+      s[#s + 1] = Y[m]:std() / sd
+    end
+    return s
+  end
+  local nc = 2 * #t.calibration_modes
+  local s0 = summaries(t.optimum)
+  local points, objectives = { t.optimum }, { t.value }
+  local function between(a, b, f)
+    local th = {}
+    for _, q in ipairs(t.params) do th[q.name] = a[q.name] + f * (b[q.name] - a[q.name]) end
+    return th
+  end
+  local function keep(th)
+    local f = t.objective(th)
+    if f - t.value <= t.tolerance then
+      points[#points + 1], objectives[#objectives + 1] = th, f
+      return true
+    end
+    return false
+  end
+  -- The pushes: each validation summary up and down (sign = ±1, summary r), and one towards the
+  -- data (sign = 0): all validation summaries at the data's mean and std, i.e. is there a
+  -- calibration fitting modes 1 and 4 as well that predicts mode 2 as measured?
+  local plan = {}
+  for r = nc + 1, #s0 do
+    plan[#plan + 1] = { r, 1 }
+    plan[#plan + 1] = { r, -1 }
+  end
+  plan[#plan + 1] = { nil, 0 }
+  local target = {}
+  for i, m in ipairs(t.validation_modes) do
+    target[nc + 2 * i - 1] = t.data[m]:mean() / t.data[m]:std()
+    target[nc + 2 * i] = 1
+  end
+  local pushes = {}
+  for _, step in ipairs(plan) do
+    local r, sign = step[1], step[2]
+    do
+      local start, reached, kept, status, evals = t.optimum, nil, false, nil, 0
+      for _, weight in ipairs{ 100, 1000 } do
+        local params = {}
+        for _, q in ipairs(t.params) do params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
+        local res = smi.calibrate{
+          parameters = params, method = "slsqp", maxeval = t.maxeval or 1000, identifiability = false,
+          objective = function(th)
+            local s = summaries(th)
+            local pen = 0
+            for a = 1, nc do pen = pen + (s[a] - s0[a]) ^ 2 end
+            if t.prior then pen = pen + t.prior(th) end -- the analyst's prior holds too
+            if sign == 0 then
+              local miss = 0
+              for q = nc + 1, #s do miss = miss + (s[q] - target[q]) ^ 2 end
+              return miss + weight * pen
+            end
+            return -sign * (s[r] - s0[r]) + weight * pen
+          end,
+        }
+        reached, status, evals = res.params, res.status, evals + res.evaluations
+        if keep(reached) then kept = true; break end
+        start = reached
+      end
+      if kept then
+        for _, f in ipairs{ 1 / 3, 2 / 3 } do keep(between(t.optimum, reached, f)) end
+      end
+      -- the push in scaled parameters (0..1 over the bounds): what moved, for the report
+      local loadings, norm = {}, 0
+      for _, q in ipairs(t.params) do
+        local d = (reached[q.name] - t.optimum[q.name]) / (q.upper - q.lower)
+        loadings[q.name], norm = d, norm + d * d
+      end
+      norm = math.sqrt(norm)
+      if norm > 0 then for k, v in pairs(loadings) do loadings[k] = v / norm end end
+      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ") or all[math.floor((r - 1) / 2) + 1],
+                              summary = sign == 0 and "mean and std" or ((r - nc) % 2 == 1 and "mean" or "std"),
+                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept, status = status, evaluations = evals, loadings = loadings, length = norm }
+    end
+  end
+  -- strongest first: the push that moved the parameters furthest while still fitting
+  table.sort(pushes, function(a, b) return (a.kept and a.length or -1) > (b.kept and b.length or -1) end)
+  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4 held, checked against the objective",
+           tolerance = t.tolerance, points = points, objectives = objectives, directions = pushes }
+end
+
+return M
