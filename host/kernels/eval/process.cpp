@@ -54,9 +54,9 @@ pid_t spawn_process(const SpawnSpec& spec) {
   check(posix_spawnattr_setflags(&a.attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF),
         "posix_spawnattr_setflags");
   check(posix_spawn_file_actions_addopen(&a.actions, 0, "/dev/null", O_RDONLY, 0), "addopen stdin");
-  check(posix_spawn_file_actions_addopen(&a.actions, 1, spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
+  check(posix_spawn_file_actions_addopen(&a.actions, 1, spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644),
         "addopen stdout");
-  check(posix_spawn_file_actions_addopen(&a.actions, 2, spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
+  check(posix_spawn_file_actions_addopen(&a.actions, 2, spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644),
         "addopen stderr");
   // Descriptors the host holds (files a script opened, the store) are not the solver's business.
   check(posix_spawn_file_actions_addclosefrom_np(&a.actions, 3), "addclosefrom");
