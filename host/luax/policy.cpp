@@ -122,7 +122,7 @@ fs::path Policy::ensure_out_dir() const {
   return root;
 }
 
-pathwalk::Walk Policy::walk_write(const std::string& path) const {
+pathwalk::Walk Policy::walk_write(const std::string& path, const std::string& named) const {
   // The output folder is created on demand: on the first write under it. Deciding that on the
   // text of the path only creates a folder the policy allows anyway.
   const std::string root = !out_root.empty() ? out_root.string()
@@ -149,11 +149,11 @@ pathwalk::Walk Policy::walk_write(const std::string& path) const {
           "writing '{}' (resolved to '{}') is not allowed: scripts write only under the output folder "
           "(--out, now {}; smi.out(\"name\") gives a path there) and --allow-write paths ({}); run with "
           "--allow-write {} to allow it",
-          path, shown, out_dir.string(), list_roots(write_roots), parent_of(shown)));
+          named, shown, out_dir.string(), list_roots(write_roots), parent_of(shown)));
     }
   }
-  if (w.error) os_error(path, w.error);
-  if (w.leaf.empty()) os_error(path, EISDIR);
+  if (w.error) os_error(named, w.error);
+  if (w.leaf.empty()) os_error(named, EISDIR);
   return w;
 }
 
@@ -161,7 +161,7 @@ CheckedFile Policy::open_write(const std::string& path, int oflags) const {
   std::string p = path;
   int links = 0;
   for (int attempt = 0; attempt < kRetries + 40; ++attempt) {
-    pathwalk::Walk w = walk_write(p);
+    pathwalk::Walk w = walk_write(p, path);
     if (w.exists && S_ISLNK(w.st.st_mode)) {
       // A symlink as last component is resolved component-wise like any other, then checked
       // again: its target must lie under a write root too.

@@ -78,7 +78,9 @@ struct Policy {
   CheckedFile open_write(const std::string& path, int oflags) const;
   /// The checked folder of an entry that is written without being opened (os.remove,
   /// os.rename, folders made by the evaluator): the last component is not followed.
-  pathwalk::Walk walk_write(const std::string& path) const;
+  pathwalk::Walk walk_write(const std::string& path) const { return walk_write(path, path); }
+  /// The same, naming `shown` (what the script wrote) in messages.
+  pathwalk::Walk walk_write(const std::string& path, const std::string& shown) const;
   /// A folder under a write root, made if missing; its canonical path (for the evaluator, which
   /// makes its run folders below it refusing symlinks, see eval/work_dir.hpp).
   std::string checked_write_dir(const std::string& path) const;
