@@ -86,12 +86,14 @@ bool within(const std::string& path, const std::string& root) {
 Walk walk(const std::string& path, bool follow_last) {
   Walk w;
   std::deque<std::string> todo;
-  if (path.empty() || path.size() > kMaxPathText) {
-    w.error = path.empty() ? ENOENT : ENAMETOOLONG;
+  if (path.empty() || path.size() > kMaxPathText || path.find('\0') != std::string::npos) {
+    // (a NUL would end the name the kernel sees while the walk's text went on)
+    w.error = path.empty() ? ENOENT : path.size() > kMaxPathText ? ENAMETOOLONG : EINVAL;
     w.where = path;
     return w;
   }
   bool must_be_dir = path.back() == '/';
+  if (must_be_dir) follow_last = true;  // as the kernel: "link/" names what the link points to
   if (path[0] != '/') {
     char buf[PATH_MAX];
     if (!::getcwd(buf, sizeof buf)) {
