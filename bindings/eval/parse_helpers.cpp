@@ -1,6 +1,7 @@
 // Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06. A parser
 // receives them bound to its run's work directory (h.f06("column.f06")); smi.model.parse holds
 // the same functions for any allowed path. Every read goes through the sandbox.
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
@@ -51,7 +52,8 @@ int h_exists(lua_State* L) {
     try {
       (void)lua::policy(L).open_read(p);  // a denial raises; a readable regular file exists
       exists = true;
-    } catch (const FileError&) {
+    } catch (const FileError& e) {
+      exists = e.err == EISDIR || e.err == EINVAL;  // a folder or another non-regular entry exists too
     }
     return 0;
   });

@@ -65,4 +65,11 @@ ln -s /dev/zero libs/h/zero
 run "provenance of a link to /dev/zero" 0 timeout 10 "$SMI" --lib libs/h -e 'print(smi.provenance().libraries[1].files["zero"])'
 has_out "symlink:"
 
+# the manifest itself: a symlink out of the library is not read (a FIFO or device manifest is
+# not taken for a library at all, before and after)
+printf 'name = "stolen"\nversion = "1.0.0"\n' > elsewhere/manifest.lua
+mkdir -p libs/j && ln -s "$WORK/elsewhere/manifest.lua" libs/j/smi-lib.lua
+run "manifest linked out of the library" 1 "$SMI" --lib libs/j -e 'print(1)'
+has_err "not a regular file inside the library folder"
+
 finish
