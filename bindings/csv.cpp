@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <fmt/format.h>
 #include <set>
@@ -192,12 +193,8 @@ int csv_read(lua_State* L) {
   lua_pop(L, 1);
   return lua::protect(L, "smi.csv.read", [&] {
     const char sep = sep_option(opts);
-    const auto resolved = lua::policy(L).check_read(path, "smi.csv.read");
-    std::ifstream in(resolved, std::ios::binary);
-    if (!in) throw Error(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    const Table t = parse_table(ss.str(), sep, path, strings);
+    const CheckedFile f = lua::policy(L).open_read(path);
+    const Table t = parse_table(read_checked(f, path), sep, path, strings);
     lua_createtable(L, 0, static_cast<int>(t.header.size()));  // stack: [..., columns]
     for (std::size_t j = 0; j < t.header.size(); ++j) {
       if (const auto* num = std::get_if<std::vector<double>>(&t.columns[j])) {
@@ -330,17 +327,16 @@ int csv_write(lua_State* L) {
     cols.push_back(std::move(cells));
   }
   return lua::protect(L, "smi.csv.write", [&] {
-    const auto resolved = lua::policy(L).check_write(path, "smi.csv.write");
-    std::ofstream out(resolved, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(fmt::format("cannot open '{}' for writing: {}", path, std::strerror(errno)));
+    std::ostringstream out;
     for (std::size_t j = 0; j < header.size(); ++j) out << (j ? std::string(1, sep) : "") << quote_cell(header[j], sep);
     out << '\n';
     for (std::size_t r = 0; r < cols.front().size(); ++r) {
       for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? std::string(1, sep) : "") << cols[j][r];
       out << '\n';
     }
-    out.close();
-    if (!out) throw Error(fmt::format("writing '{}' failed", path));
+    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    if (!pathwalk::write_all(f.fd.get(), out.str()))
+      throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
   });
 }

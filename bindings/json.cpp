@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
@@ -492,12 +493,9 @@ int json_write(lua_State* L) {
   return lua::protect(L, "smi.json.write", [&] {
     std::string s = encode(L, 2, indent);
     s += '\n';
-    const auto resolved = lua::policy(L).check_write(path, "smi.json.write");
-    std::ofstream out(resolved, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(fmt::format("cannot open '{}' for writing: {}", path, std::strerror(errno)));
-    out << s;
-    out.close();
-    if (!out) throw Error(fmt::format("writing '{}' failed", path));
+    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    if (!pathwalk::write_all(f.fd.get(), s))
+      throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
   });
 }
@@ -505,12 +503,8 @@ int json_write(lua_State* L) {
 int json_read(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
   return lua::protect(L, "smi.json.read", [&] {
-    const auto resolved = lua::policy(L).check_read(path, "smi.json.read");
-    std::ifstream in(resolved, std::ios::binary);
-    if (!in) throw Error(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
+    const CheckedFile f = lua::policy(L).open_read(path);
+    const std::string text = read_checked(f, path);
     Decoder(L, text, path).document();
     return 1;
   });

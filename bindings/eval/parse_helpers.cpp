@@ -1,7 +1,10 @@
 // Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06. A parser
 // receives them bound to its run's work directory (h.f06("column.f06")); smi.model.parse holds
 // the same functions for any allowed path. Every read goes through the sandbox.
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "eval/f06.hpp"
 #include "eval/text_parsers.hpp"
@@ -14,59 +17,73 @@ namespace {
 
 namespace se = smi::eval;
 
-/// The file argument resolved against the bound directory (upvalue 1, "" for none), checked
-/// for reading. Stack: [file, ...].
-std::string path_arg(lua_State* L, const char* fname) {
+/// The file argument joined to the bound directory (upvalue 1, "" for none). Stack: [file, ...].
+std::string path_arg(lua_State* L) {
   const char* file = luaL_checkstring(L, 1);
   const char* dir = lua_tostring(L, lua_upvalueindex(1));
   std::string p = file;
   if (dir && *dir && !std::filesystem::path(p).is_absolute()) p = (std::filesystem::path(dir) / p).string();
-  std::string resolved;
-  lua::protect(L, fname, [&] {
-    resolved = lua::policy(L).check_read(p, fname).string();
-    return 0;
-  });
-  return resolved;
+  return p;
+}
+
+/// The text of an output file, opened through the sandbox (what is read is what was checked).
+/// A missing file is a parse failure of that run, named as such.
+std::string read_output(lua_State* L, const std::string& p) {
+  try {
+    return read_checked(lua::policy(L).open_read(p), p);
+  } catch (const FileError& e) {
+    throw se::ParseError(fmt::format("output file '{}' is missing or unreadable: {}", p, std::strerror(e.err)));
+  }
 }
 
 int h_read(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.read");
+  const std::string p = path_arg(L);
   return lua::protect(L, "smi.model.parse.read", [&] {
-    const std::string t = se::read_text_file(p);
+    const std::string t = read_output(L, p);
     lua_pushlstring(L, t.data(), t.size());
     return 1;
   });
 }
 
 int h_exists(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.exists");
-  lua_pushboolean(L, std::filesystem::exists(p));
+  const std::string p = path_arg(L);
+  bool exists = false;
+  lua::protect(L, "smi.model.parse.exists", [&] {
+    try {
+      (void)lua::policy(L).open_read(p);  // a denial raises; a readable regular file exists
+      exists = true;
+    } catch (const FileError& e) {
+      exists = e.err == EISDIR || e.err == EINVAL;  // a folder or another non-regular entry exists too
+    }
+    return 0;
+  });
+  lua_pushboolean(L, exists);
   return 1;
 }
 
 int h_regex(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.regex");
+  const std::string p = path_arg(L);
   const std::string pattern = luaL_checkstring(L, 2);
   return lua::protect(L, "smi.model.parse.regex", [&] {
-    lua_pushnumber(L, se::regex_number(se::read_text_file(p), pattern, p));
+    lua_pushnumber(L, se::regex_number(read_output(L, p), pattern, p));
     return 1;
   });
 }
 
 int h_regex_all(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.regex_all");
+  const std::string p = path_arg(L);
   const std::string pattern = luaL_checkstring(L, 2);
   return lua::protect(L, "smi.model.parse.regex_all", [&] {
-    lua::push_vec(L, se::regex_numbers(se::read_text_file(p), pattern, p));
+    lua::push_vec(L, se::regex_numbers(read_output(L, p), pattern, p));
     return 1;
   });
 }
 
 int h_csv(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.csv");
+  const std::string p = path_arg(L);
   const std::string column = luaL_checkstring(L, 2);
   return lua::protect(L, "smi.model.parse.csv", [&] {
-    lua::push_vec(L, se::csv_column(se::read_text_file(p), column, p));
+    lua::push_vec(L, se::csv_column(read_output(L, p), column, p));
     return 1;
   });
 }
@@ -75,9 +92,9 @@ int h_csv(lua_State* L) {
 ///   direction = {...} (per label row), labels = {{mode, cycles, direction, paper, participation}},
 ///   paper = {[n] = {mode, direction, hz}}, paper_hz = smi.vec (paper modes 1..k in order)}
 int h_f06(lua_State* L) {
-  const std::string p = path_arg(L, "smi.model.parse.f06");
+  const std::string p = path_arg(L);
   return lua::protect(L, "smi.model.parse.f06", [&] {
-    const se::F06Result r = se::parse_f06(se::read_text_file(p), p);
+    const se::F06Result r = se::parse_f06(read_output(L, p), p);
     const auto n = static_cast<Eigen::Index>(r.eigen.size());
     Eigen::MatrixXd cols(n, 7);
     for (Eigen::Index i = 0; i < n; ++i) {

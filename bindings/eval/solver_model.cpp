@@ -136,18 +136,26 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     c.program_name = argv[0];
     c.program = pol.check_exec(argv[0], fname).string();
     c.args.assign(argv.begin() + 1, argv.end());
-    for (const auto& f : files) c.files.push_back(pol.check_read(f, fname).string());
-    if (!template_file.empty())
-      c.deck = std::make_shared<se::DeckTemplate>(se::DeckTemplate::from_file(pol.check_read(template_file, fname).string()));
-    else if (!batch)
+    // Extra files and the template are opened here, through the sandbox, and used through
+    // those descriptors (hashed and copied by the evaluator): never re-opened by name.
+    for (const auto& f : files) {
+      CheckedFile cf = pol.open_read(f);
+      c.files.push_back(cf.path);
+      c.file_fds.push_back(std::make_shared<const pathwalk::Fd>(std::move(cf.fd)));
+    }
+    if (!template_file.empty()) {
+      const CheckedFile tf = pol.open_read(template_file);
+      c.deck = std::make_shared<se::DeckTemplate>(read_checked(tf, template_file), tf.path);
+    } else if (!batch) {
       c.deck = std::make_shared<se::DeckTemplate>(template_text, "(template_string)");
+    }
     const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
-    c.runs_dir = pol.check_write((out / "runs" / c.name).string(), fname).string();
+    c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
     // Work folders live under --out: one process per output folder keeps them unique.
-    se::lock_output_folder(pol.check_write(out.string(), fname).string());
-    c.store_path = pol.check_write(store.empty() ? (out / "evaluations.sqlite").string() : store, fname).string();
+    se::lock_output_folder(pol.checked_write_dir(out.string()));
+    c.store_path = pol.checked_write_file(store.empty() ? (out / "evaluations.sqlite").string() : store);
     if (!pol.store_path.empty()) {
-      const std::string shared = pol.check_read(pol.store_path, fname).string();
+      const std::string shared = pol.checked_read_file(pol.store_path);
       if (shared != c.store_path) c.shared_store_path = shared;
     }
     return 0;

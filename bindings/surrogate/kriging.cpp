@@ -5,7 +5,11 @@
 //   m:evaluate(X) -> {<output> = vec}                      (the model interface)
 //   fields: theta, psi, sigma2, beta, evaluations, method, trend, corr, nugget, n, inputs,
 //           output, warnings, lower, upper
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fcntl.h>
+#include <fmt/format.h>
 #include <sstream>
 
 #include "luax/luax.hpp"
@@ -127,8 +131,11 @@ int k_save(lua_State* L) {
   KrigingBox& k = self(L);
   const std::string path = luaL_checkstring(L, 2);
   return lua::protect(L, "save", [&] {
-    const auto p = lua::policy(L).check_write(path, "smi.Kriging:save");
-    kriging::save(k.model, p.string(), {k.inputs, k.output});
+    std::ostringstream text;
+    kriging::save(k.model, text, path, {k.inputs, k.output});  // rendered before the file is opened
+    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    if (!pathwalk::write_all(f.fd.get(), text.str()))
+      throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
   });
 }
@@ -136,10 +143,11 @@ int k_save(lua_State* L) {
 int k_load(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
   return lua::protect(L, "smi.kriging.load", [&] {
-    const auto p = lua::policy(L).check_read(path, "smi.kriging.load");
+    const CheckedFile f = lua::policy(L).open_read(path);
+    std::istringstream text(read_checked(f, path));
     KrigingBox box;
     kriging::ModelNames names;
-    box.model = kriging::load(p.string(), &names);
+    box.model = kriging::load(text, path, &names);
     box.inputs = std::move(names.inputs);
     if (!names.output.empty()) box.output = std::move(names.output);
     lua::push_box(L, kKrigingType, std::move(box));

@@ -1,6 +1,12 @@
 #include "luax/policy.hpp"
 
+#include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -17,14 +23,7 @@ fs::path resolve_path(const std::string& path) {
   return r;
 }
 
-bool path_within(const fs::path& path, const fs::path& root) {
-  auto pi = path.begin(), ri = root.begin();
-  for (; ri != root.end(); ++ri, ++pi) {
-    if (ri->empty()) continue;  // trailing separator
-    if (pi == path.end() || *pi != *ri) return false;
-  }
-  return true;
-}
+bool path_within(const fs::path& path, const fs::path& root) { return pathwalk::within(path.string(), root.string()); }
 
 namespace {
 
@@ -34,51 +33,206 @@ std::string list_roots(const std::vector<fs::path>& roots) {
   return s.empty() ? "(none)" : s;
 }
 
+bool under_any(const std::string& canonical, const std::vector<fs::path>& roots) {
+  for (const auto& r : roots)
+    if (pathwalk::within(canonical, r.string())) return true;
+  return false;
+}
+
+std::string parent_of(const std::string& canonical) {
+  const fs::path p(canonical);
+  return p.has_parent_path() ? p.parent_path().string() : canonical;
+}
+
+[[noreturn]] void os_error(const std::string& path, int e) {
+  throw FileError(fmt::format("{}: {}", path, std::strerror(e)), e);
+}
+
+/// Opens the last component of a walk that found an existing, non-symlink entry, for reading:
+/// O_NOFOLLOW relative to the checked folder, and the same inode as the walk saw (a swap after
+/// the walk returns false: the caller walks again).
+bool open_leaf_read(const pathwalk::Walk& w, const std::string& shown, pathwalk::Fd& out) {
+  if (!S_ISREG(w.st.st_mode)) {
+    if (S_ISDIR(w.st.st_mode)) os_error(shown, EISDIR);
+    throw FileError(fmt::format("{}: not a regular file (only regular files are opened in the sandbox)", shown), EINVAL);
+  }
+  const int fd = ::openat(w.dir.get(), w.leaf.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    if (errno == ELOOP || errno == ENOENT || errno == ENXIO) return false;  // changed since the walk
+    os_error(shown, errno);
+  }
+  pathwalk::Fd f(fd);
+  struct stat st;
+  if (::fstat(fd, &st) != 0) os_error(shown, errno);
+  if (st.st_dev != w.st.st_dev || st.st_ino != w.st.st_ino || !S_ISREG(st.st_mode)) return false;
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  out = std::move(f);
+  return true;
+}
+
+constexpr int kRetries = 16;  // walks per open when the file keeps changing under us
+
 }  // namespace
 
-fs::path Policy::check_read(const std::string& path, const char* function) const {
-  const fs::path r = resolve_path(path);
-  if (unrestricted) return r;
-  for (const auto& root : read_roots)
-    if (path_within(r, root)) return r;
-  for (const auto& root : write_roots)
-    if (path_within(r, root)) return r;
-  // The message leaves out `function`: callers raise it through protect(L, function, ...),
-  // which puts the function name in front.
-  (void)function;
-  throw SandboxDenied(fmt::format(
-      "reading '{}' (resolved to '{}') is not allowed: scripts read only under their own folder, "
-      "the library folders and --allow-read paths ({}); run with --allow-read {} to allow it",
-      path, r.string(), list_roots(read_roots), r.parent_path().string()));
+std::string read_checked(const CheckedFile& f, const std::string& shown) {
+  std::string text;
+  if (!pathwalk::read_all(f.fd.get(), text)) os_error(shown, errno);
+  return text;
+}
+
+CheckedFile open_read_within(const std::string& path, const std::vector<fs::path>& roots,
+                             const std::string& denial_hint) {
+  for (int attempt = 0; attempt < kRetries; ++attempt) {
+    pathwalk::Walk w = pathwalk::walk(path, true);
+    const std::string where = w.error ? w.where : w.canonical();
+    if (!under_any(where, roots))
+      throw SandboxDenied(fmt::format("reading '{}' (resolved to '{}') is not allowed: {}", path, where, denial_hint));
+    if (w.error) os_error(path, w.error);
+    if (!w.exists) os_error(path, ENOENT);
+    pathwalk::Fd fd;
+    if (open_leaf_read(w, path, fd)) return {std::move(fd), w.canonical()};
+  }
+  throw FileError(fmt::format("{}: changed while being opened ({} attempts); try again", path, kRetries), EAGAIN);
+}
+
+CheckedFile Policy::open_read(const std::string& path) const {
+  if (unrestricted) {
+    std::vector<fs::path> all{"/"};
+    return open_read_within(path, all, "");
+  }
+  std::vector<fs::path> roots = read_roots;
+  roots.insert(roots.end(), write_roots.begin(), write_roots.end());
+  const std::string resolved = resolve_path(path).string();
+  return open_read_within(
+      path, roots,
+      fmt::format("scripts read only under their own folder, the library folders and --allow-read paths ({}); "
+                  "run with --allow-read {} to allow it",
+                  list_roots(read_roots), parent_of(resolved)));
 }
 
 fs::path Policy::ensure_out_dir() const {
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error(fmt::format("cannot create the output folder '{}': {}", out_dir.string(), ec.message()));
-  return resolve_path(out_dir.string());
+  const std::string root = out_root.empty() ? resolve_path(out_dir.string()).string() : out_root.string();
+  pathwalk::Fd fd = pathwalk::make_dirs_nofollow(root);
+  if (!fd)
+    throw Error(fmt::format("cannot create the output folder '{}' ({}): {}{}", out_dir.string(), root,
+                            std::strerror(errno),
+                            errno == ENOTDIR ? " (a component is a symlink or a file; the output folder is made "
+                                               "without following symlinks)"
+                                             : ""));
+  return root;
 }
 
-fs::path Policy::check_write(const std::string& path, const char* function) const {
-  fs::path r = resolve_path(path);
-  (void)function;  // named by the caller's protect(), see check_read
+pathwalk::Walk Policy::walk_write(const std::string& path, const std::string& named) const {
+  // The output folder is created on demand: on the first write under it. Deciding that on the
+  // text of the path only creates a folder the policy allows anyway.
+  const std::string root = !out_root.empty() ? out_root.string()
+                           : out_dir.empty() ? std::string()
+                                             : resolve_path(out_dir.string()).string();
+  if (!root.empty() && pathwalk::within(resolve_path(path).string(), root)) {
+    struct stat st;
+    if (::lstat(root.c_str(), &st) != 0) ensure_out_dir();
+  }
+  pathwalk::Walk w = pathwalk::walk(path, false);
   if (!unrestricted) {
+    // The entry's folder must lie under a write root (so a root itself cannot be removed or
+    // renamed), or the entry is a root given as a file (--allow-write results.csv).
     bool ok = false;
-    for (const auto& root : write_roots)
-      if (path_within(r, root)) ok = true;
-    if (!ok)
+    if (w.error)
+      ok = under_any(w.where, write_roots);
+    else if (!w.leaf.empty())
+      ok = under_any(w.dir_path, write_roots) ||
+           (!(w.exists && S_ISDIR(w.st.st_mode)) &&
+            std::any_of(write_roots.begin(), write_roots.end(), [&](const fs::path& r) { return r == w.canonical(); }));
+    if (!ok) {
+      const std::string shown = w.error ? w.where : w.canonical();
       throw SandboxDenied(fmt::format(
           "writing '{}' (resolved to '{}') is not allowed: scripts write only under the output folder "
           "(--out, now {}; smi.out(\"name\") gives a path there) and --allow-write paths ({}); run with "
           "--allow-write {} to allow it",
-          path, r.string(), out_dir.string(), list_roots(write_roots), r.parent_path().string()));
+          named, shown, out_dir.string(), list_roots(write_roots), parent_of(shown)));
+    }
   }
-  // The output folder is created on demand: on the first write under it.
-  if (!out_dir.empty() && path_within(r, resolve_path(out_dir.string())) && !fs::exists(out_dir)) {
-    ensure_out_dir();
-    r = resolve_path(path);
+  if (w.error) os_error(named, w.error);
+  if (w.leaf.empty()) os_error(named, EISDIR);
+  return w;
+}
+
+CheckedFile Policy::open_write(const std::string& path, int oflags) const {
+  std::string p = path;
+  int links = 0;
+  for (int attempt = 0; attempt < kRetries + 40; ++attempt) {
+    pathwalk::Walk w = walk_write(p, path);
+    if (w.exists && S_ISLNK(w.st.st_mode)) {
+      // A symlink as last component is resolved component-wise like any other, then checked
+      // again: its target must lie under a write root too.
+      char buf[PATH_MAX + 1];
+      const ssize_t n = ::readlinkat(w.dir.get(), w.leaf.c_str(), buf, PATH_MAX);
+      if (n <= 0) continue;  // changed: walk again
+      const std::string target(buf, static_cast<std::size_t>(n));
+      p = target[0] == '/' ? target : w.dir_path + "/" + target;
+      if (++links > 40) os_error(path, ELOOP);
+      continue;
+    }
+    const int fd = ::openat(w.dir.get(), w.leaf.c_str(),
+                            (oflags & ~O_TRUNC) | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY, 0666);
+    if (fd < 0) {
+      if (errno == ELOOP) continue;  // a symlink appeared after the walk: walk again
+      os_error(path, errno);
+    }
+    pathwalk::Fd f(fd);
+    struct stat st;
+    if (::fstat(fd, &st) != 0) os_error(path, errno);
+    if (!S_ISREG(st.st_mode))
+      throw FileError(fmt::format("{}: not a regular file (only regular files are opened in the sandbox)", path), EINVAL);
+    if (st.st_nlink > 1 && !unrestricted)
+      throw SandboxDenied(fmt::format(
+          "writing '{}' (resolved to '{}') is not allowed: the file has {} hard links, so writing it would change "
+          "a file elsewhere; remove it first or write a new file",
+          path, w.canonical(), st.st_nlink));
+    if ((oflags & O_TRUNC) && ::ftruncate(fd, 0) != 0) os_error(path, errno);
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    return {std::move(f), w.canonical()};
   }
-  return r;
+  throw FileError(fmt::format("{}: changed while being opened ({} attempts); try again", path, kRetries), EAGAIN);
+}
+
+std::string Policy::checked_write_dir(const std::string& path) const {
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    pathwalk::Walk w;
+    try {
+      w = walk_write(path);
+    } catch (const FileError& e) {
+      // A missing folder on the way: make the parent (checked the same way), then walk again.
+      const fs::path parent = fs::path(path).parent_path();
+      if (e.err != ENOENT || parent.empty() || parent == fs::path(path) || attempt > 0) throw;
+      checked_write_dir(parent.string());
+      continue;
+    }
+    if (!w.exists) {
+      if (::mkdirat(w.dir.get(), w.leaf.c_str(), 0777) != 0 && errno != EEXIST) os_error(path, errno);
+      continue;
+    }
+    if (S_ISLNK(w.st.st_mode))
+      throw SandboxDenied(fmt::format("writing '{}' (resolved to '{}') is not allowed: it is a symlink, and folders "
+                                      "the runtime writes in are not reached through symlinks",
+                                      path, w.canonical()));
+    if (!S_ISDIR(w.st.st_mode)) os_error(path, ENOTDIR);
+    return w.canonical();
+  }
+  throw FileError(fmt::format("{}: changed while being made; try again", path), EAGAIN);
+}
+
+std::string Policy::checked_write_file(const std::string& path) const {
+  pathwalk::Walk w = walk_write(path);
+  if (w.exists && !S_ISREG(w.st.st_mode))
+    throw SandboxDenied(fmt::format("writing '{}' (resolved to '{}') is not allowed: it is not a regular file{}", path,
+                                    w.canonical(), S_ISLNK(w.st.st_mode) ? " but a symlink" : ""));
+  return w.canonical();
+}
+
+std::string Policy::checked_read_file(const std::string& path) const {
+  CheckedFile f = open_read(path);  // checked and a regular file now; the caller opens it by name
+  return f.path;
 }
 
 fs::path Policy::check_exec(const std::string& program, const char* function) const {
@@ -132,6 +286,16 @@ Policy& policy(lua_State* L) {
     return d;
   }();
   return unrestricted_default;
+}
+
+int load_text(lua_State* L, const std::string& text, const std::string& chunkname) {
+  std::size_t start = 0;
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) start = 3;
+  if (start < text.size() && text[start] == '#') {
+    const std::size_t nl = text.find('\n', start);
+    start = nl == std::string::npos ? text.size() : nl;  // keep the newline: line numbers stay right
+  }
+  return luaL_loadbufferx(L, text.data() + start, text.size() - start, chunkname.c_str(), "t");
 }
 
 void set_policy(lua_State* L, Policy* p) {

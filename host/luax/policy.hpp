@@ -10,6 +10,7 @@
 #include <lua.hpp>
 
 #include "core/errors.hpp"
+#include "core/path_walk.hpp"
 
 namespace smi {
 
@@ -18,6 +19,27 @@ namespace smi {
 struct SandboxDenied : Error {
   using Error::Error;
 };
+
+/// An OS failure opening a file the policy allows (missing, permissions, not a regular file).
+struct FileError : Error {
+  FileError(const std::string& msg, int e) : Error(msg), err(e) {}
+  int err;
+};
+
+/// A file opened through the sandbox: the descriptor, and the canonical path it was reached by.
+struct CheckedFile {
+  pathwalk::Fd fd;
+  std::string path;
+};
+
+/// The whole content of a checked file (throws FileError naming `shown` on a read error).
+std::string read_checked(const CheckedFile& f, const std::string& shown);
+
+/// Opens `path` for reading only if its canonical path lies under one of `roots` (canonical);
+/// the walk, check and open of Policy::open_read, for readers with roots of their own (the
+/// stdlib folder, a library folder). Throws SandboxDenied / FileError like it.
+CheckedFile open_read_within(const std::string& path, const std::vector<std::filesystem::path>& roots,
+                             const std::string& denial_hint);
 
 struct Policy {
   std::vector<std::filesystem::path> read_roots;   // script dir, --lib dirs, --allow-read
@@ -40,24 +62,49 @@ struct Policy {
   /// step needs solver runs that were not made.
   std::function<void(int code)> request_exit;
 
-  /// Resolves `path` (relative to the working directory; "..", symlinks) and returns it if it
-  /// lies under a read root (write roots are readable too); throws SandboxDenied otherwise.
-  /// The message names the path, the rule and the flag; it does not repeat `function`, which
-  /// callers put in front by raising through protect(L, function, ...).
-  std::filesystem::path check_read(const std::string& path, const char* function) const;
-  /// Same for writing: the path must lie under a write root. A path under out_dir creates
-  /// out_dir first (the output folder is made on demand, so a run that writes nothing leaves none).
-  std::filesystem::path check_write(const std::string& path, const char* function) const;
-  /// Creates out_dir (and its parents) if missing and returns it resolved; throws smi::Error
-  /// naming the folder when it cannot be made.
+  std::filesystem::path out_root;                  // out_dir resolved at start (made on demand, no symlinks)
+
+  // Files a script names are opened only through these (issue 13 item 1): the path is walked
+  // one component at a time through descriptors (core/path_walk.hpp), the canonical path reached
+  // is checked against the roots, and the file is opened relative to the folder descriptor that
+  // was checked, with O_NOFOLLOW. Nothing is re-opened by name afterwards. Symlinks are followed
+  // only component-wise (so one that leads out of every root is refused, wherever it sits), and
+  // only regular files are opened. Denials throw SandboxDenied; OS failures (missing file,
+  // permissions) throw FileError carrying errno. Messages leave out the function name, which
+  // callers put in front by raising through protect(L, function, ...).
+
+  /// Opens `path` for reading: it must lie under a read root (write roots are readable too).
+  CheckedFile open_read(const std::string& path) const;
+  /// Opens `path` for writing with open(2) flags `oflags` (O_WRONLY or O_RDWR, O_CREAT, O_APPEND,
+  /// O_TRUNC): its folder must lie under a write root. A file with other hard links is refused
+  /// (writing it would change a file elsewhere); O_TRUNC is applied after that check. A path
+  /// under out_dir creates out_dir first (made on demand, so a run that writes nothing leaves none).
+  CheckedFile open_write(const std::string& path, int oflags) const;
+  /// The checked folder of an entry that is written without being opened (os.remove,
+  /// os.rename, folders made by the evaluator): the last component is not followed.
+  pathwalk::Walk walk_write(const std::string& path) const { return walk_write(path, path); }
+  /// The same, naming `shown` (what the script wrote) in messages.
+  pathwalk::Walk walk_write(const std::string& path, const std::string& shown) const;
+  /// A folder under a write root, made if missing; its canonical path (for the evaluator, which
+  /// makes its run folders below it refusing symlinks, see eval/work_dir.hpp).
+  std::string checked_write_dir(const std::string& path) const;
+  /// A file path under a write root for a program that opens it by name (SQLite): the folder is
+  /// checked and the file must not be a symlink; the canonical path is returned. Residual race:
+  /// a folder on that path swapped after the check (README, Sandbox).
+  std::string checked_write_file(const std::string& path) const;
+  /// Same for reading (a shared store opened read-only by SQLite).
+  std::string checked_read_file(const std::string& path) const;
+  /// Creates out_dir (and its parents) if missing, refusing symlinks on the way, and returns
+  /// it resolved; throws smi::Error naming the folder when it cannot be made.
   std::filesystem::path ensure_out_dir() const;
   /// Resolves a program name through PATH (or takes a path) and returns its absolute path if
   /// --allow-exec named it (by name or by path); throws SandboxDenied otherwise.
   std::filesystem::path check_exec(const std::string& program, const char* function) const;
 };
 
-/// Resolves a path the way the checks do: absolute, "." and ".." removed, symlinks of the
-/// existing prefix followed (so a symlink out of an allowed folder is caught).
+/// A path made absolute, symlinks of the existing prefix followed, the rest normalised as text.
+/// For roots given on the command line (resolved once at start) and for messages only: never
+/// to decide whether a script may open something (that is Policy::open_read/open_write).
 std::filesystem::path resolve_path(const std::string& path);
 
 /// True if `path` equals `root` or lies below it (component-wise, both already resolved).
@@ -69,6 +116,10 @@ namespace lua {
 Policy& policy(lua_State* L);
 /// Stores `p` (not owned; must outlive the state) in the registry.
 void set_policy(lua_State* L, Policy* p);
+/// Loads the text of a checked file as a text chunk named `chunkname` ("@path"), skipping a
+/// UTF-8 BOM and a first "#" line as luaL_loadfilex does. Returns the load status; pushes the
+/// chunk or the message.
+int load_text(lua_State* L, const std::string& text, const std::string& chunkname);
 }  // namespace lua
 
 }  // namespace smi

@@ -14,7 +14,10 @@ struct GitInfo {
 };
 
 /// Looks for .git in `folder` and its parents. Never throws: unreadable or odd repositories
-/// give an empty commit.
+/// give an empty commit. Everything read stays inside the folder holding .git (a "gitdir:"
+/// file, commondir or symlink pointing elsewhere is not followed, so a linked worktree or a
+/// submodule whose git dir lives outside its checkout reports no commit), only regular files
+/// are read, and each at most 4 KiB (packed-refs 64 MiB).
 GitInfo git_info(const std::filesystem::path& folder);
 
 }  // namespace smi::vm

@@ -28,7 +28,7 @@ int library_searcher(lua_State* L) {
   const std::size_t dot = name.find('.');
   const Library* lib = set.find(name.substr(0, dot));
   if (!lib) return 0;
-  std::string tried, found;
+  std::string tried, found, text;
   lua::protect(L, "require", [&] {
     std::vector<fs::path> cands;
     if (dot == std::string::npos) {
@@ -40,15 +40,18 @@ int library_searcher(lua_State* L) {
       cands.push_back(lib->folder / rel_lua);
       cands.push_back(lib->folder / rel / "init.lua");
     }
+    const Policy& pol = lua::policy(L);
     for (const fs::path& c : cands) {
-      std::error_code ec;
-      if (fs::is_regular_file(c, ec)) {
-        // a module reached through a symlink out of the library folder is refused like io.open
-        lua::policy(L).check_read(c.string(), "require");
+      try {
+        // opened through the policy like io.open: a module reached through a symlink out of
+        // the library folders is refused, and the file read is the file checked
+        const CheckedFile f = pol.open_read(c.string());
+        text = read_checked(f, c.string());
         found = c.string();
         return 0;
+      } catch (const FileError&) {
+        tried += (tried.empty() ? "" : "\n\t") + ("no file '" + c.string() + "'");
       }
-      tried += (tried.empty() ? "" : "\n\t") + ("no file '" + c.string() + "'");
     }
     tried += " (library " + lib->name() + " " + lib->manifest.version.text + ")";
     return 0;
@@ -57,7 +60,7 @@ int library_searcher(lua_State* L) {
     lua_pushstring(L, tried.c_str());
     return 1;
   }
-  if (luaL_loadfilex(L, found.c_str(), "t") != LUA_OK)
+  if (lua::load_text(L, text, "@" + found) != LUA_OK)
     return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", name.c_str(), found.c_str(),
                       lua_tostring(L, -1));
   lib->used = true;

@@ -1,5 +1,13 @@
 #include "vm/manifest.hpp"
 
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/path_walk.hpp"
+
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
@@ -148,11 +156,19 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
 }
 
 Manifest read_manifest(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read " + where(file));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_manifest(ss.str(), file);
+  // Read as the sandbox reads (issue 13 item 6): the manifest must be a regular file inside its
+  // library folder (a symlink to /dev/zero, a FIFO or a file elsewhere would hang the run before
+  // any script code, or read what the library may not), at most 1 MiB.
+  const pathwalk::Walk w = pathwalk::walk(file.string(), true);
+  std::error_code ec;
+  const std::string folder = std::filesystem::weakly_canonical(std::filesystem::absolute(file.parent_path(), ec), ec).string();
+  if (w.error || !w.exists || !S_ISREG(w.st.st_mode) || !pathwalk::within(w.canonical(), folder))
+    throw Error("cannot read " + where(file) + ": not a regular file inside the library folder");
+  const pathwalk::Fd fd(::openat(w.dir.get(), w.leaf.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC));
+  std::string text;
+  if (!fd || !pathwalk::read_all(fd.get(), text, 1 << 20))
+    throw Error("cannot read " + where(file) + ": " + std::strerror(errno));
+  return parse_manifest(text, file);
 }
 
 }  // namespace smi::vm

@@ -1,5 +1,6 @@
 #include "vm/runtime.hpp"
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -105,7 +106,9 @@ int smi_write_file(lua_State* L) {
   std::size_t len = 0;
   const char* text = luaL_checklstring(L, 2, &len);
   lua::protect(L, "smi.write_file", [&] {
-    const std::string p = lua::policy(L).check_write(path, "smi.write_file").string();
+    // The folder is walked by the sandbox and the target must not be a symlink; the temporary
+    // file is created O_EXCL | O_NOFOLLOW there and renamed over the target (core/atomic_file).
+    const std::string p = lua::policy(L).checked_write_file(path);
     write_file_atomic(p, std::string_view(text, len));
     return 0;
   });
@@ -120,7 +123,7 @@ int smi_lock_out(lua_State* L) {
   const char* folder = luaL_optstring(L, 1, nullptr);
   lua::protect(L, "smi.lock_out", [&] {
     const Policy& pol = lua::policy(L);
-    smi::eval::lock_output_folder(folder ? pol.check_write(folder, "smi.lock_out").string() : pol.ensure_out_dir().string());
+    smi::eval::lock_output_folder(folder ? pol.checked_write_dir(folder) : pol.ensure_out_dir().string());
     return 0;
   });
   return 0;
@@ -183,6 +186,16 @@ std::string default_out_dir(const std::string& script) {
     name = "stdin";
   else
     name = fs::path(script).stem().string();
+  // The stem is one folder name below smi-out whatever the script is called: "...lua" has the
+  // stem "..", "..lua" the stem ".", ".lua" the stem ".lua". A leading dot becomes '_' (so no
+  // name climbs out of smi-out or hides), as does anything but letters, digits, '_', '-', '.'.
+  for (char& c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) c = '_';
+  for (char& c : name) {
+    if (c != '.') break;
+    c = '_';
+  }
+  if (name.empty()) name = "script";
   return (fs::path("smi-out") / name).string();
 }
 
@@ -203,16 +216,18 @@ void Runtime::build_policy() {
     policy_.read_roots.push_back(resolve_path(d));
     modules_.roots.emplace_back(d);
   }
-  if (!cfg_.stdlib_dir.empty()) {
-    modules_.stdlib_dir = cfg_.stdlib_dir;
-    policy_.read_roots.push_back(resolve_path(cfg_.stdlib_dir));
-  }
+  // The stdlib folder is a root of the stdlib searcher only (searchers.cpp): scripts may not
+  // read it with io.open & co., so SMI_STDLIB_DIR does not widen what a script reads.
+  if (!cfg_.stdlib_dir.empty()) modules_.stdlib_dir = cfg_.stdlib_dir;
   for (const auto& d : cfg_.allow_read) policy_.read_roots.push_back(resolve_path(d));
 
   policy_.out_dir = cfg_.out_dir.empty() ? default_out_dir(cfg_.script) : cfg_.out_dir;
-  policy_.write_roots.push_back(resolve_path(policy_.out_dir.string()));
+  policy_.out_root = resolve_path(policy_.out_dir.string());
+  policy_.write_roots.push_back(policy_.out_root);
   for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(resolve_path(d));
-  if (!cfg_.store_path.empty()) policy_.write_roots.push_back(resolve_path(cfg_.store_path));
+  // --store is read-only: the evaluator opens it read-only and immutable, and a script may read
+  // it but not write it (issue 13 item 5).
+  if (!cfg_.store_path.empty()) policy_.read_roots.push_back(resolve_path(cfg_.store_path));
   policy_.exec_allowed = cfg_.allow_exec;
 
   policy_.seed = cfg_.seed;

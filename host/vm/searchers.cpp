@@ -1,6 +1,7 @@
 #include "vm/searchers.hpp"
 
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "core/errors.hpp"
@@ -32,43 +33,55 @@ const ModuleSearch& search(lua_State* L) {
   return *static_cast<const ModuleSearch*>(lua_touserdata(L, lua_upvalueindex(1)));
 }
 
-/// Loads `file` as a text chunk named "@file" and pushes [chunk, file] (2 results), or raises.
-int load_found(lua_State* L, const fs::path& file) {
-  const std::string f = file.string();
-  if (luaL_loadfilex(L, f.c_str(), "t") != LUA_OK)
-    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", lua_tostring(L, 1), f.c_str(),
-                      lua_tostring(L, -1));
-  lua_pushstring(L, f.c_str());
-  return 2;
-}
+/// A module file found and read through a checked descriptor: its text and the path shown.
+struct Found {
+  std::string path, text;
+};
 
-/// Tries dir/rel.lua and dir/rel/init.lua; returns the first that exists, or "" after adding
-/// "\n\tno file 'x'" lines to `tried`.
-fs::path find_in(const fs::path& dir, const fs::path& rel, std::string& tried) {
+/// Tries dir/rel.lua and dir/rel/init.lua, each opened by `open` (a checked open: a denial
+/// raises, a missing file adds "\n\tno file 'x'" to `tried`). Returns the first that opens.
+template <class Open>
+std::optional<Found> find_in(const fs::path& dir, const fs::path& rel, std::string& tried, Open&& open) {
   fs::path rel_lua = rel;
   rel_lua += ".lua";
   for (const fs::path& cand : {dir / rel_lua, dir / rel / "init.lua"}) {
-    std::error_code ec;
-    if (fs::is_regular_file(cand, ec)) return cand;
-    tried += (tried.empty() ? "" : "\n\t") + ("no file '" + cand.string() + "'");
+    try {
+      const CheckedFile f = open(cand.string());
+      return Found{cand.string(), read_checked(f, cand.string())};
+    } catch (const FileError&) {
+      tried += (tried.empty() ? "" : "\n\t") + ("no file '" + cand.string() + "'");
+    }
   }
-  return {};
+  return std::nullopt;
+}
+
+/// Loads `f` as a text chunk named "@path" and pushes [chunk, path] (2 results), or raises.
+int load_found(lua_State* L, const Found& f) {
+  if (lua::load_text(L, f.text, "@" + f.path) != LUA_OK)
+    return luaL_error(L, "error loading module '%s' from file '%s':\n\t%s", lua_tostring(L, 1), f.path.c_str(),
+                      lua_tostring(L, -1));
+  lua_pushstring(L, f.path.c_str());
+  return 2;
 }
 
 /// searcher 2: the stdlib, from disk when a stdlib dir is set (development), else embedded.
+/// The stdlib folder is a root of this searcher only: scripts' read roots do not grow with it
+/// (issue 13 item 6), and a file reached through a symlink out of it is refused.
 int stdlib_searcher(lua_State* L) {
   const char* name = luaL_checkstring(L, 1);
   const ModuleSearch& ms = search(L);
   std::string tried;
   if (!ms.stdlib_dir.empty()) {
-    fs::path rel, found;
+    std::optional<Found> found;
     lua::protect(L, "require", [&] {
-      rel = module_relpath(name);
-      found = find_in(ms.stdlib_dir, rel, tried);
-      if (!found.empty()) lua::policy(L).check_read(found.string(), "require");  // symlinks out
+      const fs::path rel = module_relpath(name);
+      const std::vector<fs::path> roots{resolve_path(ms.stdlib_dir.string())};
+      found = find_in(ms.stdlib_dir, rel, tried, [&](const std::string& p) {
+        return open_read_within(p, roots, "the stdlib is loaded only from inside --stdlib-dir " + roots[0].string());
+      });
       return 0;
     });
-    if (!found.empty()) return load_found(L, found);
+    if (found) return load_found(L, *found);
   }
   for (const EmbeddedModule* m = kEmbeddedModules; m->name; ++m) {
     if (std::strcmp(m->name, name) != 0) continue;
@@ -82,24 +95,23 @@ int stdlib_searcher(lua_State* L) {
   return 1;
 }
 
-/// searcher 3: Lua files under the script folder, --lib folders and SMI_PATH.
+/// searcher 3: Lua files under the script folder, --lib folders and SMI_PATH, opened through
+/// the policy like io.open (a symlink out of the library folders is refused).
 int path_searcher(lua_State* L) {
   const char* name = luaL_checkstring(L, 1);
   const ModuleSearch& ms = search(L);
   std::string tried;
-  fs::path found;
+  std::optional<Found> found;
   lua::protect(L, "require", [&] {
     const fs::path rel = module_relpath(name);
+    const Policy& pol = lua::policy(L);
     for (const fs::path& root : ms.candidate_roots(name)) {
-      found = find_in(root, rel, tried);
-      if (found.empty()) continue;
-      // a file reached through a symlink out of the library folders is refused like io.open
-      lua::policy(L).check_read(found.string(), "require");
-      break;
+      found = find_in(root, rel, tried, [&](const std::string& p) { return pol.open_read(p); });
+      if (found) break;
     }
     return 0;
   });
-  if (!found.empty()) return load_found(L, found);
+  if (found) return load_found(L, *found);
   if (tried.empty()) tried = "(no script folder, --lib or SMI_PATH folder to search)";
   lua_pushstring(L, tried.c_str());
   return 1;

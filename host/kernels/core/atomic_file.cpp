@@ -27,7 +27,10 @@ void write_file_atomic(const std::string& path, std::string_view data) {
   if (dir.empty()) dir = ".";
   // Unique per process: two writers never share a temporary file.
   const std::string tmp = (dir / fmt::format(".{}.tmp-{}", target.filename().string(), ::getpid())).string();
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // A leftover of a crashed run with the same pid is removed; O_EXCL | O_NOFOLLOW then refuses a
+  // symlink planted under the temporary name (the write must land in the checked folder).
+  ::unlink(tmp.c_str());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int e = errno;
     throw Error(fmt::format("cannot write '{}': {} (does the folder exist and may smi-lua write there?)", path,

@@ -1,3 +1,4 @@
+#include <unistd.h>
 #include "core/sha256.hpp"
 
 #include <cerrno>
@@ -113,6 +114,27 @@ std::string sha256_file(const std::string& path) {
     h.update(std::string_view(buf, static_cast<std::size_t>(in.gcount())));
   }
   if (in.bad()) throw Error(fmt::format("error reading '{}'", path));
+  return h.hex();
+}
+
+}  // namespace smi
+
+namespace smi {
+
+std::string sha256_fd(int fd, const std::string& name) {
+  Sha256 h;
+  char buf[1 << 16];
+  off_t off = 0;
+  for (;;) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, off);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error(fmt::format("cannot read '{}': {}", name, std::strerror(errno)));
+    }
+    if (n == 0) break;
+    h.update(std::string_view(buf, static_cast<std::size_t>(n)));
+    off += n;
+  }
   return h.hex();
 }
 

@@ -115,14 +115,26 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
     for (const auto& in : cfg_.inputs) trial[in] = DeckValue::num(0);
     cfg_.deck->render(trial);
   }
-  if (cfg_.version.empty()) cfg_.version = "sha256:" + sha256_file(cfg_.program);
+  // The program's content always goes into the key (issue 13 item 5): a version string is the
+  // script's to choose, so a record keyed on name + version alone could be forged by one study
+  // and reused by another. The version stays in the key too (a solver reading data files).
+  std::string program_hash;
+  try {
+    program_hash = "sha256:" + sha256_file(cfg_.program);
+  } catch (const Error&) {
+    program_hash = "unreadable";  // the run fails when it starts, with the OS's reason
+  }
+  if (cfg_.version.empty()) cfg_.version = program_hash;
   // Everything that determines a run's result, except the point itself.
   Sha256 h;
-  h.field("smi-eval-v1").field(cfg_.batch ? "batch" : "command");
-  h.field(fs::path(cfg_.program_name).filename().string()).field(cfg_.version);
+  h.field("smi-eval-v2").field(cfg_.batch ? "batch" : "command");
+  h.field(fs::path(cfg_.program_name).filename().string()).field(program_hash).field(cfg_.version);
   for (const auto& a : cfg_.args) h.field(a);
   h.field(cfg_.deck_file);
-  for (const auto& f : cfg_.files) h.field(fs::path(f).filename().string()).field(sha256_file(f));
+  for (std::size_t i = 0; i < cfg_.files.size(); ++i)
+    h.field(fs::path(cfg_.files[i]).filename().string())
+        .field(i < cfg_.file_fds.size() && cfg_.file_fds[i] ? sha256_fd(cfg_.file_fds[i]->get(), cfg_.files[i])
+                                                            : sha256_file(cfg_.files[i]));
   key_prefix_ = h.hex();
 }
 
@@ -183,7 +195,7 @@ std::vector<Evaluator::Point> Evaluator::points_of(const Eigen::MatrixXd& X) con
 }
 
 bool Evaluator::lookup(Point& p) {
-  if (!shared_ && !cfg_.shared_store_path.empty()) shared_ = std::make_unique<Store>(cfg_.shared_store_path, true);
+  if (!shared_ && !cfg_.shared_store_path.empty()) shared_ = std::make_unique<Store>(cfg_.shared_store_path, true, true);
   for (Store* s : {&store(), shared_.get()}) {
     if (!s) continue;
     auto r = s->find(p.key);
@@ -297,7 +309,7 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
       } else {
         deck = pts[tasks[t][0]].deck;
       }
-      prepare_work_dir(dirs[t], cfg_.deck_file, deck, cfg_.files);
+      prepare_work_dir(dirs[t], cfg_.deck_file, deck, cfg_.files, cfg_.file_fds);
     };
     return job;
   };

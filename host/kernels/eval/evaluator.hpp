@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/path_walk.hpp"
 #include "eval/deck_template.hpp"
 #include "eval/store.hpp"
 
@@ -25,6 +26,9 @@ struct CommandConfig {
   std::string deck_file = "input.deck";       // its file name in the work directory
   DeckValues constants;                       // extra placeholder values (numbers or strings)
   std::vector<std::string> files;             // absolute paths copied into every work directory
+  // Their descriptors, opened by the sandbox when it checked them (same order; may be empty):
+  // hashed and copied from these, never re-opened by name (issue 13 item 1).
+  std::vector<std::shared_ptr<const pathwalk::Fd>> file_fds;
   std::string program;                        // absolute path (checked by the sandbox)
   std::string program_name;                   // as the study wrote it; goes into the key
   std::vector<std::string> args;              // argv[1..]: "{deck}" -> deck_file, "{workdir}" -> the folder

@@ -106,7 +106,49 @@ void Store::exec(const char* sql) {
   }
 }
 
-Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(read_only) {
+namespace {
+
+/// "file:<path>?immutable=1" with the path percent-encoded where a URI needs it.
+std::string immutable_uri(const std::string& path) {
+  std::string u = "file:";
+  for (unsigned char c : path) {
+    if (c == '%' || c == '?' || c == '#' || c < 0x20) u += fmt::format("%{:02X}", c);
+    else u += static_cast<char>(c);
+  }
+  return u + "?immutable=1";
+}
+
+}  // namespace
+
+void Store::check_key_version(bool writable) {
+  // PRAGMA user_version holds the key scheme. Version 2 keys include the SHA-256 of the
+  // program file; an older store's records were keyed on the program's name and a version the
+  // script chose, so a forged record could be reused: such a store is refused, not migrated.
+  sqlite3_stmt* s = nullptr;
+  long version = 0, tables = 0;
+  if (sqlite3_prepare_v2(db_, "SELECT (SELECT user_version FROM pragma_user_version), "
+                              "(SELECT count(*) FROM sqlite_master WHERE name = 'evaluations')",
+                         -1, &s, nullptr) != SQLITE_OK)
+    fail("read the store's version");
+  if (sqlite3_step(s) == SQLITE_ROW) {
+    version = sqlite3_column_int64(s, 0);
+    tables = sqlite3_column_int64(s, 1);
+  }
+  sqlite3_finalize(s);
+  if (tables == 0 && writable) {
+    exec(fmt::format("PRAGMA user_version = {}", kKeyVersion).c_str());
+    return;
+  }
+  if (tables > 0 && version != kKeyVersion)
+    throw Error(fmt::format(
+        "evaluation store '{}' was written by {} smi-lua (key scheme {}, this one uses {}: keys now include the "
+        "program's SHA-256, so records keyed on a program name and a script-chosen version are not reused); "
+        "its records cannot be reused: move it aside or delete it and run again{}",
+        path_, version < kKeyVersion ? "an older" : "a newer", version, kKeyVersion,
+        writable ? "" : " (it was given as --store)"));
+}
+
+Store::Store(const std::string& path, bool read_only, bool immutable) : path_(path), read_only_(read_only) {
   {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
@@ -114,7 +156,9 @@ Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(
                               "--store {}/evaluations.sqlite",
                               path, path == "/" ? "" : std::filesystem::path(path).lexically_normal().string()));
   }
-  const int flags = read_only ? (SQLITE_OPEN_READONLY | SQLITE_OPEN_URI) : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  if (immutable && !read_only) throw Error("evaluation store: immutable implies read-only");
+  const int flags = read_only ? (SQLITE_OPEN_READONLY | SQLITE_OPEN_NOFOLLOW)
+                              : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOFOLLOW);
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -126,18 +170,22 @@ Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(
   try {
     sqlite3_busy_timeout(db_, 10000);  // two studies writing one store wait for each other
     if (read_only) {
-      // Reading a WAL database needs its -shm file; in a folder we may not write, fall back to
-      // reading the file as immutable (a snapshot: fine for a shared, read-only cache).
-      if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
+      // A store given as --store is read immutable: never written, nor a -wal or -shm made
+      // beside it (a WAL database opened read-only still writes its -shm); it is read as a
+      // snapshot, as a published cache is. Other readers (tests polling a live store) read it
+      // read-only, and fall back to immutable in a folder they may not write.
+      if (immutable || sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
         sqlite3_close(db_);
         db_ = nullptr;
-        const std::string uri = "file:" + path + "?immutable=1";
-        if (sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK)
+        if (sqlite3_open_v2(immutable_uri(path).c_str(), &db_,
+                            SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOFOLLOW, nullptr) != SQLITE_OK)
           fail("cannot open read-only");
       }
+      check_key_version(false);
     } else {
       if (sqlite3_exec(db_, "PRAGMA journal_mode=WAL", nullptr, nullptr, nullptr) != SQLITE_OK) fail("open");
       exec("PRAGMA synchronous=NORMAL");
+      check_key_version(true);
       if (sqlite3_exec(db_, kSchema, nullptr, nullptr, nullptr) != SQLITE_OK) fail("create the tables");
       if (sqlite3_prepare_v2(db_, kPut, -1, &put_, nullptr) != SQLITE_OK) fail("prepare insert");
     }

@@ -40,12 +40,16 @@ struct Timing {
   double mean = 0;     // their mean duration, seconds
 };
 
+/// The key scheme of this build, kept in the store as PRAGMA user_version (see Evaluator).
+inline constexpr long kKeyVersion = 2;
+
 class Store {
  public:
-  /// Opens (creating if needed, unless read_only) the store at `path`. A read-only store is
-  /// never written; if its folder is not writable it is opened as immutable. Throws smi::Error
-  /// naming the path and SQLite's message.
-  Store(const std::string& path, bool read_only);
+  /// Opens (creating if needed, unless read_only) the store at `path` (a symlink as last
+  /// component is refused). A read-only store is never written; `immutable` (a --store) also
+  /// makes no -shm/-wal beside it and reads the file as a snapshot. A store of another key scheme (an older smi-lua) is refused with a
+  /// message saying so. Throws smi::Error naming the path and SQLite's message.
+  Store(const std::string& path, bool read_only, bool immutable = false);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -65,6 +69,7 @@ class Store {
 
  private:
   void exec(const char* sql);
+  void check_key_version(bool writable);
   [[noreturn]] void fail(const char* what);
   sqlite3* db_ = nullptr;
   sqlite3_stmt* find_ = nullptr;

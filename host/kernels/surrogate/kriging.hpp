@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -95,5 +96,8 @@ struct ModelNames {
 /// files carry names; version 1 files (no names) still load.
 void save(const Model& m, const std::string& path, const ModelNames& names = {});
 Model load(const std::string& path, ModelNames* names = nullptr);
+/// The same on streams (the sandbox opens the file itself); `path` names it in messages.
+void save(const Model& m, std::ostream& os, const std::string& path, const ModelNames& names = {});
+Model load(std::istream& is, const std::string& path, ModelNames* names = nullptr);
 
 }  // namespace smi::kriging

@@ -60,7 +60,7 @@ struct Reader {
 
 }  // namespace
 
-void save(const Model& md, const std::string& path, const ModelNames& names) {
+void save(const Model& md, std::ostream& os, const std::string& path, const ModelNames& names) {
   if (md.S.size() == 0) throw InvalidArgument("cannot save an empty model");
   if (!names.inputs.empty() && static_cast<Eigen::Index>(names.inputs.size()) != md.inputs())
     throw InvalidArgument("cannot save " + std::to_string(names.inputs.size()) + " input names for a model of " +
@@ -71,8 +71,6 @@ void save(const Model& md, const std::string& path, const ModelNames& names) {
   };
   for (const auto& s : names.inputs) check_name(s);
   if (!names.output.empty()) check_name(names.output);
-  std::ofstream os(path);
-  if (!os) throw InvalidArgument("cannot open '" + path + "' for writing");
   const Eigen::Index m = md.size(), n = md.inputs();
   os << "smi-kriging 2\ntrend " << trend_name(md.trend) << "\ncorr " << corr_name(md.corr) << "\nmethod "
      << md.method << "\nevaluations " << md.evaluations << "\nnugget";
@@ -103,9 +101,22 @@ void save(const Model& md, const std::string& path, const ModelNames& names) {
   if (!os) throw InvalidArgument("writing '" + path + "' failed");
 }
 
+void save(const Model& md, const std::string& path, const ModelNames& names) {
+  std::ostringstream text;
+  save(md, text, path, names);  // checks and renders before the file is touched
+  std::ofstream os(path);
+  if (!os) throw InvalidArgument("cannot open '" + path + "' for writing");
+  os << text.str();
+  if (!os) throw InvalidArgument("writing '" + path + "' failed");
+}
+
 Model load(const std::string& path, ModelNames* names) {
   std::ifstream is(path);
   if (!is) throw InvalidArgument("cannot open '" + path + "'");
+  return load(is, path, names);
+}
+
+Model load(std::istream& is, const std::string& path, ModelNames* names) {
   Reader rd{is, path};
   std::string magic, version;
   is >> magic >> version;
