@@ -81,10 +81,10 @@ SurrogateResult screen_surrogate(const std::vector<propagate::Input>& inputs, co
       char buf[512];
       std::snprintf(buf, sizeof buf,
                     "the %s surrogate of '%s' predicts poorly: leave-one-out Q2 = %.3f < %.3g from %lld runs; its "
-                    "screening ranks are not reliable: add runs, use basis = \"quadratic\", or screen the model "
-                    "itself (method = \"full\")",
+                    "screening ranks are not reliable: add runs%s, or screen the model itself (method = \"full\")",
                     polyfit::basis_name(sopt.basis), f.output.c_str(), f.q2, sopt.q2_min,
-                    static_cast<long long>(sopt.runs));
+                    static_cast<long long>(sopt.runs),
+                    sopt.basis == polyfit::Basis::linear ? ", use basis = \"quadratic\"" : "");
       res.screening[o].warnings.insert(res.screening[o].warnings.begin(), buf);
     }
   }
