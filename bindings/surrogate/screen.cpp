@@ -32,6 +32,14 @@ int screen_tostring(lua_State* L) {
                 lua_tostring(L, -2) ? lua_tostring(L, -2) : "?", static_cast<long long>(lua_tointeger(L, -1)));
   lua_pop(L, 2);
   out += line;
+  lua_getfield(L, 1, "q2");
+  lua_getfield(L, 1, "runs");
+  if (lua_isnumber(L, -2)) {  // method = "surrogate": say what the indices were computed on
+    std::snprintf(line, sizeof line, "on a ridge polynomial of %lld model runs, leave-one-out Q2 = %.4f\n",
+                  static_cast<long long>(lua_tointeger(L, -1)), lua_tonumber(L, -2));
+    out += line;
+  }
+  lua_pop(L, 2);
   std::snprintf(line, sizeof line, "%4s  %-16s %9s %8s %22s %22s\n", "rank", "input", "e", "N_e", "S1 [CI]", "ST [CI]");
   out += line;
   const lua_Integer len = static_cast<lua_Integer>(lua_rawlen(L, 1));

@@ -21,6 +21,7 @@ T.case("linear model of spec 8.5 from 30 runs: analytic N_e, one model call", fu
   T.near(by.x1.ne, 0.0522824, 0.01); T.near(by.x2.ne, 0.2368465, 0.01); T.near(by.x3.ne, 0.7108711, 0.01)
   T.eq(by.x4.e, 0)
   T.eq(r[1].input, "x3")
+  T.truthy(tostring(r):find("30 model runs, leave-one-out Q2 = 1.0000", 1, true), "printed table names the surrogate")
   -- Borgonovo's delta from the 30 runs ranks x3 first too
   T.truthy(by.x3.delta > by.x2.delta and by.x2.delta > by.x1.delta, "delta ranks x3 > x2 > x1")
   T.truthy(r.delta_floor >= 0 and r.delta_classes >= 2, "delta's noise floor and class count reported")
