@@ -1,5 +1,10 @@
 // smi.screen{model =, inputs =, n = 10000, seed =, fix = "mean"|"median", sobol = true,
-//            bootstrap = 200, level = 0.95, output =, order =}
+//            bootstrap = 200, level = 0.95, output =, order =,
+//            method = "full"|"surrogate", runs = 300, basis = "quadratic"|"linear", q2_min = 0.9,
+//            delta = true, classes = 0}
+// method = "surrogate" (issue 16) runs the model `runs` times only, fits a ridge polynomial per
+// output and screens that: the result adds method, runs (model runs), q2, r2, lambda, terms,
+// delta_floor, delta_classes and a `delta` (Borgonovo, from the runs) in every row.
 // -> a ranked table (one per output; with several outputs and no `output`, a table of them by
 // name): rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi}, sorted by rank, plus
 // fields output, n, variance, warnings; tostring() prints it as an aligned table.
@@ -10,6 +15,7 @@
 #include "luax/policy.hpp"
 #include "surrogate/model_arg.hpp"
 #include "surrogate/screen.hpp"
+#include "surrogate/screen_surrogate.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
@@ -26,6 +32,14 @@ int screen_tostring(lua_State* L) {
                 lua_tostring(L, -2) ? lua_tostring(L, -2) : "?", static_cast<long long>(lua_tointeger(L, -1)));
   lua_pop(L, 2);
   out += line;
+  lua_getfield(L, 1, "q2");
+  lua_getfield(L, 1, "runs");
+  if (lua_isnumber(L, -2)) {  // method = "surrogate": say what the indices were computed on
+    std::snprintf(line, sizeof line, "on a ridge polynomial of %lld model runs, leave-one-out Q2 = %.4f\n",
+                  static_cast<long long>(lua_tointeger(L, -1)), lua_tonumber(L, -2));
+    out += line;
+  }
+  lua_pop(L, 2);
   std::snprintf(line, sizeof line, "%4s  %-16s %9s %8s %22s %22s\n", "rank", "input", "e", "N_e", "S1 [CI]", "ST [CI]");
   out += line;
   const lua_Integer len = static_cast<lua_Integer>(lua_rawlen(L, 1));
@@ -52,7 +66,9 @@ int screen_tostring(lua_State* L) {
   return 1;
 }
 
-void push_result(lua_State* L, const screen::Result& r, lua_Integer n) {
+void push_result(lua_State* L, const screen::Result& r, lua_Integer n,
+                 const screen::SurrogateFitInfo* fit = nullptr, const std::vector<propagate::Input>* inputs = nullptr,
+                 lua_Integer runs = 0) {
   lua_createtable(L, static_cast<int>(r.rows.size()), 5);
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
     const screen::Row& w = r.rows[i];
@@ -67,11 +83,26 @@ void push_result(lua_State* L, const screen::Result& r, lua_Integer n) {
     lua::set_number(L, "st", w.st);
     lua::set_number(L, "st_lo", w.st_lo);
     lua::set_number(L, "st_hi", w.st_hi);
+    if (fit && inputs && fit->delta.size() == static_cast<Eigen::Index>(inputs->size()))
+      for (std::size_t j = 0; j < inputs->size(); ++j)
+        if ((*inputs)[j].name == w.input) lua::set_number(L, "delta", fit->delta(static_cast<Eigen::Index>(j)));
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua::set_string(L, "output", r.output);
   lua::set_integer(L, "n", n);
   lua::set_number(L, "variance", r.variance);
+  lua::set_string(L, "method", fit ? "surrogate" : "full");
+  if (fit) {
+    lua::set_integer(L, "runs", runs);
+    lua::set_number(L, "q2", fit->q2);
+    lua::set_number(L, "r2", fit->r2);
+    lua::set_number(L, "lambda", fit->lambda);
+    lua::set_integer(L, "terms", static_cast<lua_Integer>(fit->terms));
+    if (fit->delta.size() > 0) {
+      lua::set_number(L, "delta_floor", fit->delta_floor);
+      lua::set_integer(L, "delta_classes", static_cast<lua_Integer>(fit->delta_classes));
+    }
+  }
   lua_createtable(L, static_cast<int>(r.warnings.size()), 0);
   for (std::size_t i = 0; i < r.warnings.size(); ++i) {
     lua_pushstring(L, r.warnings[i].c_str());
@@ -92,7 +123,8 @@ int screen_call(lua_State* L) {
   constexpr const char* fname = "smi.screen";
   luaL_checktype(L, 1, LUA_TTABLE);
   lua::Options o(L, 1, fname);
-  o.check_known({"model", "inputs", "n", "seed", "fix", "sobol", "bootstrap", "level", "output", "order", "grid"});
+  o.check_known({"model", "inputs", "n", "seed", "fix", "sobol", "bootstrap", "level", "output", "order", "grid",
+                 "method", "runs", "basis", "q2_min", "delta", "classes"});
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   screen::Options so;
   so.n = static_cast<Eigen::Index>(o.integer("n", 10000));
@@ -103,24 +135,58 @@ int screen_call(lua_State* L) {
   so.level = o.number("level", 0.95);
   so.grid = static_cast<Eigen::Index>(o.integer("grid", 4001));
   const std::optional<std::string> want = o.string("output");
+  const std::string method = o.string("method", "full");
+  const bool surrogate = method == "surrogate";
+  std::string misplaced;  // a surrogate-only option given to the full screening
+  if (!surrogate)
+    for (const char* k : {"runs", "basis", "q2_min", "delta", "classes"}) {
+      lua_getfield(L, 1, k);
+      if (!lua_isnil(L, -1) && misplaced.empty()) misplaced = k;
+      lua_pop(L, 1);
+    }
+  screen::SurrogateOptions sso;
+  sso.runs = static_cast<Eigen::Index>(o.integer("runs", 300));
+  const std::string basis = o.string("basis", "quadratic");
+  sso.q2_min = o.number("q2_min", 0.9);
+  sso.delta = o.boolean("delta", true);
+  sso.delta_classes = static_cast<Eigen::Index>(o.integer("classes", 0));
   return lua::protect(L, fname, [&] {
-    const std::vector<screen::Result> res = screen::screen(inputs, model.fn, *model.outputs, so);
+    if (method != "full" && method != "surrogate")
+      throw InvalidArgument("method must be \"full\" or \"surrogate\", got '" + method + "'");
+    if (!misplaced.empty())
+      throw InvalidArgument("'" + misplaced + "' applies to method = \"surrogate\" only");
+    std::vector<screen::Result> res;
+    std::vector<screen::SurrogateFitInfo> fits;
+    if (surrogate) {
+      sso.basis = polyfit::parse_basis(basis);
+      screen::SurrogateResult sr = screen::screen_surrogate(inputs, model.fn, *model.outputs, so, sso);
+      res = std::move(sr.screening);
+      fits = std::move(sr.fits);
+    } else {
+      res = screen::screen(inputs, model.fn, *model.outputs, so);
+    }
+    auto push = [&](std::size_t i) {
+      if (surrogate)
+        push_result(L, res[i], so.n, &fits[i], &inputs, static_cast<lua_Integer>(sso.runs));
+      else
+        push_result(L, res[i], so.n);
+    };
     if (want) {
-      for (const auto& r : res)
-        if (r.output == *want) {
-          push_result(L, r, so.n);
+      for (std::size_t i = 0; i < res.size(); ++i)
+        if (res[i].output == *want) {
+          push(i);
           return 1;
         }
       throw InvalidArgument("the model has no output '" + *want + "'");
     }
     if (res.size() == 1) {
-      push_result(L, res[0], so.n);
+      push(0);
       return 1;
     }
     lua_createtable(L, 0, static_cast<int>(res.size()));
-    for (const auto& r : res) {
-      push_result(L, r, so.n);
-      lua_setfield(L, -2, r.output.c_str());
+    for (std::size_t i = 0; i < res.size(); ++i) {
+      push(i);
+      lua_setfield(L, -2, res[i].output.c_str());
     }
     return 1;
   });
