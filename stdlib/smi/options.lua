@@ -13,7 +13,8 @@
 --   })
 --   -- opt.data, opt.metric, opt.starts, opt.quick, opt.only, ...
 --
--- Values: --name VALUE or --name=VALUE; a flag takes no value (--quick). Types: flag, string,
+-- Values: --name VALUE or --name=VALUE; a flag takes no value (--quick) and is true when given,
+-- else its default (nil unless declared). Types: flag, string,
 -- path, number, integer, list (comma-separated, repeatable: --only a,b --only c -> {"a","b","c"}).
 -- Checks: allowed = {...} (every element for a list), min, max, and check = function(v) that
 -- returns true, or false/nil and why. Arguments not starting with "--" are refused unless the
@@ -235,8 +236,9 @@ function M.check(argv, spec)
   for _, d in ipairs(decl) do
     local key = d.name:gsub("%-", "_")
     if not given[key] then
-      if d.type == "flag" then opt[key] = d.default == true
-      elseif d.default ~= nil then opt[key] = d.default end
+      -- a flag not given keeps its declared default (nil when none: smi.study's --quiet must
+      -- stay unset so that smi-lua's own --quiet still applies)
+      if d.default ~= nil then opt[key] = d.default end
     end
   end
   return opt

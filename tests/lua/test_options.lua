@@ -8,7 +8,7 @@ local spec = {
   { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "calibration metric" },
   { name = "multistart", type = "integer", default = 1, min = 1, meaning = "optimizer starts" },
   { name = "alpha", type = "number", default = 0.1, min = 0, max = 1, meaning = "significance" },
-  { name = "quick", type = "flag", meaning = "reduced run" },
+  { name = "quick", type = "flag", default = false, meaning = "reduced run" },
   { name = "even", type = "integer", default = 2, check = function(v) return v % 2 == 0, "is odd" end, meaning = "an even count" },
   options.study_steps,
 }
@@ -16,7 +16,7 @@ local spec = {
 T.case("defaults when nothing is given", function()
   local o = assert(options.check({}, spec))
   T.eq(o.data, "data/tests.csv"); T.eq(o.metric, "pr"); T.eq(o.multistart, 1); T.eq(o.quick, false)
-  T.eq(o.alpha, 0.1); T.eq(o.only, nil); T.eq(o.quiet, false)
+  T.eq(o.alpha, 0.1); T.eq(o.only, nil); T.eq(o.quiet, nil)
 end)
 
 T.case("values in both spellings, flags, lists", function()
