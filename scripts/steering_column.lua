@@ -34,38 +34,25 @@ local MODES = { "mode1", "mode2", "mode4" }
 -- ---------------------------------------------------------------------------------------------
 -- Options
 -- ---------------------------------------------------------------------------------------------
-local args = study.parse_args(arg)
-local opt = { quick = false }
-do
-  local i, rest = 1, args.rest
-  while i <= #rest do
-    local a = rest[i]
-    if a == "--quick" then opt.quick = true; i = i + 1
-    elseif a == "--metric" then
-      local v = rest[i + 1]
-      if v ~= "pr" and v ~= "loglik" then
-        error(("steering_column: --metric must be pr (the paper's probability residual) or loglik, got %s"):format(tostring(v)), 0)
-      end
-      opt.metric, i = v, i + 2
-    elseif a == "--multistart" then
-      local v = tonumber(rest[i + 1])
-      if not v or v < 1 or v ~= math.floor(v) then
-        error(("steering_column: --multistart needs a whole number of starts >= 1, got %s"):format(tostring(rest[i + 1])), 0)
-      end
-      opt.multistart, i = v, i + 2
-    elseif a == "--data" or a == "--solver" then
-      local v = rest[i + 1]
-      if not v or v:sub(1, 2) == "--" then error(("steering_column: %s needs a value (a path)"):format(a), 0) end
-      opt[a:sub(3)] = v
-      i = i + 2
-    else
-      error(("steering_column: unknown option '%s' (use --data FILE.csv, --solver PATH, --quick, --metric pr|loglik, --multistart N, --only STEP, --from STEP)"):format(a), 0)
-    end
-  end
-end
 local here = smi.script_dir or "scripts"
-opt.data = opt.data or (here .. "/steering_column/data/tests.csv")
-opt.solver = opt.solver or (here .. "/../build/column-fe")
+local options = require "smi.options"
+local opt = options.parse(arg, {
+  name = "steering_column",
+  summary = "the steering-column study of Son et al. (2020) on the FE model column-fe",
+  usage = "smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]",
+  { name = "data", type = "path", default = here .. "/steering_column/data/tests.csv",
+    meaning = "measurements, columns mode1_hz, mode2_hz, mode4_hz (give --allow-read for its folder)" },
+  { name = "solver", type = "path", default = here .. "/../build/column-fe",
+    meaning = "the column-fe program; allow it with --allow-exec PATH" },
+  { name = "quick", type = "flag", default = false,
+    meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },
+  { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
+    meaning = "calibration metric per mode: the paper's probability residual, or minus the mean log-likelihood" },
+  { name = "multistart", type = "integer", default = 1, min = 1,
+    meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
+  options.study_steps,
+  epilog = "smi-lua's own --out DIR (default smi-out/steering_column/), --seed N and --quiet apply.",
+})
 
 -- Sample sizes. Full: the paper's choices where stated; quick: CI.
 -- Quick differs only where the verdicts do not depend on it: the screening sample, the
@@ -412,4 +399,4 @@ s:step("summary", timed(function(ctx)
   return out
 end))
 
-s:run(args)
+s:run(opt)
