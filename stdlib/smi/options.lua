@@ -19,6 +19,12 @@
 -- Checks: allowed = {...} (every element for a list), min, max, and check = function(v) that
 -- returns true, or false/nil and why. Arguments not starting with "--" are refused unless the
 -- spec says args = "<meaning>" (then they are kept in opt.args).
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.options
+Command-line options a study declares (name, type, default, meaning, check), as sysbench scripts
+do: `smi-lua study.lua --help` lists them, and a wrong value names the option and what it accepts.
+]==]
 local M = {}
 
 local TYPES = { flag = true, string = true, path = true, number = true, integer = true, list = true }
@@ -89,6 +95,17 @@ local function placeholder(d)
   return "=" .. ({ string = "TEXT", path = "PATH", number = "X", integer = "N", list = "A[,B...]" })[d.type]
 end
 
+doc.add[==[
+@ smi.options.help(spec) -> string
+The --help text of a spec: the study's name and summary, the usage line, then every option with
+its placeholder (--metric=pr|loglik, --starts=N), meaning, default and accepted values.
+returns: a string ending in a newline
+errors: a bad declaration (as smi.options.check)
+example:
+  local options = require "smi.options"
+  print(options.help{name = "demo", summary = "a demo",
+    {name = "metric", default = "pr", allowed = {"pr", "loglik"}, meaning = "calibration metric"}})
+]==]
 --- The --help text of a spec (what options.parse prints for --help).
 function M.help(spec)
   local decl = declarations(spec)
@@ -175,6 +192,31 @@ local function suggest(by, name)
   return best
 end
 
+doc.add[==[
+@ smi.options.check(argv, spec) -> opt | nil, message
+Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
+ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args.
+options:
+  name = (required)     -- a declaration's option name: --name on the command line, opt.name in Lua
+                        -- (dashes become underscores)
+  type = "string"       -- flag, string, path, number, integer or list (comma-separated, repeatable);
+                        -- inferred from a number or boolean default
+  default = nil         -- the value when the option is not given (flags: nil unless declared)
+  meaning = (required)  -- what the option does (shown by --help)
+  allowed = nil         -- the allowed values (every element, for a list)
+  min = nil             -- the smallest number allowed
+  max = nil             -- the largest number allowed
+  check = nil           -- function(v) returning true, or false and why
+returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
+  positional arguments), or nil and a message naming the option and the allowed values
+errors: a bad declaration: a missing meaning, an unknown type, an option declared twice
+example:
+  local options = require "smi.options"
+  local spec = {name = "demo", {name = "metric", default = "pr", allowed = {"pr", "loglik"}, meaning = "metric"},
+                {name = "starts", type = "integer", default = 1, min = 1, meaning = "optimizer starts"}}
+  print(options.check({"--starts=4"}, spec).starts)
+  print(options.check({"--metric", "rmse"}, spec))
+]==]
 --- Parses argv against spec without exiting: returns opt, or nil and a message naming the
 -- option and what it accepts; opt.help is true when --help was given.
 function M.check(argv, spec)
@@ -244,6 +286,20 @@ function M.check(argv, spec)
   return opt
 end
 
+doc.add[==[
+@ smi.options.parse(argv, spec) -> opt
+Parses the script's arguments (arg) against the declared options, as smi.options.check; --help
+prints the list and ends the run with status 0, and a wrong value or an unknown option prints
+"<study>: --metric: 'rmse' is not allowed; allowed values: pr, loglik" and ends it with status 2.
+returns: the options table, defaults filled in
+errors: a bad declaration (as smi.options.check); the run ends (os.exit) on --help or a bad value
+example:
+  local options = require "smi.options"
+  local opt = options.parse({"--quick"}, {name = "demo",
+    {name = "quick", type = "flag", default = false, meaning = "the reduced run"},
+    options.study_steps})
+  print(opt.quick, opt.only)
+]==]
 --- Parses argv (the script's `arg`) against the declared options. --help prints the list and
 -- ends the run (exit status 0); a wrong value or an unknown option prints what is wrong, naming
 -- the option and its allowed values, and ends the run with status 2 (a usage error).
