@@ -66,6 +66,9 @@ LineReader::LineReader(lua_State* L) : tty_(::isatty(STDIN_FILENO) && ::isatty(S
   rl_getc_function = getc_interruptible;
   rl_attempted_completion_function = attempt_completion;
   rl_basic_word_break_characters = const_cast<char*>(" \t\n\"\\'`@$><=;|&{}()[],+-*/%^~#");
+  // A quote before the word would be "remembered as the delimiter" and appended after a single
+  // match (help("smi.ve<TAB> gave help("smi.vec"); the user closes the string, not readline.
+  rl_basic_quote_characters = "";
   if (const char* h = std::getenv("SMI_HISTORY"))
     history_file_ = h;
   else if (const char* home = std::getenv("HOME"))
