@@ -130,9 +130,9 @@ example:
   print("saved")
 
 @ smi.propagate{model =, inputs =} -> outputs, X
-Monte Carlo propagation with common random numbers: n points of the inputs (a seeded LHS-free
-CRN sample: the same seed gives the same points for any model) through the model, on whole
-matrices.
+Monte Carlo propagation: n points drawn from the inputs pushed through the model on whole
+matrices. The draws are common random numbers: the same seed gives the same points for any
+model, so two models (or two calibration steps) are compared without sampling noise.
 options:
   model = (required)   -- an smi.Kriging, a table of them by output name, a function(X) returning
                        -- {name = vec}, or an smi.model.* model

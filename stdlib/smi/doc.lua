@@ -72,7 +72,12 @@ local function parse_block(block, source)
       e.description = table.concat(paras, "\n")
       -- the summary: the first sentence
       local first = paras[1] or ""
-      e.summary = first:match("^(.-[%w%)%]\"]%.)%s") or first
+      e.summary = first
+      local abbrev = { eq = true, al = true, ["e.g"] = true, ["i.e"] = true, vs = true, cf = true, fig = true }
+      for stop in first:gmatch("()%.%s") do
+        local word = first:sub(1, stop - 1):match("([%w%.]+)$") or ""
+        if not abbrev[word:lower()] and word:match("[%w%)%]\"]$") then e.summary = first:sub(1, stop) break end
+      end
       if #e.summary > 110 then e.summary = e.summary:sub(1, 107):gsub("%s+%S*$", "") .. "..." end
     elseif section == "example" then
       local ind
@@ -338,6 +343,7 @@ function M.overview()
       out[#out + 1] = ("  %-22s %s"):format(top, t.summary or "")
     end
   end
+  local head = table.remove(out, 1)
   for _, m in ipairs(M.stdlib) do
     if not seen[m] then
       seen[m] = true
@@ -345,6 +351,8 @@ function M.overview()
       out[#out + 1] = ("  %-22s %s"):format(m, t and t.summary or "")
     end
   end
+  table.sort(out)
+  table.insert(out, 1, head)
   return table.concat(out, "\n")
 end
 
