@@ -445,7 +445,11 @@ function M.run_example(e)
   end
   local f, err = load(e.example, "=example of " .. e.name, "t", env)
   if not f then return false, err end
+  -- modules called by the example print through the global print (T.finish): capture it too
+  local global_print = _G.print
+  _G.print = env.print
   local ok, perr = xpcall(f, function(m) return debug and debug.traceback and debug.traceback(tostring(m), 2) or tostring(m) end)
+  _G.print = global_print
   if not ok then return false, tostring(perr) end
   return true, table.concat(lines, "\n")
 end
