@@ -91,22 +91,32 @@ local function page(title, body, index)
     "<main><ul id=\"results\" style=\"display:none\"></ul>", body, "</main><script>", index, JS, "</script></body></html>\n" }
 end
 
+-- Escaped text with every name of the reference in it ("as smi.kde_bd") linked to its entry.
+local function linked(text)
+  local all = {}
+  for _, e in ipairs(doc.list()) do all[e.name] = true end
+  return (esc(text):gsub("smi[%w_%.:]*[%w_]", function(name)
+    if all[name] then return ("<a href=\"%s#%s\">%s</a>"):format(file_of(page_of(name)), anchor(name), name) end
+    return name
+  end))
+end
+
 local function entry_html(e)
   local out = { ("<h2 id=\"%s\"><code class=\"sig\">%s</code></h2>"):format(anchor(e.name), esc(e.signature)) }
   if e.description and e.description ~= "" then
     for para in (e.description .. "\n"):gmatch("(.-)\n") do
-      if para:match("%S") then out[#out + 1] = "<p>" .. esc(para) .. "</p>" end
+      if para:match("%S") then out[#out + 1] = "<p>" .. linked(para) .. "</p>" end
     end
   end
   if #e.options > 0 then
     out[#out + 1] = "<table><tr><th>option</th><th>default</th><th>meaning</th></tr>"
     for _, o in ipairs(e.options) do
-      out[#out + 1] = ("<tr><td><code>%s</code></td><td><code>%s</code></td><td>%s</td></tr>"):format(esc(o.name), esc(o.default), esc(o.meaning))
+      out[#out + 1] = ("<tr><td><code>%s</code></td><td><code>%s</code></td><td>%s</td></tr>"):format(esc(o.name), esc(o.default), linked(o.meaning))
     end
     out[#out + 1] = "</table>"
   end
-  if e.returns then out[#out + 1] = "<p><span class=\"lbl\">Returns</span> " .. esc(e.returns) .. "</p>" end
-  if e.errors then out[#out + 1] = "<p><span class=\"lbl\">Errors</span> " .. esc(e.errors) .. "</p>" end
+  if e.returns then out[#out + 1] = "<p><span class=\"lbl\">Returns</span> " .. linked(e.returns) .. "</p>" end
+  if e.errors then out[#out + 1] = "<p><span class=\"lbl\">Errors</span> " .. linked(e.errors) .. "</p>" end
   if e.example then
     local ok, printed = doc.run_example(e)
     if not ok then error(("smi-lua doc --html: the example of %s failed: %s"):format(e.name, printed), 0) end
