@@ -68,5 +68,7 @@ chart:line(pred.x, pred.cdf, {label = "predicted (200 solver runs)"})
 chart:ecdf(measured, {label = "measured"})
 rep:figure(chart, "CDF of the predicted frequency and the measured ECDF.")
 rep:verdict{name = "u-pooling validation", pass = v.pass, detail = tostring(v), value = v.metric, threshold = v.threshold}
+rep:provenance{smi_lua = smi.version, seed = smi.seed, solver = opt.solver, solver_version = solver.version,
+               data = "bracket_tests.csv", design_points = X:rows()}
 rep:write(smi.out("report.html"))
 print("report: " .. smi.out_dir .. "/report.html")
