@@ -33,7 +33,7 @@ example:
 @ smi.vec.linspace(a, b, n) -> vec
 n equally spaced values from a to b inclusive (a plot grid, say).
 returns: a new vec of length n
-errors: n < 1 (n = 1 gives {a})
+errors: n < 2 ("need at least 2 points")
 example:
   print(smi.vec.linspace(0, 1, 5))
 

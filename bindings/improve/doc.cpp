@@ -81,7 +81,8 @@ options:
 returns: {ratings (criterion x candidate), overall = {...}, weights, best (index), best_name,
   best_candidate, ranking = {names}, ties}; tostring(r) prints the matrix
 errors: no candidates or criteria; a magnitude count that does not match the candidates (named);
-  a magnitude that is not a number, negative or NaN (criterion and candidate named); weights <= 0
+  a magnitude that is not a number, negative or NaN (criterion and candidate named); weights that
+  do not sum to 1 ("divide each weight by the sum")
 example:
   local r = smi.refine.decision_matrix{
     candidates = {"airbag", "material"},

@@ -19,7 +19,7 @@ options:
   grid = nil        -- {lower =, upper =, nodes =}: the integration grid (default: both bulks)
   nodes = ${nodes}  -- the number of grid nodes when grid is not given
 returns: a number
-errors: an argument neither a dist nor numbers; lower >= upper; fewer than 2001 nodes
+errors: an argument neither a dist nor numbers (named); an unknown option
 example:
   local x = smi.vec{30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20}
   print(smi.metric.pr(x, smi.dist.normal{mean = 30.25, std = 0.36}))

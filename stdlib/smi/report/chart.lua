@@ -89,7 +89,7 @@ options:
   marker = "circle" -- "circle", "square", "triangle" or "diamond"
   size = 3.5        -- marker size, pixels
 returns: the chart
-errors: as chart:line; an unknown marker
+errors: as chart:line
 example:
   local c = require("smi.report").svg.chart{equal = true}
   c:scatter({1, 2, 3}, {1.1, 1.9, 3.2}, {label = "LOO", marker = "square"}):diagonal()
@@ -402,7 +402,7 @@ doc.add[==[
 @ smi.report.chart:render() -> svg
 The chart as an SVG string (axes with readable ticks, legend, notes).
 returns: a string starting with <svg
-errors: a chart with nothing to draw on a log axis (values <= 0 only)
+errors: none (values a log axis cannot show are skipped, and a note says how many)
 example:
   local c = require("smi.report").svg.chart{title = "t"}
   c:line({1, 2}, {3, 4})

@@ -320,7 +320,7 @@ doc.add[==[
 @ smi.report:result(key, value) -> report
 Records a number (or any JSON value) under a dotted key ("calibration.E.mean") for r:json().
 returns: the report
-errors: key not a string
+errors: none (a value JSON cannot hold fails later, in r:json())
 example:
   local r = require("smi.report").new{title = "t"}
   r:result("calibration.E.mean", 246300)
