@@ -17,6 +17,9 @@ namespace {
 const char* const kHostDoc = R"(
 @ module smi
 The smi-lua runtime: every kernel is a field of this table (help() lists them).
+Values set by the command line: smi.seed (--seed, default ${seed}), smi.quiet (--quiet, or
+output not a terminal), smi.out_dir (--out, default smi-out/<script>), smi.script_dir (the
+script's folder), smi.version (the program's version).
 
 @ smi.out([name]) -> path
 A path in the run's output folder (--out, default smi-out/<script>/), which is created on
@@ -93,7 +96,7 @@ int smi_docs(lua_State* L) {
   std::vector<bind::DocText> texts;
   const int r = lua::protect(L, "smi._docs", [&] {
     texts = bind::binding_docs();
-    texts.push_back({"host/vm/docs.cpp", kHostDoc});
+    texts.push_back({"host/vm/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
     return 0;
   });
   lua_createtable(L, 0, 2);
