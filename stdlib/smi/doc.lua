@@ -365,6 +365,17 @@ local function resolve(x)
     if e then return e end
     local mt = getmetatable(x)
     if mt and type(mt.__name) == "string" and load_all()[mt.__name] then return load_all()[mt.__name] end
+    -- an instance of a Lua class (a study, a report, a chart): its class's module entry
+    if type(mt) == "table" and type(mt.__index) == "table" then
+      for _, c in ipairs(classes) do
+        local ok, obj = pcall(c[2])
+        if ok and getmetatable(obj) and getmetatable(obj).__index == mt.__index then
+          local name = c[1]
+          while name and not load_all()[name] do name = name:match("^(.*)%.[^%.]+$") end
+          if name then return load_all()[name] end
+        end
+      end
+    end
     return nil, "no doc text for this " .. type(x) .. " (help() lists the modules)"
   end
   local s = trim(x)
