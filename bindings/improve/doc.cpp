@@ -50,11 +50,12 @@ options:
   bootstrap = nil             -- replicates, or {replicates = ${boot_replicates}, level = ${boot_level},
                               -- seed =, maxeval =}: refits on resampled data (model form)
   progress = nil              -- function(row) called after each optimizer step
-returns: r with r.params {name = value}, r.objective, r.metrics (per output and prior parts),
-  r.calibrated {input = {dist =, mean =, std =}} (model form), r.history (every evaluation),
-  r.converged, r.status, r.evaluations, r.starts, r.warnings (at a bound, outside the design
-  range, not identifiable), r.identifiability {span, weak, nodes, profiles}, r.bootstrap {lower,
-  upper, std, level, replicates, samples}
+returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
+  r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
+  {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
+  r.evaluations, r.model_runs, r.starts, r.at_bounds, r.warnings (at a bound, outside the design
+  range, not identifiable), r.identifiability {span, weak, profiles, evaluations}, r.bootstrap
+  {lower, upper, std, level, replicates, failed, samples}
 errors: both or neither form; a range with lower >= upper or a start outside it (named); a
   lognormal mean range reaching 0; data with fewer than 2 points; the model failing (its message);
   an unknown option (the closest name is suggested)
