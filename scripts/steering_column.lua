@@ -43,45 +43,29 @@ local MODES = { "mode1", "mode2", "mode4" }
 -- ---------------------------------------------------------------------------------------------
 -- Options
 -- ---------------------------------------------------------------------------------------------
--- The study's own options, in one function (to be swapped for smi.options when it lands).
-local function parse_options(rest)
-  local o = { quick = false, max_refinements = 2 }
-  local function value(i, what)
-    local v = rest[i + 1]
-    if not v or v:sub(1, 2) == "--" then error(("steering_column: %s needs %s"):format(rest[i], what), 0) end
-    return v
-  end
-  local function count(i, min)
-    local v = tonumber(value(i, "a whole number"))
-    if not v or v < min or v ~= math.floor(v) then
-      error(("steering_column: %s needs a whole number >= %d, got %s"):format(rest[i], min, tostring(rest[i + 1])), 0)
-    end
-    return v
-  end
-  local i = 1
-  while i <= #rest do
-    local a = rest[i]
-    if a == "--quick" then o.quick = true; i = i + 1
-    elseif a == "--metric" then
-      local v = value(i, "pr or loglik")
-      if v ~= "pr" and v ~= "loglik" then
-        error(("steering_column: --metric must be pr (the paper's probability residual) or loglik, got %s"):format(v), 0)
-      end
-      o.metric, i = v, i + 2
-    elseif a == "--multistart" then o.multistart, i = count(i, 1), i + 2
-    elseif a == "--max-refinements" then o.max_refinements, i = count(i, 0), i + 2
-    elseif a == "--data" or a == "--solver" or a == "--prior" then o[a:sub(3)], i = value(i, "a path"), i + 2
-    else
-      error(("steering_column: unknown option '%s' (use --data FILE.csv, --solver PATH, --prior FILE.lua, --quick, --metric pr|loglik, --multistart N, --max-refinements N, --only STEP, --from STEP)"):format(a), 0)
-    end
-  end
-  return o
-end
-local args = study.parse_args(arg)
-local opt = parse_options(args.rest)
 local here = smi.script_dir or "scripts"
-opt.data = opt.data or (here .. "/steering_column/data/tests.csv")
-opt.solver = opt.solver or (here .. "/../build/column-fe")
+local options = require "smi.options"
+local opt = options.parse(arg, {
+  name = "steering_column",
+  summary = "the steering-column study of Son et al. (2020) on the FE model column-fe",
+  usage = "smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]",
+  { name = "data", type = "path", default = here .. "/steering_column/data/tests.csv",
+    meaning = "measurements, columns mode1_hz, mode2_hz, mode4_hz (give --allow-read for its folder)" },
+  { name = "solver", type = "path", default = here .. "/../build/column-fe",
+    meaning = "the column-fe program; allow it with --allow-exec PATH" },
+  { name = "quick", type = "flag", default = false,
+    meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },
+  { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
+    meaning = "calibration metric per mode: the paper's probability residual, or minus the mean log-likelihood" },
+  { name = "multistart", type = "integer", default = 1, min = 1,
+    meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
+  { name = "prior", type = "path",
+    meaning = "a Lua file returning smi.calibrate prior entries (the analyst's knowledge, e.g. a weighed mass); none by default" },
+  { name = "max-refinements", type = "integer", default = 2, min = 0,
+    meaning = "how many refinements (revised trials) to try after an invalid trial" },
+  options.study_steps,
+  epilog = "smi-lua's own --out DIR (default smi-out/steering_column/), --seed N and --quiet apply.",
+})
 
 -- The analyst's prior knowledge (--prior FILE.lua): smi.calibrate `prior` entries, checked here
 -- so that a mistake names the file and the entry; none by default.
@@ -580,7 +564,7 @@ s:step("summary", timed(function(ctx)
   return out
 end))
 
-local results = s:run(args)
+local results = s:run(opt)
 
 -- The conclusion at the top of results.json, where outside checks read it, and in words last.
 local ok, summary = pcall(function() return results.summary end)

@@ -5,7 +5,7 @@
 
 namespace smi::cli {
 
-bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify"; }
+bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify" || w == "doc"; }
 
 vm::LibrarySet current_libraries(const Args& a) {
   return vm::LibrarySet::discover(vm::library_roots(a.cfg.lib_dirs, a.ignore_env ? nullptr : std::getenv("SMI_PATH")));
@@ -17,6 +17,14 @@ int run_command(const Args& first, int argc, char** argv) {
   // the parser itself (it reports "needs an argument" for a valued option given alone).
   const int at = first.script_index;
   const std::string word = argv[at];
+  if (word == "doc") {  // doc has options of its own (--html DIR): it reads its words itself
+    try {
+      return cmd_doc(first, argc, argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "smi-lua doc: %s\n", e.what());
+      return 1;
+    }
+  }
   std::vector<std::string> opts, pos;
   for (int i = at + 1; i < argc; ++i) {
     const std::string s = argv[i];

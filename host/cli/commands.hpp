@@ -5,6 +5,7 @@
 //   smi-lua new-lib NAME [DIR]   scaffold a library (manifest, module, a passing test, README)
 //   smi-lua test DIR             run DIR/tests/test_*.lua sandboxed; prints "N passed, N failed"
 //   smi-lua verify RESULTS.json  do the libraries at hand still match those a study recorded?
+//   smi-lua doc [NAME]           the reference (help() text); doc --html DIR writes it as pages
 // Options such as --lib, --allow-read and --seed may come before or after the command word.
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@ int cmd_libs(const Args& a, const std::vector<std::string>& args);
 int cmd_new_lib(const Args& a, const std::vector<std::string>& args);
 int cmd_test(const Args& a, const std::vector<std::string>& args, const char* argv0);
 int cmd_verify(const Args& a, const std::vector<std::string>& args);
+int cmd_doc(const Args& first, int argc, char** argv);
 
 /// The library set the options and environment describe (SMI_PATH unless -E).
 vm::LibrarySet current_libraries(const Args& a);

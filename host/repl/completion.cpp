@@ -85,4 +85,47 @@ std::vector<std::string> complete(lua_State* L, const std::string& text) {
   return out;
 }
 
+namespace {
+
+/// require("smi.doc").names(prefix), or nothing when the doc module fails (completion must not).
+std::vector<std::string> doc_names(lua_State* L, const std::string& prefix) {
+  const int top = lua_gettop(L);
+  std::vector<std::string> out;
+  static constexpr char kCode[] = "local p = ... return require('smi.doc').names(p)";
+  if (luaL_loadbufferx(L, kCode, sizeof kCode - 1, "=completion", "t") == LUA_OK) {
+    lua_pushlstring(L, prefix.data(), prefix.size());
+    if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_istable(L, -1)) {
+      const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+      for (lua_Integer i = 1; i <= n; ++i) {
+        if (lua_rawgeti(L, -1, i) == LUA_TSTRING) out.emplace_back(lua_tostring(L, -1));
+        lua_pop(L, 1);
+      }
+    }
+  }
+  lua_settop(L, top);
+  return out;
+}
+
+bool ends_with_help_string(const std::string& before) {
+  std::string b = before;
+  while (!b.empty() && b.back() == ' ') b.pop_back();
+  if (b.empty() || (b.back() != '"' && b.back() != '\'')) return false;
+  b.pop_back();
+  while (!b.empty() && (b.back() == ' ' || b.back() == '(')) b.pop_back();
+  return b.size() >= 4 && b.compare(b.size() - 4, 4, "help") == 0 &&
+         (b.size() == 4 || !(std::isalnum(static_cast<unsigned char>(b[b.size() - 5])) || b[b.size() - 5] == '_'));
+}
+
+}  // namespace
+
+std::vector<std::string> complete_line(lua_State* L, const std::string& text, const std::string& before) {
+  if (!text.empty() && text[0] == '?' && before.find_first_not_of(' ') == std::string::npos) {
+    std::vector<std::string> out;
+    for (auto& n : doc_names(L, text.substr(1))) out.push_back("?" + n);
+    return out;
+  }
+  if (ends_with_help_string(before)) return doc_names(L, text);
+  return complete(L, text);
+}
+
 }  // namespace smi::repl

@@ -12,4 +12,9 @@ namespace smi::repl {
 /// Completions of `text` (the word under the cursor), each a full replacement for it, sorted.
 std::vector<std::string> complete(lua_State* L, const std::string& text);
 
+/// Completion with the line before the word: after `help("` (or `help "`, `help '`) and after a
+/// leading `?`, the words are the names of the reference (smi.kde, smi.vec:mean, smi.report.new),
+/// asked of stdlib/smi/doc.lua in protected mode; elsewhere as complete().
+std::vector<std::string> complete_line(lua_State* L, const std::string& text, const std::string& before);
+
 }  // namespace smi::repl

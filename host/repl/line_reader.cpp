@@ -19,17 +19,20 @@ lua_State* g_completion_state = nullptr;
 volatile std::sig_atomic_t g_prompt_sigint = 0;
 constexpr int kHistoryLength = 1000;
 
+std::string g_before;  // the line before the word being completed (set by attempt_completion)
+
 char* generator(const char* text, int state) {
   static std::vector<std::string> matches;
   static std::size_t next = 0;
   if (state == 0) {
-    matches = g_completion_state ? complete(g_completion_state, text) : std::vector<std::string>{};
+    matches = g_completion_state ? complete_line(g_completion_state, text, g_before) : std::vector<std::string>{};
     next = 0;
   }
   return next < matches.size() ? strdup(matches[next++].c_str()) : nullptr;
 }
 
-char** attempt_completion(const char* text, int, int) {
+char** attempt_completion(const char* text, int start, int) {
+  g_before.assign(rl_line_buffer, static_cast<std::size_t>(start));
   rl_attempted_completion_over = 1;  // never fall back to file names
   rl_completion_append_character = '\0';  // readline resets it to ' ' before every attempt
   return rl_completion_matches(text, generator);
@@ -63,6 +66,9 @@ LineReader::LineReader(lua_State* L) : tty_(::isatty(STDIN_FILENO) && ::isatty(S
   rl_getc_function = getc_interruptible;
   rl_attempted_completion_function = attempt_completion;
   rl_basic_word_break_characters = const_cast<char*>(" \t\n\"\\'`@$><=;|&{}()[],+-*/%^~#");
+  // A quote before the word would be "remembered as the delimiter" and appended after a single
+  // match (help("smi.ve<TAB> gave help("smi.vec"); the user closes the string, not readline.
+  rl_basic_quote_characters = "";
   if (const char* h = std::getenv("SMI_HISTORY"))
     history_file_ = h;
   else if (const char* home = std::getenv("HOME"))

@@ -22,6 +22,21 @@ bool load_as_expression(lua_State* L, const std::string& line) {
   return false;
 }
 
+/// The REPL's `help` global (stdlib/smi/doc.lua): help(smi.kde), help "bandwidth", help().
+/// Loaded lazily by a small stub so that starting the REPL does not parse the reference.
+constexpr const char* kHelpStub =
+    "if help == nil then help = function(...) return require('smi.doc').help(...) end end";
+
+/// "?smi.kde" / "? bandwidth" / "?" -> help("smi.kde") / help("bandwidth") / help() (as in trepl).
+std::string question_to_help(const std::string& line) {
+  std::size_t a = 1;
+  while (a < line.size() && (line[a] == ' ' || line[a] == '\t')) ++a;
+  std::size_t b = line.size();
+  while (b > a && (line[b - 1] == ' ' || line[b - 1] == '\t')) --b;
+  if (a == b) return "help()";
+  return "help([==[" + line.substr(a, b - a) + "]==])";
+}
+
 }  // namespace
 
 bool incomplete(lua_State* L, int status) {
@@ -38,12 +53,16 @@ int run(vm::Runtime& rt) {
   LineReader reader(L);
   const char* p1 = reader.interactive() ? kPrompt : "";
   const char* p2 = reader.interactive() ? kPrompt2 : "";
+  if (luaL_loadbufferx(L, kHelpStub, std::strlen(kHelpStub), "=help", "t") == LUA_OK) rt.docall(0, 0);
+  lua_settop(L, 0);
   for (;;) {
     auto first = reader.read(p1);
     if (!first) break;
     if (reader.interrupted()) continue;  // Ctrl-C at the prompt: a fresh line
     std::string entry = *first;
+    const std::string typed = entry;  // history keeps what was typed, not the rewrite below
     if (!entry.empty() && entry[0] == '=') entry = "return " + entry.substr(1);  // Lua 5.1 habit
+    if (!entry.empty() && entry[0] == '?') entry = question_to_help(entry);
     lua_settop(L, 0);
     int status = LUA_OK;
     if (!load_as_expression(L, entry)) {
@@ -61,7 +80,7 @@ int run(vm::Runtime& rt) {
         entry += "\n" + *more;
       }
     }
-    reader.remember(entry);
+    reader.remember(entry.rfind("help([==[", 0) == 0 || entry == "help()" ? typed : entry);
     if (status == -1) {
       lua_settop(L, 0);
       continue;

@@ -1,4 +1,5 @@
 #include "vm/runtime.hpp"
+#include "vm/docs.hpp"
 
 #include <cctype>
 #include <chrono>
@@ -156,6 +157,7 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
+  install_docs(L);  // smi._docs: the reference texts (help, smi-lua doc)
   lua_pop(L, 1);
   if (cfg.sandbox) sandbox::install(L);
   return 0;

@@ -22,6 +22,12 @@
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.study
+A study as named steps that run in order, are timed, report progress, and save their results to
+results.json, so that any step can run again alone later (s:run{only = "fit"}).
+]==]
 local M = {}
 
 local Study = {}
@@ -39,6 +45,24 @@ local function now()
   return os.clock(), "cpu"
 end
 
+doc.add[==[
+@ smi.study.new(opts) -> study
+A new study; add steps with s:step and run them with s:run.
+options:
+  name = (required)    -- the study's name (in results.json and messages)
+  out = smi.out_dir    -- the folder of results.json and report.html
+  results = nil        -- the path of results.json (default <out>/results.json)
+  quiet = nil          -- no progress lines (default: smi.quiet)
+  seed = smi.seed      -- recorded in results.json
+  report = nil         -- {title =, subtitle =, ...}: creates ctx.report (smi.report), written at the end
+returns: a study with the methods smi.study:step, :run, :load
+errors: no name ("expects {name = \"...\", out = folder}")
+example:
+  local study = require "smi.study"
+  local s = study.new{name = "doc", out = smi.out(), results = smi.out("doc_study.json"), quiet = true}
+  s:step("data", function(ctx) return {n = 3} end)
+  print(s:run().data.n)
+]==]
 --- opts: name (required), out (folder for results.json/report.html; default smi.out_dir or "."),
 -- results (path of results.json, default <out>/results.json), quiet, seed (recorded; default
 -- smi.seed), report ({title=, subtitle=, ...}: creates ctx.report, written at the end of run).
@@ -58,6 +82,20 @@ function M.new(opts)
   return s
 end
 
+doc.add[==[
+@ smi.study:step(name [, opts], fn) -> study
+Adds a step. fn(ctx) returns a table of results (or sets them with ctx:set(key, value)); ctx.results
+holds the earlier steps' results (from this run or results.json), ctx:log(fmt, ...) writes a
+progress line, ctx.report is the study's report when it has one.
+options:
+  description = nil   -- a sentence on what the step does
+returns: the study (calls chain)
+errors: a name already used; fn not a function
+example:
+  local s = require("smi.study").new{name = "doc_step", out = smi.out(), results = smi.out("doc_step.json"), quiet = true}
+  s:step("a", function() return {x = 1} end):step("b", function(ctx) return {y = ctx.results.a.x + 1} end)
+  print(s:run().b.y)
+]==]
 --- Adds a step: s:step(name, fn) or s:step(name, {description = ...}, fn). fn(ctx) returns a
 -- table of results (or nil, using ctx:set).
 function Study:step(name, opts, fn)
@@ -82,6 +120,17 @@ function Study:_say(fmt_, ...)
   io.stderr:flush()
 end
 
+doc.add[==[
+@ smi.study:load() -> results | nil, why
+The saved results.json as a table (what steps not run in a partial run read).
+returns: the decoded table, or nil and the reason (no file yet, invalid JSON)
+errors: none
+example:
+  local s = require("smi.study").new{name = "doc_load", out = smi.out(), results = smi.out("doc_load.json"), quiet = true}
+  s:step("a", function() return {x = 2} end)
+  s:run()
+  print(s:load().steps.a.result.x)
+]==]
 --- The saved results.json as a table, or nil and the reason.
 function Study:load()
   local f, err = io.open(self.results_path, "rb")
@@ -128,6 +177,25 @@ function Study:_selection(opts)
   return selected
 end
 
+doc.add[==[
+@ smi.study:run([opts]) -> results
+Runs the steps (all, or only some) and returns the results by step name. Steps not run keep their
+saved results; results.json is rewritten after every step, so a failure keeps what was done; a
+report (if any) is written at the end, report-partial.html after a partial run.
+options:
+  only = nil     -- a step name or a list: run only these
+  from = nil     -- run this step and every later one
+  quiet = nil    -- no progress lines for this run
+returns: a table {step name = results}
+errors: a step's error, with the step named; only/from naming an unknown step (the steps are
+  listed); only and from together
+example:
+  local s = require("smi.study").new{name = "doc_run", out = smi.out(), results = smi.out("doc_run.json"), quiet = true}
+  s:step("a", function() return {x = 1} end)
+  s:step("b", function(ctx) return {y = 2} end)
+  s:run()
+  print(s:run{only = "b"}.a.x)
+]==]
 --- Runs the steps (all, or opts.only = name | {names}, or opts.from = name) and returns the
 -- results by step name. Steps not run keep their saved results; results.json is rewritten
 -- (atomically) after every step, so a failure keeps what was done. report.html is written only
@@ -285,6 +353,18 @@ function Study:_finish_report(partial, selected, total)
   end
 end
 
+doc.add[==[
+@ smi.study.parse_args(argv) -> opts
+Splits command-line arguments: --only NAME[,NAME] (repeatable), --from NAME, --quiet; the rest is
+kept in opts.rest. (smi.options with options.study_steps does the same and also checks the
+study's own options.)
+returns: {only =, from =, quiet =, rest = {...}}
+errors: --only or --from without a step name
+example:
+  local study = require "smi.study"
+  local o = study.parse_args{"--only", "fit,check", "--quick"}
+  print(#o.only, o.rest[1])
+]==]
 --- Splits command-line arguments: --only NAME[,NAME...] (repeatable), --from NAME, --quiet;
 -- everything else is kept, in order, in .rest (for the study's own options).
 function M.parse_args(argv)

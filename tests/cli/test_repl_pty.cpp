@@ -207,3 +207,53 @@ TEST_CASE("REPL: completion, multi-line input, printing, Ctrl-C, sandbox, histor
   }
   std::remove(history.c_str());
 }
+
+TEST_CASE("REPL: help(), ?name, help \"word\" and completion inside help(") {
+  const std::string history = temp_history();
+  Session s(history);
+  INFO(s.transcript());
+  REQUIRE(s.expect("> "));
+
+  // help(value): the entry, with each option's default (read from the kernel's option struct)
+  s.type("help(smi.kde_bd)\n");
+  CHECK(s.expect("smi.kde_bd(data, opts) -> dist, info"));
+  CHECK(s.expect("critical_area = 0.95"));
+  CHECK(s.expect("example:"));
+  // a method through a value the user holds
+  s.type("v = smi.vec{1, 2}\n");
+  s.type("help(v.cumsum)\n");
+  CHECK(s.expect("smi.vec:cumsum() -> vec"));
+  // ?name, as in trepl; the history keeps what was typed
+  s.type("?smi.rng\n");
+  CHECK(s.expect("smi.rng(seed [, stream]) -> rng"));
+  s.type("? v:quantile\n");
+  CHECK(s.expect("Type-7 quantiles"));
+  // a word searches every text
+  s.type("help \"bandwidth\"\n");
+  CHECK(s.expect("entries mention 'bandwidth'"));
+  CHECK(s.expect("smi.bandwidth"));
+  // help(): the modules, one line each
+  s.type("help()\n");
+  CHECK(s.expect("smi.calibrate"));
+  CHECK(s.expect("smi.vec"));
+  CHECK(s.expect("> "));
+
+  // completion inside help( ... ): values as anywhere, doc names inside a string and after ?
+  s.type("help(smi.kde_e\t)\n");
+  CHECK(s.expect("help(smi.kde_ebd)"));
+  CHECK(s.expect("alpha = 0.1"));
+  s.type("help(\"smi.vec:cums\t\")\n");
+  CHECK(s.expect("help(\"smi.vec:cumsum\")"));
+  CHECK(s.expect("Cumulative sums"));
+  s.type("?smi.metric.upool_th\t\n");
+  CHECK(s.expect("?smi.metric.upool_threshold"));
+  CHECK(s.expect("smi.metric.upool_threshold(n, confidence [, opts]) -> U_crit"));
+
+  s.type("\x04");
+  CHECK(s.wait_exit() == 0);
+  std::ifstream h(history);
+  std::stringstream all;
+  all << h.rdbuf();
+  CHECK(all.str().find("?smi.rng") != std::string::npos);
+  std::remove(history.c_str());
+}

@@ -8,6 +8,7 @@ local finite = axis.finite
 local n2, text, text_width, check_series = draw.n2, draw.text, draw.text_width, draw.check_series
 local marker_svg = draw.marker
 
+local doc = require "smi.doc"
 local M = {}
 local dashes, markers = draw.dashes, draw.markers
 local chart_count = 0 -- unique ids when several charts share one HTML page
@@ -42,14 +43,75 @@ function Chart:_add(kind, x, y, o, what)
   return self
 end
 
+doc.add[==[
+@ smi.report.chart:line(x, y [, opts]) -> chart
+A polyline through (x[i], y[i]); x and y are vecs or tables of one length (a line breaks at
+non-finite values).
+options:
+  label = nil     -- the legend entry
+  color = nil     -- a CSS colour (default: the next of the palette)
+  dash = nil      -- an SVG dash pattern such as "6 3"
+  width = 2       -- line width, pixels
+returns: the chart (calls chain)
+errors: x and y of different lengths or not numbers
+example:
+  local c = require("smi.report").svg.chart{}
+  c:line({0, 1, 2}, {0, 1, 4}, {label = "y", dash = "6 3"})
+  print("ok")
+]==]
 --- A polyline through (x[i], y[i]); opts: label, color, dash ("6 3"), width (px, 2).
 function Chart:line(x, y, o) return self:_add("line", x, y, o, "chart:line") end
+doc.add[==[
+@ smi.report.chart:step(x, y [, opts]) -> chart
+A step curve: y[i] holds from x[i] to x[i+1] (x ascending).
+options:
+  label = nil     -- as chart:line
+  color = nil     -- as chart:line
+  dash = nil      -- as chart:line
+  width = 2       -- as chart:line
+  tails = false   -- extend the first value left and the last value right to the axes
+returns: the chart
+errors: as chart:line
+example:
+  local c = require("smi.report").svg.chart{}
+  c:step({0, 1, 2}, {0.2, 0.6, 1}, {tails = true})
+  print("ok")
+]==]
 --- A step curve: y[i] holds from x[i] to x[i+1] (x ascending); opts as line, plus tails=true
 -- to extend the first value left to the axis and the last value right to the axis.
 function Chart:step(x, y, o) return self:_add("step", x, y, o, "chart:step") end
+doc.add[==[
+@ smi.report.chart:scatter(x, y [, opts]) -> chart
+Points (non-finite ones are left out and noted).
+options:
+  label = nil       -- the legend entry
+  color = nil       -- a CSS colour
+  marker = "circle" -- "circle", "square", "triangle" or "diamond"
+  size = 3.5        -- marker size, pixels
+returns: the chart
+errors: as chart:line
+example:
+  local c = require("smi.report").svg.chart{equal = true}
+  c:scatter({1, 2, 3}, {1.1, 1.9, 3.2}, {label = "LOO", marker = "square"}):diagonal()
+  print("ok")
+]==]
 --- Points; opts: label, color, marker ("circle", "square", "triangle", "diamond"), size (px, 3.5).
 function Chart:scatter(x, y, o) return self:_add("scatter", x, y, o, "chart:scatter") end
 
+doc.add[==[
+@ smi.report.chart:band(x, lo, hi [, opts]) -> chart
+A shaded band between two curves over the same x (a confidence band).
+options:
+  label = nil      -- the legend entry
+  color = nil      -- a CSS colour
+  opacity = 0.18   -- fill opacity
+returns: the chart
+errors: x, lo and hi of different lengths
+example:
+  local c = require("smi.report").svg.chart{}
+  c:band({0, 1, 2}, {0, 0.5, 1}, {1, 1.5, 2}, {label = "90 % band"})
+  print("ok")
+]==]
 --- A shaded band between two curves over the same x (a confidence band, or the area between
 -- an ECDF and a reference CDF); opts: label, color, opacity (0.18).
 function Chart:band(x, lo, hi, o)
@@ -63,6 +125,19 @@ function Chart:band(x, lo, hi, o)
   return self
 end
 
+doc.add[==[
+@ smi.report.chart:rug(data [, opts]) -> chart
+A short tick at the foot of the plot for each value of data (raw data under a density curve).
+options:
+  label = nil     -- the legend entry
+  color = nil     -- a CSS colour
+returns: the chart
+errors: data not numbers
+example:
+  local c = require("smi.report").svg.chart{}
+  c:rug(smi.vec{1, 1.5, 2.2})
+  print("ok")
+]==]
 --- A rug: a short tick at the foot of the plot for each value of `data` (raw data under a
 -- density curve); opts: label, color.
 function Chart:rug(data, o)
@@ -73,6 +148,21 @@ function Chart:rug(data, o)
   return self
 end
 
+doc.add[==[
+@ smi.report.chart:ecdf(data [, opts]) -> chart
+The empirical CDF of data as steps of 1/n, from 0 at the left edge to 1 at the right.
+options:
+  label = nil     -- as chart:line
+  color = nil     -- as chart:line
+  dash = nil      -- as chart:line
+  width = 2       -- as chart:line
+returns: the chart
+errors: data not numbers
+example:
+  local c = require("smi.report").svg.chart{ylabel = "F"}
+  c:ecdf(smi.vec{3, 1, 2}, {label = "data"})
+  print("ok")
+]==]
 --- The empirical CDF of `data` (non-finite values are skipped and noted): steps of 1/n at
 -- the sorted values, from 0 at the left edge to 1 at the right edge.
 function Chart:ecdf(data, o)
@@ -94,23 +184,74 @@ function Chart:ecdf(data, o)
   return self
 end
 
+doc.add[==[
+@ smi.report.chart:diagonal([opts]) -> chart
+The line y = x across the plot (predicted vs observed).
+options:
+  label = nil     -- the legend entry
+  color = nil     -- a CSS colour
+returns: the chart
+errors: none
+example:
+  local c = require("smi.report").svg.chart{equal = true}
+  c:scatter({1, 2}, {1, 2}):diagonal{label = "y = x"}
+  print("ok")
+]==]
 --- The line y = x across the plot (predicted vs observed); opts: label, color.
 function Chart:diagonal(o)
   self.marks[#self.marks + 1] = { kind = "diagonal", opts = o or {} }
   return self
 end
+doc.add[==[
+@ smi.report.chart:hline(y [, opts]) -> chart
+A horizontal marker at y (a threshold).
+options:
+  label = nil       -- the marker's label
+  color = "darkred" -- a CSS colour
+  dash = nil        -- a dash pattern
+returns: the chart
+errors: y not a number
+example:
+  local c = require("smi.report").svg.chart{}
+  c:line({0, 1}, {0, 1}):hline(0.5, {label = "threshold"})
+  print("ok")
+]==]
 --- A horizontal marker at y; opts: label, color (default dark red), dash.
 function Chart:hline(y, o)
   if not finite(y) then error("chart:hline: the value must be a finite number, got " .. tostring(y), 2) end
   self.marks[#self.marks + 1] = { kind = "hline", value = y, opts = o or {} }
   return self
 end
+doc.add[==[
+@ smi.report.chart:vline(x [, opts]) -> chart
+A vertical marker at x.
+options:
+  label = nil       -- the marker's label
+  color = "darkred" -- a CSS colour
+  dash = nil        -- a dash pattern
+returns: the chart
+errors: x not a number
+example:
+  local c = require("smi.report").svg.chart{}
+  c:line({0, 1}, {0, 1}):vline(0.3, {label = "measured"})
+  print("ok")
+]==]
 --- A vertical marker at x; opts as hline.
 function Chart:vline(x, o)
   if not finite(x) then error("chart:vline: the value must be a finite number, got " .. tostring(x), 2) end
   self.marks[#self.marks + 1] = { kind = "vline", value = x, opts = o or {} }
   return self
 end
+doc.add[==[
+@ smi.report.chart:note(s) -> chart
+A line of small text under the chart ("bandwidth 0.31 Hz").
+returns: the chart
+errors: none
+example:
+  local c = require("smi.report").svg.chart{}
+  c:line({0, 1}, {0, 1}):note("bandwidth 0.31 Hz")
+  print("ok")
+]==]
 --- A line of small text under the chart (e.g. "bandwidth 0.31 Hz").
 function Chart:note(s)
   self.notes[#self.notes + 1] = tostring(s)
@@ -257,6 +398,16 @@ local function legend(self, o, L, T, pw, ph, X, Y, ax)
   return table.concat(out)
 end
 
+doc.add[==[
+@ smi.report.chart:render() -> svg
+The chart as an SVG string (axes with readable ticks, legend, notes).
+returns: a string starting with <svg
+errors: none (values a log axis cannot show are skipped, and a note says how many)
+example:
+  local c = require("smi.report").svg.chart{title = "t"}
+  c:line({1, 2}, {3, 4})
+  print(c:render():sub(1, 4))
+]==]
 function Chart:render()
   local o = self.opts
   chart_count = chart_count + 1

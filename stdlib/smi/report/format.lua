@@ -1,8 +1,23 @@
 --- smi.report.format: numbers as people read them in tables and on charts.
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.report.format
+Numbers as people read them in tables and on charts.
+]==]
 local M = {}
 
 local floor, abs = math.floor, math.abs
 
+doc.add[==[
+@ smi.report.format.num(x [, digits]) -> string
+x with digits significant digits (default 4), trailing zeros dropped; whole numbers as integers;
+scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf".
+returns: a string
+errors: none
+example:
+  local f = require("smi.report").format
+  print(f.num(246312.7), f.num(0.000123456), f.num(3.14159, 3), f.num(12))
+]==]
 --- `x` with `digits` significant digits (default 4), trailing zeros dropped; integers
 -- (Lua integers, or floats that are whole and below 1e15 when `digits` covers them) as integers;
 -- scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf".
@@ -29,6 +44,17 @@ function M.num(x, digits)
   return s
 end
 
+doc.add[==[
+@ smi.report.format.column(values [, digits]) -> formatter
+A formatter for a table column: one number of decimals for the whole column so that the decimal
+points line up (falls back to format.num for columns spanning more than a factor 100).
+returns: a function(x) returning a string
+errors: none
+example:
+  local f = require("smi.report").format
+  local g = f.column({1.5, 22.25, 3}, 4)
+  print(g(1.5), g(22.25))
+]==]
 --- A formatter for a table column: one number of decimals for the whole column, so that the
 -- decimal points line up, chosen to give the largest magnitude `digits` significant digits.
 -- Columns spanning below 1e-3 or from 1e6 on, or over more than a factor 100, fall back to
@@ -61,6 +87,15 @@ function M.column(values, digits)
   end
 end
 
+doc.add[==[
+@ smi.report.format.seconds(t) -> string
+A duration in seconds as "0.8 ms", "0.42 s", "31.2 s", "2 min 05 s".
+returns: a string
+errors: none
+example:
+  local f = require("smi.report").format
+  print(f.seconds(0.0008), f.seconds(125))
+]==]
 --- A duration in seconds as "0.8 ms", "0.42 s", "31.2 s", "2 min 05 s".
 function M.seconds(t)
   if t < 0.1 then return ("%.1f ms"):format(t * 1000) end

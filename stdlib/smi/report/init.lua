@@ -14,6 +14,13 @@ local html = require "smi.report.html"
 local json = require "smi.report.json"
 local xmlcheck = require "smi.report.xmlcheck"
 
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.report
+A study's report as one self-contained report.html (inline SVG charts, tables, verdicts,
+provenance) plus its numbers as JSON. smi.report.svg draws the charts; smi.study makes one for you
+with report = {title = ...}.
+]==]
 local M = {}
 M.svg = require "smi.report.svg"
 M.format = require "smi.report.format"
@@ -22,6 +29,23 @@ M.json = json
 local Report = {}
 Report.__index = Report
 
+doc.add[==[
+@ smi.report.new(opts) -> report
+A new, empty report; add sections, text, tables, figures and verdicts, then r:write().
+options:
+  title = (required)   -- the page title
+  subtitle = nil       -- a line under the title
+  author = nil         -- shown under the title
+  date = now           -- the date shown (default: now, UTC)
+  digits = 4           -- significant digits of numbers in tables
+  out = nil            -- the folder r:write() uses when given no path (default smi.out_dir)
+returns: a report with the methods smi.report:*
+errors: no title
+example:
+  local r = require("smi.report").new{title = "Bracket study"}
+  r:section("Data"):text("Nine measured frequencies.")
+  print(#r:html() > 1000)
+]==]
 --- opts: title (required), subtitle, author, date (default: now, UTC), digits (tables, 4), out (folder).
 function M.new(opts)
   opts = opts or {}
@@ -42,6 +66,17 @@ function Report:_id(prefix, title)
   return id
 end
 
+doc.add[==[
+@ smi.report:section(title [, opts]) -> report
+A numbered section (1, 2, ...), or a subsection with opts.level = 2.
+options:
+  level = 1     -- 1 (section) or 2 (subsection)
+returns: the report (calls chain)
+errors: none
+example:
+  local r = require("smi.report").new{title = "t"}
+  print(r:section("Calibration") == r)
+]==]
 --- A numbered section (level 1) or subsection (opts.level = 2; or use r:subsection).
 function Report:section(title, opts)
   local level = opts and opts.level or 1
@@ -58,14 +93,51 @@ function Report:section(title, opts)
   return self
 end
 
+doc.add[==[
+@ smi.report:subsection(title) -> report
+A numbered subsection (2.1, 2.2, ...) of the current section.
+returns: the report
+errors: none
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:section("Trial 1"):subsection("Surrogate")
+  print("ok")
+]==]
 function Report:subsection(title) return self:section(title, { level = 2 }) end
 
+doc.add[==[
+@ smi.report:text(s) -> report
+Paragraphs of plain text (blank lines separate paragraphs; the text is escaped, no markup).
+returns: the report
+errors: none
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:text("Modes 1 and 4 calibrate the model.\n\nMode 2 validates it.")
+  print("ok")
+]==]
 --- Paragraphs of plain text (blank lines separate paragraphs; no markup, it is escaped).
 function Report:text(s)
   self.items[#self.items + 1] = { kind = "text", text = tostring(s) }
   return self
 end
 
+doc.add[==[
+@ smi.report:table(t) -> report
+A numbered table. Cells are numbers (formatted with the column's digits or format), strings,
+booleans, or {status = "pass" | "fail" | "warn" | "info", text = ...} badges.
+options:
+  columns = (required)  -- {"Name" | {title =, key =, digits =, format = "%.3f" | function(v)}, ...}
+  rows = (required)     -- {{...} by position | {key = value} by column key, ...}
+  caption = nil         -- the caption under "Table N."
+  digits = 4            -- significant digits (default: the report's)
+returns: the report
+errors: no columns or rows; a column that is neither a string nor {title | key}; a row that is not a table
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:table{caption = "Calibrated inputs", columns = {"Input", {title = "Mean", digits = 3}},
+          rows = {{"E (MPa)", 246300}, {"t (mm)", 3.83}}}
+  print(r:data().tables[1].rows[1][2])
+]==]
 --- A table. t: columns = {"Name" | {title=, key=, digits=, format="%.3f" | function}},
 -- rows = {{...} (by position) | {key = value} (by column key)}, caption, digits (default 4).
 -- Cells: numbers (formatted), strings, booleans, {status = "pass"|"fail"|"warn"|"info", text = ...}.
@@ -101,6 +173,19 @@ local function check_svg(svg, where)
   return svg
 end
 
+doc.add[==[
+@ smi.report:figure(svg, caption) -> report
+A numbered figure: an SVG string (or a chart of smi.report.svg, rendered) and its caption.
+returns: the report
+errors: not an SVG string; SVG that is not well-formed XML
+example:
+  local report = require "smi.report"
+  local c = report.svg.chart{title = "Line"}
+  c:line({0, 1, 2}, {0, 1, 4})
+  local r = report.new{title = "t"}
+  r:figure(c, "y = x^2")
+  print("ok")
+]==]
 --- A figure: an SVG string (or a chart of smi.report.svg) and its caption; numbered "Figure N.".
 function Report:figure(svg, caption)
   svg = check_svg(svg, "report:figure")
@@ -110,6 +195,18 @@ function Report:figure(svg, caption)
   return self
 end
 
+doc.add[==[
+@ smi.report:figures(list) -> report
+Several figures side by side (wrapping on narrow pages): {{svg, caption}, ...}.
+returns: the report
+errors: as smi.report:figure, naming the entry
+example:
+  local report = require "smi.report"
+  local a, b = report.svg.chart{}, report.svg.chart{}
+  a:line({0, 1}, {0, 1}); b:line({0, 1}, {1, 0})
+  report.new{title = "t"}:figures{{a, "up"}, {b, "down"}}
+  print("ok")
+]==]
 --- Several figures side by side (wrapping on narrow pages): {{svg, caption}, ...}.
 function Report:figures(list)
   local figs = {}
@@ -133,6 +230,22 @@ local function status_of(v, where)
   return v.pass and "pass" or "fail"
 end
 
+doc.add[==[
+@ smi.report:verdict(v) -> report
+A verdict with a pass/fail badge, also listed in the summary at the top of the page and printed
+by smi.study at the end of a run.
+options:
+  name = (required)   -- what was checked
+  pass = nil          -- true or false (or give status)
+  status = nil        -- "pass", "fail", "warn" or "info"
+  detail = nil        -- a sentence with the numbers
+returns: the report (any other numeric fields go to the JSON)
+errors: neither pass nor a known status
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:verdict{name = "Mode 1 validation", pass = true, detail = "U = 0.057 <= 0.193", value = 0.057}
+  print(r:data().verdicts[1].status)
+]==]
 --- A verdict with a badge, also listed in the summary at the top of the page.
 -- v: name, pass (boolean) or status ("pass"|"fail"|"warn"|"info"), detail, and any numbers
 -- (value, threshold, ...) which go to the JSON.
@@ -145,6 +258,16 @@ function Report:verdict(v)
   return self
 end
 
+doc.add[==[
+@ smi.report:callout(text [, status]) -> report
+A highlighted remark ("the optimum lies on a bound").
+returns: the report
+errors: an unknown status (pass, fail, warn, info)
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:callout("The optimum lies on a bound.", "warn")
+  print("ok")
+]==]
 --- A highlighted remark: r:callout("the optimum lies on a bound", "warn").
 function Report:callout(text, status)
   status = status or "info"
@@ -173,6 +296,17 @@ local function flatten(prefix, v, out)
   end
 end
 
+doc.add[==[
+@ smi.report:provenance(p) -> report
+Provenance shown at the end of the page and stored in the JSON: any key/value table (seed,
+versions, solver runs, input file hashes); several calls add up.
+returns: the report
+errors: p not a table
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:provenance{seed = smi.seed, solver_runs = {["column-fe"] = 1200}}
+  print(r:data().provenance.seed == smi.seed)
+]==]
 --- Provenance, shown at the end of the page and stored in the JSON: any key/value table, e.g.
 -- {seed = 20200214, versions = {...}, solver_runs = {["column-fe"] = 1200},
 --  inputs = {["data/column.csv"] = "sha256:..."}}. Several calls add up.
@@ -182,6 +316,16 @@ function Report:provenance(p)
   return self
 end
 
+doc.add[==[
+@ smi.report:result(key, value) -> report
+Records a number (or any JSON value) under a dotted key ("calibration.E.mean") for r:json().
+returns: the report
+errors: none (a value JSON cannot hold fails later, in r:json())
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:result("calibration.E.mean", 246300)
+  print(r:data().results.calibration.E.mean)
+]==]
 --- Records a number (or any JSON value) under a dotted key for r:json().
 function Report:result(key, value)
   local t = self.results
@@ -195,6 +339,15 @@ function Report:result(key, value)
   return self
 end
 
+doc.add[==[
+@ smi.report:html() -> string
+The page as one self-contained HTML string (styles and SVG inline; no script, nothing fetched).
+returns: a string
+errors: none
+example:
+  local r = require("smi.report").new{title = "Demo"}
+  print(r:html():match("<title>(.-)</title>"))
+]==]
 --- The page as a string.
 function Report:html()
   local o = self.opts
@@ -221,11 +374,31 @@ local function write_file(path, content, what)
   return require("smi.file").write(path, content, what)
 end
 
+doc.add[==[
+@ smi.report:write([path]) -> path
+Writes report.html (to path, or <out>/report.html).
+returns: the path written
+errors: the sandbox refuses the path; the file cannot be written
+example:
+  local r = require("smi.report").new{title = "Demo"}
+  local p = r:write(smi.out("doc_report.html"))
+  print(p:match("doc_report%.html$") ~= nil)
+]==]
 --- Writes report.html (to `path`, or <out>/report.html) and returns the path.
 function Report:write(path)
   return write_file(target(self, path, "report.html"), self:html(), "report:write")
 end
 
+doc.add[==[
+@ smi.report:data() -> table
+Everything the report holds as numbers: tables, verdicts, provenance and recorded results.
+returns: {title =, tables = {...}, verdicts = {...}, provenance = {...}, results = {...}, ...}
+errors: none
+example:
+  local r = require("smi.report").new{title = "Demo"}
+  r:result("n", 9)
+  print(r:data().results.n)
+]==]
 --- Everything the report holds as numbers: tables, verdicts, provenance, recorded results.
 function Report:data()
   local d = { title = self.opts.title, tables = {}, verdicts = {}, figures = {}, provenance = self.prov, results = self.results }
@@ -257,11 +430,30 @@ function Report:data()
   return d
 end
 
+doc.add[==[
+@ smi.report:json() -> string
+JSON text of r:data() (NaN written as null, infinities as 1e999).
+returns: a string
+errors: a value JSON cannot hold (its path is named)
+example:
+  local r = require("smi.report").new{title = "Demo"}
+  r:result("n", 9)
+  print(#r:json() > 10)
+]==]
 --- JSON text of r:data() (non-finite numbers: NaN -> null, inf -> 1e999).
 function Report:json()
   return json.lua_encode(self:data(), { indent = "  ", root = "report", skip = true })
 end
 
+doc.add[==[
+@ smi.report:write_json([path]) -> path
+Writes r:json() (to path, or <out>/report.json).
+returns: the path written
+errors: the sandbox refuses the path
+example:
+  local r = require("smi.report").new{title = "Demo"}
+  print(r:write_json(smi.out("doc_report.json")):match("json$"))
+]==]
 function Report:write_json(path)
   return write_file(target(self, path, "report.json"), self:json() .. "\n", "report:write_json")
 end

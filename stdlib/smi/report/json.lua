@@ -7,6 +7,12 @@
 --   * keys are sorted, so the same results give the same file
 --   * a value JSON cannot hold (function, other userdata) is an error naming its path, or,
 --     with opts.skip = true, is left out and its path added to opts.skipped
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.report.json
+JSON for results files: floats with %.17g (they read back bit for bit), NaN as null, infinities as
+1e999, vecs as arrays, mats as arrays of rows, keys sorted (the same results give the same file).
+]==]
 local M = {}
 
 local function typename(v)
@@ -100,6 +106,20 @@ local function encode(v, path, opts, out, indent, depth)
   return true
 end
 
+doc.add[==[
+@ smi.report.json.lua_encode(v [, opts]) -> string
+JSON text of v by the encoder written in Lua (what smi.report.json.encode uses for skip and root).
+options:
+  indent = nil    -- a string per level, e.g. "  " (default: one line)
+  skip = false    -- leave out what JSON cannot hold; its paths are appended to opts.skipped
+  root = "value"  -- the name used in error paths
+returns: a string
+errors: a value JSON cannot hold (a function, a userdata), named by its path, unless skip
+example:
+  local j = require("smi.report").json
+  local o = {skip = true, skipped = {}}
+  print(j.lua_encode({a = 1, f = print}, o), o.skipped[1])
+]==]
 --- JSON text of `v`. opts: indent (string, e.g. "  "), skip (leave out what JSON cannot hold;
 -- the paths are appended to opts.skipped), root (name used in error paths, "value").
 function M.lua_encode(v, opts)
@@ -205,6 +225,15 @@ function parse_value(s, i)
   end
 end
 
+doc.add[==[
+@ smi.report.json.lua_decode(s) -> value
+The Lua value of JSON text by the decoder written in Lua (null reads as NaN).
+returns: the value
+errors: invalid JSON, with the position
+example:
+  local j = require("smi.report").json
+  print(j.lua_decode('{"x": [1, 2.5]}').x[2])
+]==]
 --- The Lua value of JSON text `s` (null reads as NaN: this module writes NaN as null).
 function M.lua_decode(s)
   local v, i = parse_value(s, 1)
@@ -215,12 +244,36 @@ end
 
 local host = type(smi) == "table" and type(smi.json) == "table" and smi.json or nil
 
+doc.add[==[
+@ smi.report.json.encode(v [, opts]) -> string
+JSON text of v: the host's smi.json.encode when opts need nothing only the Lua encoder does, else
+smi.report.json.lua_encode (same options).
+options:
+  indent = nil    -- a string per level, e.g. "  "
+  skip = false    -- as lua_encode
+  root = "value"  -- as lua_encode
+returns: a string
+errors: as lua_encode
+example:
+  local j = require("smi.report").json
+  print(j.encode({b = 2, a = smi.vec{1, 2}}))
+]==]
 --- Encode with the host's smi.json when present (unless opts ask for what only ours does).
 function M.encode(v, opts)
   if host and host.encode and not (opts and (opts.skip or opts.indent)) then return host.encode(v) end
   return M.lua_encode(v, opts)
 end
 
+doc.add[==[
+@ smi.report.json.decode(s) -> value
+The Lua value of JSON text (null reads as NaN, as this module writes NaN as null).
+returns: the value
+errors: invalid JSON
+example:
+  local j = require("smi.report").json
+  local t = j.decode('{"u": null}')
+  print(t.u ~= t.u)
+]==]
 function M.decode(s)
   if host and host.decode then return host.decode(s) end
   return M.lua_decode(s)

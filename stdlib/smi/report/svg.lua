@@ -18,14 +18,82 @@ local draw = require "smi.report.draw"
 local chart = require "smi.report.chart"
 local bars = require "smi.report.bars"
 
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.report.svg
+Small, dependable SVG charts as strings (inline them in a report or write .svg files): x/y charts
+(smi.report.svg.chart) and horizontal bars (smi.report.svg.bars). Non-finite values are never drawn;
+a note says how many were skipped.
+]==]
 local M = {}
 
 M.palette = draw.palette
+doc.add[==[
+@ smi.report.svg.chart([opts]) -> chart
+A chart with x/y axes; add series with the methods smi.report.chart:* and render it (or pass it to
+r:figure).
+options:
+  width = 640       -- pixels
+  height = 400      -- pixels
+  title = nil       -- the title
+  xlabel = nil      -- the x axis label
+  ylabel = nil      -- the y axis label
+  xlim = nil        -- {lo, hi}: a fixed x range
+  ylim = nil        -- {lo, hi}: a fixed y range
+  xlog = false      -- a log10 x axis
+  ylog = false      -- a log10 y axis
+  equal = false     -- the same range on both axes (predicted vs observed)
+  legend = "auto"   -- "auto" (the emptiest corner), "top-right", "top-left", "bottom-right",
+                    -- "bottom-left" or "none"
+returns: a chart
+errors: none here (series are checked when added)
+example:
+  local svg = require("smi.report").svg
+  local c = svg.chart{title = "Mode 1", xlabel = "Hz", ylabel = "density"}
+  local k = smi.kde(smi.vec{30.1, 30.4, 29.9, 30.6})
+  local cv = k:curve(101)
+  c:line(cv.x, cv.pdf, {label = "KDE"})
+  print(#c:render() > 500)
+]==]
 --- A chart with x/y axes (see smi.report.chart for the options and methods).
 M.chart = chart.new
+doc.add[==[
+@ smi.report.svg.bars(opts) -> svg
+Horizontal bars, one row per label (screening indices, decision-matrix ratings).
+options:
+  labels = (required)  -- the row labels
+  values = nil         -- one number per label (or series)
+  series = nil         -- {{label =, values =}, ...} for grouped bars
+  title = nil          -- the title
+  xlabel = nil         -- the value axis label
+  sort = false         -- sort by the first series, largest on top
+  highlight = nil      -- a set of labels, or function(label, value) returning true: accent colour
+  threshold = nil      -- a vertical marker at this value
+  threshold_label = nil  -- its label
+  digits = 3           -- significant digits of the value labels
+  width = 640          -- pixels
+  row = nil            -- pixels per row (automatic)
+returns: an SVG string
+errors: no labels; neither values nor series; a series of another length than labels
+example:
+  local svg = require("smi.report").svg
+  local s = svg.bars{labels = {"E", "t", "rho"}, values = {0.58, 0.30, 0.02}, sort = true, title = "N_e"}
+  print(s:sub(1, 4))
+]==]
 --- Horizontal bars (see smi.report.bars for the options).
 M.bars = bars.render
 
+doc.add[==[
+@ smi.report.svg.write(path, s) -> path
+Writes an SVG string (or a chart, rendered) to path as a standalone .svg file.
+returns: the path
+errors: the sandbox refuses the path; not an SVG string or chart
+example:
+  local svg = require("smi.report").svg
+  local c = svg.chart{}
+  c:line({0, 1}, {1, 2})
+  print(svg.write(smi.out("doc_chart.svg"), c):match("svg$"))
+]==]
 --- Writes an SVG string (or a chart) to `path` as a standalone .svg file; returns the path.
 function M.write(path, s)
   if type(s) == "table" and type(s.render) == "function" then s = s:render() end

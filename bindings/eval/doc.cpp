@@ -1,0 +1,195 @@
+// Reference texts of smi.model.* and the model methods (this folder). Defaults are read from
+// the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
+// "solver" (smi-lua doc allows it for them), so they run anywhere.
+#include "doc.hpp"
+#include "eval/evaluator.hpp"
+
+namespace smi::bind {
+namespace {
+
+const char* const kText = R"DOC(
+@ module smi.model
+Models behind one interface (m.inputs, m.outputs, Y, info = m:evaluate(X), m:plan(X)): external
+solvers run per point (smi.model.command) or per batch (smi.model.batch), Lua functions
+(smi.model.lua); a Kriging model fits the same slots. Output parsers get the helpers of
+smi.model.parse bound to their run's folder.
+
+@ smi.model.command{...} -> model
+An external solver run once per point: the deck is made from a template ({{name}} placeholders
+take the point's inputs and the constants), the program runs in its own work folder without a
+shell, and parse(dir, h) reads its outputs. Runs go through an SQLite evaluation store keyed by
+deck, program and version: a rerun (or a resumed study) reuses every finished point.
+options:
+  name = "${name}"           -- names the runs folder <out>/runs/<name> and the progress line
+  inputs = (required)        -- input names, in the column order of X
+  outputs = (required)       -- output names, the keys parse returns
+  template = nil             -- the deck template file (or template_string)
+  template_string = nil      -- the deck template text
+  deck = "${deck}"           -- the deck's file name in the work folder ({deck} in command)
+  constants = {}             -- more placeholder values {name = number | string}
+  files = {}                 -- files copied into every work folder
+  command = (required)       -- argv {program, arg, ...}: "{deck}" and "{workdir}" are replaced;
+                             -- the program must be allowed with --allow-exec
+  parse = (required)         -- function(dir, h) returning {output = number, ...}
+  version = ""               -- the solver's version in the store key ("" = the program's SHA-256)
+  timeout = ${timeout}       -- seconds per run, 0 = none; the process group is killed
+  retries = ${retries}       -- extra attempts after a failure
+  on_failure = "stop"        -- "stop" (raise after the batch), "skip" (NaN, reported in info),
+                             -- or "retry"
+  concurrency = ${concurrency}  -- processes at once
+  reuse_failed = ${reuse_failed}  -- also reuse stored failures (default: run them again)
+  store = nil                -- the store file (default <out>/evaluations.sqlite)
+returns: a model (smi.Model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
+errors: a missing or mistyped option (named); both or neither template; the sandbox refuses the
+  program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
+  placeholder (file and line)
+example:
+  local m = smi.model.command{
+    name = "doc-square", inputs = {"x"}, outputs = {"y"}, version = "doc-1",
+    template_string = "{{x}}\n",
+    command = {"/bin/sh", "-c", "read x < {deck}; echo \"y = $((x * x))\" > out.txt"},
+    parse = function(dir, h) return {y = h.regex("out.txt", "y = (\\S+)")} end,
+  }
+  local Y, info = m:evaluate{{2}, {3}}
+  print(Y.y, info.failed)
+
+@ smi.model.batch{...} -> model
+An external solver that takes many points per run: the points are written as CSV (a header of
+input names) to input_file, and parse(dir, h, n) returns n values per output. Options as
+smi.model.command, without template/deck/constants, plus:
+options:
+  input_file = "points.csv"     -- the CSV file of points in the work folder ({deck} in command)
+  batch_size = ${batch_size}    -- points per run; 0 = all pending points in one run
+returns: a model (smi.Model, kind "batch")
+errors: as smi.model.command; parse returning the wrong number of values (named with the output)
+example:
+  local m = smi.model.batch{
+    name = "doc-batch", inputs = {"x"}, outputs = {"y"}, version = "doc-1",
+    command = {"/bin/sh", "-c", "tail -n +2 {deck} | while read x; do echo $((x + 1)); done > out.txt"},
+    parse = function(dir, h, n) return {y = h.regex_all("out.txt", "(\\d+)")} end,
+  }
+  print(m:evaluate{{1}, {2}, {3}}.y)
+
+@ smi.model.lua{name =, inputs =, outputs =, fn =} -> model
+A model computed by a Lua function of the whole design matrix (one call per evaluation, never
+one per point), returning {output = vec}.
+options:
+  name = "lua"          -- the model's name
+  inputs = (required)   -- input names (columns of X)
+  outputs = (required)  -- output names
+  fn = (required)       -- function(X) returning {output = vec, ...}, one value per row
+returns: a model (smi.Model, kind "lua")
+errors: no inputs or outputs; fn not a function; fn returning the wrong lengths (at evaluate)
+example:
+  local m = smi.model.lua{inputs = {"a", "b"}, outputs = {"s"}, fn = function(X) return {s = X:col(1) + X:col(2)} end}
+  print(m:evaluate{{1, 2}, {3, 4}}.s)
+
+@ smi.model.planned() -> {runs =, points =, reused =, eta =}
+The totals of what --dry-run planned so far (solver runs that would be launched, points, points
+found in the store, estimated seconds).
+returns: a table of counts (zeros when nothing was planned)
+errors: none
+example:
+  print(smi.model.planned().runs)
+
+@ smi.Model:evaluate(X) -> Y, info
+Evaluates the model at the rows of X (a mat, a table of rows, or named columns {x = vec, ...}).
+Y holds one value per row in row order whatever the concurrency; rows that failed hold NaN.
+returns: Y = {output = vec}, info = {status = {"ok" | "failed" | "not run", ...}, ok = vec of 1/0,
+  reason = {...}, failures = {{row =, reason =}}, failed =, launched =, reused = vec, duration = vec,
+  stopped =}
+errors: X with the wrong columns (a missing or unknown input named); on_failure = "stop" and a run
+  failed (the reason and the run folder are named); --timeout or Ctrl-C
+example:
+  local m = smi.model.lua{inputs = {"x"}, outputs = {"y"}, fn = function(X) return {y = X:col(1) * 10} end}
+  local Y, info = m:evaluate{x = smi.vec{1, 2}}
+  print(Y.y, info.status[1])
+
+@ smi.Model:plan(X) -> {points =, unique =, reused =, runs =, eta =}
+What evaluate(X) would launch, launching nothing (the evaluation store is read).
+returns: a table of counts and the estimated seconds (eta, when known)
+errors: as evaluate, for X
+example:
+  local m = smi.model.lua{inputs = {"x"}, outputs = {"y"}, fn = function(X) return {y = X:col(1)} end}
+  print(m:plan{{1}, {2}}.points)
+
+@ module smi.model.parse
+Output parser helpers, the same functions a parser receives as h (bound to its run's folder);
+here they take any path the sandbox allows.
+
+@ smi.model.parse.read(file) -> string
+The whole text of a file.
+returns: a string
+errors: the sandbox refuses the path; the file cannot be read
+example:
+  local p = smi.out("doc_read.txt")
+  local f = io.open(p, "w"); f:write("hello\n"); f:close()
+  print(smi.model.parse.read(p))
+
+@ smi.model.parse.exists(file) -> boolean
+Whether the file exists (a solver that writes a file only on success).
+returns: true or false
+errors: the sandbox refuses the path
+example:
+  print(smi.model.parse.exists(smi.out("no_such_file.txt")))
+
+@ smi.model.parse.regex(file, pattern) -> number
+The first capture of an ECMAScript regular expression in the file, as a number.
+returns: a number
+errors: no match (file and pattern named); the capture is not a number; a bad pattern
+example:
+  local p = smi.out("doc_out.txt")
+  local f = io.open(p, "w"); f:write("freq = 30.25 Hz\n"); f:close()
+  print(smi.model.parse.regex(p, "freq = (\\S+)"))
+
+@ smi.model.parse.regex_all(file, pattern) -> vec
+The first capture of every match, as numbers.
+returns: a vec (empty when nothing matches)
+errors: a capture that is not a number; a bad pattern
+example:
+  local p = smi.out("doc_all.txt")
+  local f = io.open(p, "w"); f:write("f1 = 1.5\nf2 = 2.5\n"); f:close()
+  print(smi.model.parse.regex_all(p, "= (\\S+)"))
+
+@ smi.model.parse.csv(file, column) -> vec
+One numeric column of a CSV file with a header row.
+returns: a vec
+errors: no such column (the header is listed); a cell that is not a number (line named)
+example:
+  local p = smi.out("doc_cols.csv")
+  smi.csv.write(p, {y = smi.vec{1, 2}})
+  print(smi.model.parse.csv(p, "y"))
+
+@ smi.model.parse.f06(file) -> table
+The real eigenvalue table (and mode labels, when present) of a Nastran-style .f06 file.
+returns: {mode, order, eigenvalue, radians, cycles, mass, stiffness = vecs, labels = {...},
+  direction = {...}, paper = {[n] = {mode, direction, hz}}, paper_hz = vec}
+errors: no eigenvalue table in the file; a malformed row (line named)
+example:
+  local p = smi.out("doc.f06")
+  local f = io.open(p, "w")
+  f:write("                                              R E A L   E I G E N V A L U E S\n",
+          "   MODE    EXTRACTION      EIGENVALUE            RADIANS             CYCLES            GENERALIZED         GENERALIZED\n",
+          "    NO.       ORDER                                                                       MASS              STIFFNESS\n",
+          "        1         1        3.467649E+04        1.862162E+02        2.963724E+01        1.000000E+00        3.467649E+04\n",
+          "        2         2        4.455839E+04        2.110886E+02        3.359579E+01        1.000000E+00        4.455839E+04\n")
+  f:close()
+  print(smi.model.parse.f06(p).cycles)
+)DOC";
+
+}  // namespace
+
+DocText doc_eval() {
+  const smi::eval::CommandConfig c;
+  auto b = [](bool v) { return std::string(v ? "true" : "false"); };
+  return {"bindings/eval/doc.cpp",
+          fill(kText, {{"name", c.name},
+                       {"deck", c.deck_file},
+                       {"timeout", num(c.timeout)},
+                       {"retries", num(c.retries)},
+                       {"concurrency", num(c.concurrency)},
+                       {"reuse_failed", b(c.reuse_failed)},
+                       {"batch_size", num(c.batch_size)}})};
+}
+
+}  // namespace smi::bind

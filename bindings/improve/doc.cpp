@@ -1,0 +1,121 @@
+// Reference texts of smi.calibrate and smi.refine.decision_matrix (this folder). Defaults are
+// read from the kernels' option structs (improve/bounded_optimizer.hpp, statistical_objective.hpp,
+// bootstrap.hpp, identifiability.hpp).
+#include "doc.hpp"
+#include "improve/bootstrap.hpp"
+#include "improve/bounded_optimizer.hpp"
+#include "improve/identifiability.hpp"
+#include "improve/statistical_objective.hpp"
+
+namespace smi::bind {
+namespace {
+
+const char* const kText = R"DOC(
+@ smi.calibrate{...} -> result
+Calibration of input distribution parameters (paper section 4), in one of two forms.
+Model form: inputs whose mean/std are ranges {lower, upper, start} are calibrated so that the
+model's predicted distributions (Monte Carlo with common random numbers, KDE of each output)
+match the experimental data, by the probability residual (default), the log-likelihood, or your
+metric. Objective form: parameters = {{name, lower, upper, start}, ...} and objective(theta).
+The optimizer works in scaled [0, 1] units (SLSQP with central differences, COBYLA, BOBYQA or
+Nelder-Mead), from the start and multistart - 1 seeded points.
+options:
+  model = nil                 -- model form: an smi.Model, an smi.Kriging (or a table of them by
+                              -- output), or a function(X) returning {output = vec}
+  inputs = nil                -- model form: {name = {dist = "normal", mean = m | {lo, hi, start},
+                              -- std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =)
+  data = nil                  -- model form: {output = vec of measurements | a dist (an experimental PDF)}
+  metric = "pr"               -- "pr", "loglik", or function(predicted, data) returning a number
+  penalty = nil               -- function(theta) returning a number added to the metric (prior knowledge)
+  n = ${n}                    -- CRN sample size per evaluation
+  crn = "random"              -- "random" draws or "quantiles" (stratified) common random numbers
+  grid = nil                  -- {output = {lower, upper}}: PR integration ranges
+  grid_nodes = ${grid_nodes}  -- nodes of the default PR grids
+  bandwidth = "${bandwidth}"  -- KDE rule for the predicted outputs
+  order = nil                 -- the input column order for a function model (names)
+  design_bounds = nil         -- {input = {lower, upper}}: the surrogate's design range; leaving it warns
+  threads = ${threads}        -- KDE evaluation threads
+  parameters = nil            -- objective form: {{name, lower, upper, start}, ...} (start: mid-range)
+  objective = nil             -- objective form: function(theta) returning a number; theta[name]
+  method = "slsqp"            -- "slsqp", "cobyla", "bobyqa" or "neldermead"
+  multistart = ${multistart}  -- starts: the given one plus multistart - 1 seeded points
+  maxeval = ${maxeval}        -- objective evaluations per start (finite-difference probes included)
+  xtol_rel = ${xtol_rel}      -- relative tolerance on the scaled parameters
+  ftol_abs = ${ftol_abs}      -- absolute tolerance on the objective
+  fd_step = ${fd_step}        -- central-difference step in scaled units
+  initial_step = ${initial_step}  -- derivative-free methods' first step, scaled units
+  seed = smi.seed             -- CRN sample, multistart points and bootstrap
+  identifiability = true      -- true, false, or {points = ${ident_points}, rel_tol = ${ident_rel_tol},
+                              -- abs_tol = ${ident_abs_tol}}: a sweep of each parameter at the optimum
+  bootstrap = nil             -- replicates, or {replicates = ${boot_replicates}, level = ${boot_level},
+                              -- seed =, maxeval =}: refits on resampled data (model form)
+  progress = nil              -- function(row) called after each optimizer step
+returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
+  r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
+  {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
+  r.evaluations, r.model_runs, r.starts, r.at_bounds, r.warnings (at a bound, outside the design
+  range, not identifiable), r.identifiability {span, weak, profiles, evaluations}, r.bootstrap
+  {lower, upper, std, level, replicates, failed, samples}
+errors: both or neither form; a range with lower >= upper or a start outside it (named); a
+  lognormal mean range reaching 0; data with fewer than 2 points; the model failing (its message);
+  an unknown option (the closest name is suggested)
+example:
+  local r = smi.calibrate{
+    parameters = {{"a", 0, 10}, {"b", -5, 5}},
+    objective = function(t) return (t.a - 3) ^ 2 + (t.b + 1) ^ 2 end,
+    identifiability = false,
+  }
+  print(("a = %.3f, b = %.3f, converged = %s"):format(r.params.a, r.params.b, tostring(r.converged)))
+
+@ module smi.refine
+Model refinement: the weighted decision matrix (spec section 6) over candidate model revisions;
+the paper's criteria are in require "smi.refine.criteria".
+
+@ smi.refine.decision_matrix{candidates =, criteria =} -> result
+The weighted decision matrix: each criterion rates every candidate by its magnitude (smaller is
+better, normalized by the largest), weighted, summed into an overall rating per candidate.
+options:
+  candidates = (required)  -- a list of names, or of tables with name = ... (passed to magnitudes)
+  criteria = (required)    -- {{name =, weight =, magnitude = function(candidate, j) | {values} |
+                           -- {name = value}}, ...}
+  tie_tol = 1e-12          -- overall ratings closer than this are ties
+returns: {ratings (criterion x candidate), overall = {...}, weights, best (index), best_name,
+  best_candidate, ranking = {names}, ties}; tostring(r) prints the matrix
+errors: no candidates or criteria; a magnitude count that does not match the candidates (named);
+  a magnitude that is not a number, negative or NaN (criterion and candidate named); weights that
+  do not sum to 1 ("divide each weight by the sum")
+example:
+  local r = smi.refine.decision_matrix{
+    candidates = {"airbag", "material"},
+    criteria = {{name = "error", weight = 0.6, magnitude = {0.02, 0.10}},
+                {name = "cost", weight = 0.4, magnitude = {60, 20}}},
+  }
+  print(r.best_name, r.overall[1], r.overall[2])
+)DOC";
+
+}  // namespace
+
+DocText doc_improve() {
+  const smi::improve::OptimizerOptions opt;
+  const smi::improve::StatisticalOptions st;
+  const smi::improve::BootstrapOptions boot;
+  const smi::improve::IdentifiabilityOptions id;
+  return {"bindings/improve/doc.cpp",
+          fill(kText, {{"n", num(static_cast<double>(st.n))},
+                       {"grid_nodes", num(static_cast<double>(st.grid_nodes))},
+                       {"bandwidth", st.bandwidth},
+                       {"threads", num(st.threads)},
+                       {"multistart", num(opt.multistart)},
+                       {"maxeval", num(opt.maxeval)},
+                       {"xtol_rel", num(opt.xtol_rel)},
+                       {"ftol_abs", num(opt.ftol_abs)},
+                       {"fd_step", num(opt.fd_step)},
+                       {"initial_step", num(opt.initial_step)},
+                       {"ident_points", num(id.points)},
+                       {"ident_rel_tol", num(id.rel_tol)},
+                       {"ident_abs_tol", num(id.abs_tol)},
+                       {"boot_replicates", num(boot.replicates)},
+                       {"boot_level", num(boot.level)}})};
+}
+
+}  // namespace smi::bind

@@ -1,0 +1,191 @@
+// Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp).
+#include "doc.hpp"
+
+namespace smi::bind {
+
+DocText doc_stats_dist() {
+  return {"bindings/stats/dist_doc.cpp", R"DOC(
+@ module smi.dist
+Probability distributions by the variable's own mean and std where the paper's tables give them
+(normal, lognormal, uniform), and by their usual parameters (truncnormal, weibull, gumbel, gamma,
+beta, triangular); every one has the methods smi.dist:* (pdf, cdf, quantile, sample, ...).
+
+@ smi.dist.normal{mean =, std =} -> dist
+The normal distribution.
+options:
+  mean = (required)  -- the mean
+  std = (required)   -- the standard deviation, > 0
+returns: a dist (d.family = "normal", d.mean, d.std)
+errors: a missing or non-finite parameter; std <= 0; an unknown option (the closest name is suggested)
+example:
+  local d = smi.dist.normal{mean = 30.25, std = 0.36}
+  print(d, d:cdf(30.25))
+
+@ smi.dist.lognormal{mean =, std =} -> dist
+The lognormal distribution given by the variable's own mean and std (as the paper's tables), or
+by the parameters of its logarithm.
+options:
+  mean = nil       -- the mean of the variable (with std)
+  std = nil        -- the standard deviation of the variable
+  mu_log = nil     -- the mean of log(X) (with sigma_log, instead of mean/std)
+  sigma_log = nil  -- the standard deviation of log(X)
+returns: a dist (d.family = "lognormal")
+errors: neither pair given; mean <= 0 or std <= 0
+example:
+  local d = smi.dist.lognormal{mean = 2, std = 0.5}
+  print(d, d:mean(), d:std())
+
+@ smi.dist.uniform{lower =, upper =} -> dist
+The uniform distribution on [lower, upper], or given by its mean and std.
+options:
+  lower = nil      -- the lower end (with upper)
+  upper = nil      -- the upper end
+  mean = nil       -- the mean (with std, instead of lower/upper)
+  std = nil        -- the standard deviation: the width is std * sqrt(12)
+returns: a dist (d.family = "uniform")
+errors: lower >= upper; neither pair given
+example:
+  print(smi.dist.uniform{mean = 1, std = 0.1})
+
+@ smi.dist.truncnormal{mean =, std =, lower =, upper =} -> dist
+A normal distribution truncated to [lower, upper] (mean and std are those of the parent normal).
+options:
+  mean = (required)  -- the parent's mean
+  std = (required)   -- the parent's standard deviation
+  lower = -inf       -- the lower truncation point
+  upper = inf        -- the upper truncation point
+returns: a dist (d.family = "truncnormal")
+errors: std <= 0; lower >= upper; bounds holding no probability mass
+example:
+  print(smi.dist.truncnormal{mean = 0, std = 1, lower = 0}:mean())
+
+@ smi.dist.weibull{shape =, scale =} -> dist
+The Weibull distribution.
+options:
+  shape = (required)  -- k > 0
+  scale = (required)  -- lambda > 0
+  loc = 0             -- a shift
+returns: a dist (d.family = "weibull")
+errors: shape or scale <= 0
+example:
+  print(smi.dist.weibull{shape = 2, scale = 1}:quantile(0.5))
+
+@ smi.dist.gumbel{loc =, scale =} -> dist
+The Gumbel (largest extreme value) distribution.
+options:
+  loc = (required)    -- the mode
+  scale = (required)  -- beta > 0
+returns: a dist (d.family = "gumbel")
+errors: scale <= 0
+example:
+  print(smi.dist.gumbel{loc = 0, scale = 1}:mean())
+
+@ smi.dist.gamma{shape =, scale = | rate =} -> dist
+The gamma distribution.
+options:
+  shape = (required)  -- k > 0
+  scale = nil         -- theta > 0 (or give rate)
+  rate = nil          -- 1/theta
+  loc = 0             -- a shift
+returns: a dist (d.family = "gamma")
+errors: shape, scale or rate <= 0; neither scale nor rate
+example:
+  print(smi.dist.gamma{shape = 2, rate = 1}:mean())
+
+@ smi.dist.beta{alpha =, beta =} -> dist
+The beta distribution on [lower, upper].
+options:
+  alpha = (required)  -- > 0
+  beta = (required)   -- > 0
+  lower = 0           -- the lower end
+  upper = 1           -- the upper end
+returns: a dist (d.family = "beta")
+errors: alpha or beta <= 0; lower >= upper
+example:
+  print(smi.dist.beta{alpha = 2, beta = 2}:cdf(0.5))
+
+@ smi.dist.triangular{lower =, mode =, upper =} -> dist
+The triangular distribution.
+options:
+  lower = (required)  -- the lower end
+  mode = (required)   -- the peak, in [lower, upper]
+  upper = (required)  -- the upper end
+returns: a dist (d.family = "triangular")
+errors: not lower <= mode <= upper with lower < upper
+example:
+  print(smi.dist.triangular{lower = 0, mode = 1, upper = 3}:mean())
+
+@ smi.dist.fit(data [, families]) -> ranked
+Fits each family by maximum likelihood and ranks them by AIC, with BIC and the Kolmogorov-Smirnov
+statistic for each.
+families is a list of names, default {"normal", "lognormal", "uniform", "weibull", "gumbel", "gamma"}.
+returns: a list, best first, of {family =, dist =, loglik =, aic =, bic =, ks =, k =, rank =};
+  ranked.best is the first dist
+errors: fewer than 2 data; a family name not known; data a family cannot hold (lognormal with a
+  value <= 0), named with the family
+example:
+  local r = smi.dist.fit(smi.vec{1.2, 2.3, 1.9, 2.8, 2.2, 1.7, 2.5}, {"normal", "lognormal"})
+  print(r[1].family, r.best, r[1].aic < r[2].aic)
+
+@ smi.dist:pdf(x) -> number | vec
+The probability density at x (a number, or a vec/table of points evaluated in C++ at once).
+returns: a number, or a vec of the same length as x
+errors: x holds something that is not a number
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:pdf{0, 1})
+
+@ smi.dist:cdf(x) -> number | vec
+The cumulative probability P(X <= x).
+returns: a number, or a vec
+errors: x holds something that is not a number
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:cdf(1.644853627))
+
+@ smi.dist:quantile(p) -> number | vec
+The inverse CDF at the probabilities p.
+returns: a number, or a vec
+errors: a probability outside [0, 1]
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:quantile{0.05, 0.95})
+
+@ smi.dist:sample(n, seed | rng) -> vec
+n draws. The generator is explicit: an integer seed or an smi.rng (same seed, same numbers).
+returns: a vec of n numbers
+errors: n < 0; the third argument neither an integer nor an smi.rng
+example:
+  print(smi.dist.uniform{lower = 0, upper = 1}:sample(3, 42))
+
+@ smi.dist:mean() -> number
+The mean of the distribution (of a KDE: the data mean).
+returns: a number
+errors: none
+example:
+  print(smi.dist.gamma{shape = 3, scale = 2}:mean())
+
+@ smi.dist:std() -> number
+The standard deviation of the distribution.
+returns: a number
+errors: none
+example:
+  print(smi.dist.uniform{lower = 0, upper = 1}:std())
+
+@ smi.dist:support() -> lower, upper
+The interval holding all the probability (-inf/inf when unbounded).
+returns: two numbers
+errors: none
+example:
+  print(smi.dist.beta{alpha = 2, beta = 3}:support())
+
+@ smi.dist:curve([n]) -> {x =, pdf =, cdf =}
+Plot series over the bulk of the distribution: n points (default 401) from the 1e-4 to the
+1 - 1e-4 quantile (the finite ends of the support; for a KDE the data range +- 4 bandwidths).
+An ECDF gives its steps {x =, cdf =} instead.
+returns: a table of vecs
+errors: n outside 2..1e7
+example:
+  local c = smi.dist.normal{mean = 0, std = 1}:curve(5)
+  print(c.x, c.pdf)
+)DOC"};
+}
+
+}  // namespace smi::bind

@@ -1,0 +1,204 @@
+// Reference texts of smi.doe, smi.kriging, smi.propagate and smi.screen (this folder). Defaults
+// are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp).
+#include "doc.hpp"
+#include "surrogate/doe.hpp"
+#include "surrogate/kriging.hpp"
+#include "surrogate/screen.hpp"
+
+namespace smi::bind {
+namespace {
+
+const char* const kText = R"DOC(
+@ module smi.doe
+Designs of experiments as matrices (rows = points): optimized Latin hypercubes, Sobol sequences,
+full factorials. space is a dimension count (the unit cube) or one entry per input: {lo, hi}
+(scaled to the bounds) or a dist (pushed through its quantile function).
+
+@ smi.doe.lhs(n, space [, opts]) -> mat
+An optimized Latin hypercube of n points (ESE optimisation of maximin or phi_p), the same design
+for the same seed.
+options:
+  seed = smi.seed                  -- the design's seed
+  criterion = "${criterion}"       -- "maximin", "phip" or "none" (a random LHS)
+  p = ${p}                         -- the exponent of phi_p
+  iterations = ${iterations}       -- ESE outer iterations; 0 = automatic by size
+  centered = ${centered}           -- points at the cell centres instead of uniform in the cell
+returns: an n x d mat
+errors: n not an integer in 1..2^28; a bad space entry (named by index, e.g. "space[2] = {1, 0}
+  needs finite lo < hi"); an unknown criterion or option
+example:
+  local X = smi.doe.lhs(5, {{0, 10}, smi.dist.normal{mean = 0, std = 1}}, {seed = 1})
+  print(X:shape())
+
+@ smi.doe.sobol(n, space [, opts]) -> mat
+The first n points of the Sobol sequence (Joe-Kuo directions, up to smi.doe.sobol_max_dim inputs).
+options:
+  skip = 0        -- points of the sequence skipped first
+returns: an n x d mat
+errors: n out of range; more inputs than smi.doe.sobol_max_dim; a bad space entry
+example:
+  print(smi.doe.sobol(4, 2))
+
+@ smi.doe.full_factorial(levels | k, space) -> mat
+Every combination of levels: full_factorial{{1, 2}, {10, 20, 30}} (one list per input) or
+full_factorial(k, space) with k evenly spaced levels per input of space (cell midpoints for a
+dist).
+returns: a mat with one row per combination (the first input varies slowest)
+errors: k < 2; a level list that is not numbers
+example:
+  print(smi.doe.full_factorial{{1, 2}, {10, 20}})
+
+@ module smi.kriging
+Universal Kriging (DACE-compatible): smi.kriging.fit and smi.kriging.load give a model with the
+methods smi.Kriging:predict, :loo, :evaluate, :save.
+
+@ smi.kriging.fit(X, y [, opts]) -> model
+Fits a Kriging model to the points X (rows) and responses y: regression trend plus a Gaussian
+process, theta by maximum likelihood on the analytic gradient with a seeded multistart and
+data-scaled bounds, or DACE's boxmin.
+options:
+  trend = "constant"       -- "constant", "linear" or "quadratic"
+  corr = "gauss"           -- "gauss", "exp", "matern32" or "matern52"
+  theta = nil              -- fixed correlation parameters (a number or one per input): no search
+  method = "${method}"     -- "ml" or "boxmin" (DACE's pattern search)
+  theta0 = nil             -- boxmin's start (a number or one per input)
+  lower = nil              -- bounds of theta (default: scaled to the data)
+  upper = nil              -- upper bounds of theta
+  nugget = ${nugget}       -- a relative nugget, or true to estimate it (noisy responses)
+  starts = ${starts}       -- local searches of the multistart; 0 = automatic by size
+  seed = ${seed}           -- the multistart's candidate points
+  normalize = ${normalize} -- DACE's normalisation of inputs and response
+  inputs = nil             -- input names (for smi.propagate, smi.screen and smi.calibrate)
+  output = "y"             -- the response's name
+  threads = ${threads}     -- worker threads
+returns: a model (smi.Kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
+  inputs, output, warnings, evaluations
+errors: X and y of different lengths; fewer points than trend terms; two identical points; an
+  unknown trend, corr or option; inputs of the wrong count
+example:
+  local X = smi.doe.lhs(12, {{0, 1}, {0, 1}}, {seed = 1})
+  local y = smi.vec(12)
+  for i = 1, 12 do y[i] = math.sin(3 * X:get(i, 1)) + X:get(i, 2) end
+  local k = smi.kriging.fit(X, y, {inputs = {"a", "b"}})
+  print(k.n, k:predict(smi.mat{{0.5, 0.5}}))
+
+@ smi.kriging.load(path) -> model
+Loads a model written by model:save (names of inputs and output included).
+returns: a model (smi.Kriging)
+errors: the sandbox refuses the path; not a model file, or a newer format version
+example:
+  local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
+  k:save(smi.out("doc_k.model"))
+  print(smi.kriging.load(smi.out("doc_k.model")).n)
+
+@ smi.Kriging:predict(X [, opts]) -> mean, mse
+Predictions at the rows of X, on both cores for large X.
+options:
+  mse = true      -- also return the mean squared error (false: the mean only, faster)
+  threads = 2     -- worker threads
+returns: a vec of means and (with mse) a vec of MSEs
+errors: X with a different number of columns than the model's inputs
+example:
+  local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
+  print(k:predict(smi.mat{{0.25}}))
+
+@ smi.Kriging:loo() -> {residuals =, variance =, q2 =, rmse =}
+Closed-form leave-one-out cross-validation (no refit): residuals y_i - yhat_(-i), their variances,
+Q2 = 1 - PRESS / total sum of squares, and the RMSE.
+returns: a table of vecs and numbers
+errors: none
+example:
+  local X = smi.doe.lhs(10, 1, {seed = 2})
+  local k = smi.kriging.fit(X, X:col(1):map(math.sin))
+  print(k:loo().q2 > 0.9)
+
+@ smi.Kriging:evaluate(X) -> {output = vec}
+The model's mean as a named model (the form smi.propagate and smi.calibrate call).
+returns: a table {<output name> = vec}
+errors: X with the wrong number of columns
+example:
+  local k = smi.kriging.fit(smi.mat{{0}, {1}}, smi.vec{1, 3}, {theta = 1, output = "f"})
+  print(k:evaluate(smi.mat{{0}}).f)
+
+@ smi.Kriging:save(path)
+Writes the model (text, version 2, with input and output names) for smi.kriging.load.
+returns: nothing
+errors: the sandbox refuses the path (smi.out(name) is always allowed); the file cannot be written
+example:
+  local k = smi.kriging.fit(smi.mat{{0}, {1}}, smi.vec{1, 3}, {theta = 1})
+  k:save(smi.out("doc_save.model"))
+  print("saved")
+
+@ smi.propagate{model =, inputs =} -> outputs, X
+Monte Carlo propagation: n points drawn from the inputs pushed through the model on whole
+matrices. The draws are common random numbers: the same seed gives the same points for any
+model, so two models (or two calibration steps) are compared without sampling noise.
+options:
+  model = (required)   -- an smi.Kriging, a table of them by output name, a function(X) returning
+                       -- {name = vec}, or an smi.model.* model
+  inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
+  n = 10000            -- sample size, 1..2^28
+  seed = smi.seed      -- the sample's seed
+  order = nil          -- the input order for a function model (names)
+returns: outputs {name = vec} and the input matrix X (rows = points)
+errors: a missing model or inputs; an input the model does not know, or one it needs missing
+  (named); the model returning the wrong number of rows
+example:
+  local Y = smi.propagate{model = function(X) return {y = X:col(1) * 2} end,
+                          inputs = {{"a", smi.dist.normal{mean = 1, std = 0.1}}}, n = 1000, seed = 1}
+  print(("mean %.3f, std %.3f"):format(Y.y:mean(), Y.y:std()))
+
+@ smi.screen{model =, inputs =} -> ranking
+Variance-based screening: the PDF-area index of each input (paper eq. 3 and 7: the area between
+the output's PDF with the input varying and with it fixed), beside Sobol first-order and total
+indices with bootstrap intervals.
+options:
+  model = (required)     -- as smi.propagate
+  inputs = (required)    -- as smi.propagate
+  n = ${n}               -- Monte Carlo size
+  seed = smi.seed        -- the sample's seed
+  fix = "${fix}"         -- the value an input is fixed at: "mean" or "median"
+  sobol = ${sobol}       -- also compute Sobol S1 and ST
+  bootstrap = ${bootstrap}  -- resamples for the Sobol intervals (0 = none)
+  level = ${level}       -- the intervals' level
+  grid = ${grid}         -- grid nodes of the PDF areas
+  output = nil           -- with several outputs: the one to rank (default: all, by name)
+  order = nil            -- as smi.propagate
+returns: rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi} sorted by rank, with fields
+  output, n, variance, warnings, by_input; tostring() prints the table. Several outputs and no
+  `output`: a table of rankings by output name
+errors: as smi.propagate; an output the model does not have
+example:
+  local r = smi.screen{model = function(X) return {y = X:col(1) * 3 + X:col(2)} end,
+                       inputs = {{"a", smi.dist.uniform{lower = 0, upper = 1}}, {"b", smi.dist.uniform{lower = 0, upper = 1}}},
+                       n = 2000, seed = 1, bootstrap = 0}
+  print(r[1].input, r[1].rank)
+)DOC";
+
+}  // namespace
+
+DocText doc_surrogate() {
+  const doe::LhsOptions lo;
+  const kriging::FitOptions fo;
+  const screen::Options so;
+  auto b = [](bool v) { return std::string(v ? "true" : "false"); };
+  return {"bindings/surrogate/doc.cpp",
+          fill(kText, {{"criterion", lo.criterion},
+                       {"p", num(lo.p)},
+                       {"iterations", num(lo.iterations)},
+                       {"centered", b(lo.centered)},
+                       {"method", fo.method},
+                       {"nugget", num(fo.nugget)},
+                       {"starts", num(fo.starts)},
+                       {"seed", num(static_cast<double>(fo.seed))},
+                       {"normalize", b(fo.normalize)},
+                       {"threads", num(fo.threads)},
+                       {"n", num(static_cast<double>(so.n))},
+                       {"fix", so.fix},
+                       {"sobol", b(so.sobol)},
+                       {"bootstrap", num(so.bootstrap)},
+                       {"level", num(so.level)},
+                       {"grid", num(static_cast<double>(so.grid))}})};
+}
+
+}  // namespace smi::bind

@@ -1,0 +1,127 @@
+// smi._docs(): hands the compiled-in reference texts of the C++ side to stdlib/smi/doc.lua,
+// with the methods table of every smi userdata type (found in the registry), so that the doc
+// module can walk the public API at run time. The texts of the host functions registered in
+// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.libraries, smi.provenance) are here.
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include "doc.hpp"
+#include "luax/luax.hpp"
+#include "vm/docs.hpp"
+#include "vm/runtime.hpp"
+
+namespace smi::vm {
+namespace {
+
+const char* const kHostDoc = R"(
+@ module smi
+The smi-lua runtime: every kernel is a field of this table (help() lists them).
+Values set by the command line: smi.seed (--seed, default ${seed}), smi.quiet (--quiet, or
+output not a terminal), smi.out_dir (--out, default smi-out/<script>), smi.script_dir (the
+script's folder), smi.version (the program's version).
+
+@ smi.out([name]) -> path
+A path in the run's output folder (--out, default smi-out/<script>/), which is created on
+first use. Scripts write their files here: the sandbox allows writes under it.
+returns: the path as a string (the folder itself when name is omitted)
+errors: the folder cannot be created (a file is in the way, or no permission)
+example:
+  local p = smi.out("table.csv")
+  print(p:match("table%.csv$") ~= nil)
+
+@ smi.now() -> seconds
+Wall-clock seconds from a monotonic clock, for timing steps that wait on solver processes
+(os.clock counts only this process's CPU time).
+returns: a number of seconds from an arbitrary origin; differences are durations
+errors: none
+example:
+  local t0 = smi.now()
+  print(smi.now() - t0 >= 0)
+
+@ smi.libraries() -> list
+The libraries a study sees (--lib, SMI_PATH), as the manifests declare them.
+returns: a list of {name =, version =, path =, description =, commit =} (commit when the
+  folder is a git checkout)
+errors: none (a bad library stops the run before the script starts)
+example:
+  print(#smi.libraries() >= 0)
+
+@ smi.provenance([opts]) -> table
+What produced this run's numbers: smi-lua version, seed, the script's SHA-256, and every
+library's version, content hash and git commit. smi.study records it in results.json;
+`smi-lua verify results.json` compares it with the libraries at hand.
+options:
+  files = true  -- include each library file's SHA-256 (false: only the folder hash)
+returns: {smi_lua =, seed =, script = {path =, hash =}, libraries = {{name =, version =,
+  path =, hash =, commit =, files = {...}}, ...}}
+errors: a library file that cannot be read
+example:
+  local p = smi.provenance{files = false}
+  print(p.smi_lua ~= nil, p.seed == smi.seed)
+)";
+
+/// Pushes {methods table by type name} for every registry metatable named "smi.*".
+void push_types(lua_State* L) {
+  lua_newtable(L);
+  const int out = lua_gettop(L);
+  lua_pushnil(L);
+  while (lua_next(L, LUA_REGISTRYINDEX)) {  // [out, key, value]
+    if (lua_type(L, -2) == LUA_TSTRING && lua_istable(L, -1) && std::strncmp(lua_tostring(L, -2), "smi.", 4) == 0) {
+      lua_getfield(L, -1, "__index");  // [out, key, mt, index]
+      bool pushed = false;
+      if (lua_istable(L, -1)) {
+        pushed = true;
+      } else if (lua_iscfunction(L, -1) && lua_getupvalue(L, -1, 1)) {  // smi types: methods upvalue
+        if (lua_istable(L, -1)) {
+          lua_remove(L, -2);
+          pushed = true;
+        } else {
+          lua_pop(L, 1);
+        }
+      }
+      if (pushed) {
+        lua_pushvalue(L, -3);  // key
+        lua_insert(L, -2);
+        lua_settable(L, out);
+      } else {
+        lua_pop(L, 1);
+      }
+    }
+    lua_pop(L, 1);
+  }
+}
+
+int smi_docs(lua_State* L) {
+  std::vector<bind::DocText> texts;
+  const int r = lua::protect(L, "smi._docs", [&] {
+    texts = bind::binding_docs();
+    texts.push_back({"host/vm/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
+    return 0;
+  });
+  lua_createtable(L, 0, 2);
+  lua_createtable(L, static_cast<int>(texts.size()), 0);
+  int i = 0;
+  for (const auto& t : texts) {
+    lua_createtable(L, 0, 2);
+    lua_pushstring(L, t.source);
+    lua_setfield(L, -2, "source");
+    lua_pushlstring(L, t.text.data(), t.text.size());
+    lua_setfield(L, -2, "text");
+    lua_rawseti(L, -2, ++i);
+  }
+  lua_setfield(L, -2, "texts");
+  push_types(L);
+  lua_setfield(L, -2, "types");
+  return r + 1;
+}
+
+}  // namespace
+
+void install_docs(lua_State* L) {
+  // stack: [smi] -> [smi]
+  lua_pushcfunction(L, smi_docs);
+  lua_setfield(L, -2, "_docs");
+}
+
+}  // namespace smi::vm

@@ -1,0 +1,322 @@
+--- smi.options: a study declares its command-line options (name, default, meaning, check), as
+-- sysbench scripts do; `smi-lua study.lua --help` lists them and a wrong value is refused with
+-- the option's name and what it accepts.
+--
+--   local options = require "smi.options"
+--   local opt = options.parse(arg, {
+--     name = "my_study", summary = "Calibrates the bracket model against the shaker tests.",
+--     { name = "data", type = "path", default = "data/tests.csv", meaning = "measurements (CSV)" },
+--     { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "calibration metric" },
+--     { name = "starts", type = "integer", default = 1, min = 1, meaning = "optimizer starts" },
+--     { name = "quick", type = "flag", meaning = "the reduced run CI uses" },
+--     options.study_steps,                -- --only, --from, --quiet for smi.study's s:run(opt)
+--   })
+--   -- opt.data, opt.metric, opt.starts, opt.quick, opt.only, ...
+--
+-- Values: --name VALUE or --name=VALUE; a flag takes no value (--quick) and is true when given,
+-- else its default (nil unless declared). Types: flag, string,
+-- path, number, integer, list (comma-separated, repeatable: --only a,b --only c -> {"a","b","c"}).
+-- Checks: allowed = {...} (every element for a list), min, max, and check = function(v) that
+-- returns true, or false/nil and why. Arguments not starting with "--" are refused unless the
+-- spec says args = "<meaning>" (then they are kept in opt.args).
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.options
+Command-line options a study declares (name, type, default, meaning, check), as sysbench scripts
+do: `smi-lua study.lua --help` lists them, and a wrong value names the option and what it accepts.
+]==]
+local M = {}
+
+local TYPES = { flag = true, string = true, path = true, number = true, integer = true, list = true }
+
+--- --only, --from and --quiet as smi.study's s:run(opt) reads them (splice into a spec's list).
+M.study_steps = {
+  { name = "only", type = "list", meaning = "run only these steps (comma-separated); the others' results are read from results.json" },
+  { name = "from", type = "string", meaning = "run this step and every later one; earlier results are read from results.json" },
+  { name = "quiet", type = "flag", meaning = "no progress lines (also automatic when output is not a terminal)" },
+}
+
+-- The declarations in order, with the study_steps group (or any nested list) expanded.
+local function declarations(spec)
+  local out, by = {}, {}
+  local function add(d, where)
+    if type(d) ~= "table" then error(("smi.options: %s must be a table {name =, type =, default =, meaning =}, got %s"):format(where, type(d)), 3) end
+    if d.name == nil and d[1] ~= nil and type(d[1]) == "table" then
+      for i, e in ipairs(d) do add(e, where .. "[" .. i .. "]") end
+      return
+    end
+    if type(d.name) ~= "string" or not d.name:match("^[%a][%w_%-]*$") then
+      error(("smi.options: %s.name must be a word such as \"data\", got %s"):format(where, tostring(d.name)), 3)
+    end
+    local t = d.type or (type(d.default) == "number" and "number") or (type(d.default) == "boolean" and "flag") or "string"
+    if not TYPES[t] then
+      error(("smi.options: option '%s': type must be flag, string, path, number, integer or list, got %s"):format(d.name, tostring(t)), 3)
+    end
+    if type(d.meaning) ~= "string" or d.meaning == "" then
+      error(("smi.options: option '%s' has no meaning: say what it does (meaning = \"...\")"):format(d.name), 3)
+    end
+    if by[d.name] then error(("smi.options: option '%s' is declared twice"):format(d.name), 3) end
+    local e = setmetatable({ type = t }, { __index = d })
+    by[d.name] = e
+    out[#out + 1] = e
+  end
+  for i, d in ipairs(spec) do add(d, "spec[" .. i .. "]") end
+  return out, by
+end
+
+local function show(v)
+  if type(v) == "table" then return table.concat(v, ",") end
+  return tostring(v)
+end
+
+-- What an option accepts, in words ("pr|loglik", "a whole number >= 1", ...).
+local function accepts(d)
+  local parts = {}
+  if d.allowed then parts[#parts + 1] = "one of " .. table.concat((function()
+    local t = {}
+    for i, a in ipairs(d.allowed) do t[i] = tostring(a) end
+    return t
+  end)(), ", ") end
+  if d.type == "integer" then parts[#parts + 1] = "a whole number"
+  elseif d.type == "number" then parts[#parts + 1] = "a number" end
+  if d.min ~= nil then parts[#parts + 1] = ">= " .. tostring(d.min) end
+  if d.max ~= nil then parts[#parts + 1] = "<= " .. tostring(d.max) end
+  if d.type == "list" and #parts > 0 then table.insert(parts, 1, "comma-separated values, each") end
+  return table.concat(parts, " ")
+end
+
+local function placeholder(d)
+  if d.type == "flag" then return "" end
+  if d.allowed then
+    local t = {}
+    for i, a in ipairs(d.allowed) do t[i] = tostring(a) end
+    return "=" .. table.concat(t, "|") .. (d.type == "list" and "[,...]" or "")
+  end
+  return "=" .. ({ string = "TEXT", path = "PATH", number = "X", integer = "N", list = "A[,B...]" })[d.type]
+end
+
+doc.add[==[
+@ smi.options.help(spec) -> string
+The --help text of a spec: the study's name and summary, the usage line, then every option with
+its placeholder (--metric=pr|loglik, --starts=N), meaning, default and accepted values.
+returns: a string ending in a newline
+errors: a bad declaration (as smi.options.check)
+example:
+  local options = require "smi.options"
+  print(options.help{name = "demo", summary = "a demo",
+    {name = "metric", default = "pr", allowed = {"pr", "loglik"}, meaning = "calibration metric"}})
+]==]
+--- The --help text of a spec (what options.parse prints for --help).
+function M.help(spec)
+  local decl = declarations(spec)
+  local lines = {}
+  local name = spec.name or "study"
+  lines[#lines + 1] = name .. (spec.summary and (": " .. spec.summary) or "")
+  if spec.usage then lines[#lines + 1] = "usage: " .. spec.usage end
+  lines[#lines + 1] = ""
+  lines[#lines + 1] = "options:"
+  local heads, width = {}, 0
+  for i, d in ipairs(decl) do
+    heads[i] = "  --" .. d.name .. placeholder(d)
+    width = math.max(width, #heads[i])
+  end
+  width = math.min(width, 34)
+  for i, d in ipairs(decl) do
+    local text = d.meaning
+    if d.default ~= nil and d.type ~= "flag" then text = text .. " [default: " .. show(d.default) .. "]" end
+    local acc = accepts(d)
+    if acc ~= "" and not d.allowed then text = text .. " (" .. acc .. ")" end
+    if #heads[i] > width then
+      lines[#lines + 1] = heads[i]
+      lines[#lines + 1] = (" "):rep(width + 2) .. text
+    else
+      lines[#lines + 1] = heads[i] .. (" "):rep(width - #heads[i] + 2) .. text
+    end
+  end
+  lines[#lines + 1] = "  --help" .. (" "):rep(math.max(2, width - 8 + 2)) .. "this list"
+  if spec.args then lines[#lines + 1] = "arguments: " .. spec.args end
+  if spec.epilog then lines[#lines + 1] = ""; lines[#lines + 1] = spec.epilog end
+  return table.concat(lines, "\n") .. "\n"
+end
+
+-- Converts and checks one value; returns it or nil, message.
+local function convert(d, raw)
+  local function bad(why) return nil, ("--%s: %s (%s)"):format(d.name, why, accepts(d) ~= "" and ("expects " .. accepts(d)) or d.meaning) end
+  local function one(s)
+    local v = s
+    if d.type == "number" or d.type == "integer" then
+      v = tonumber(s)
+      if v == nil or v ~= v then return bad(("'%s' is not a number"):format(s)) end
+      if d.type == "integer" and v ~= math.floor(v) then return bad(("'%s' is not a whole number"):format(s)) end
+      if d.type == "integer" then v = math.tointeger(v) or v end
+      if d.min ~= nil and v < d.min then return bad(("%s is below the minimum %s"):format(s, tostring(d.min))) end
+      if d.max ~= nil and v > d.max then return bad(("%s is above the maximum %s"):format(s, tostring(d.max))) end
+    end
+    if d.allowed then
+      local ok = false
+      for _, a in ipairs(d.allowed) do if tostring(a) == tostring(v) then ok = true break end end
+      if not ok then
+        local t = {}
+        for i, a in ipairs(d.allowed) do t[i] = tostring(a) end
+        return nil, ("--%s: '%s' is not allowed; allowed values: %s"):format(d.name, tostring(s), table.concat(t, ", "))
+      end
+    end
+    if d.check then
+      local ok, why = d.check(v)
+      if not ok then return bad(("'%s' %s"):format(tostring(s), why or "fails the option's check")) end
+    end
+    return v
+  end
+  if d.type == "list" then
+    local out = {}
+    for item in tostring(raw):gmatch("[^,]+") do
+      local v, err = one(item)
+      if v == nil then return nil, err end
+      out[#out + 1] = v
+    end
+    if #out == 0 then return bad("needs at least one value") end
+    return out
+  end
+  return one(raw)
+end
+
+local function suggest(by, name)
+  local best, bestd
+  for n in pairs(by) do
+    -- a cheap closeness: common prefix length, then length difference
+    local p = 0
+    while p < #n and p < #name and n:sub(p + 1, p + 1) == name:sub(p + 1, p + 1) do p = p + 1 end
+    local dist = math.max(#n, #name) - p
+    if p >= 2 and (bestd == nil or dist < bestd) then best, bestd = n, dist end
+  end
+  return best
+end
+
+doc.add[==[
+@ smi.options.check(argv, spec) -> opt | nil, message
+Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
+ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args.
+options:
+  name = (required)     -- a declaration's option name: --name on the command line, opt.name in Lua
+                        -- (dashes become underscores)
+  type = "string"       -- flag, string, path, number, integer or list (comma-separated, repeatable);
+                        -- inferred from a number or boolean default
+  default = nil         -- the value when the option is not given (flags: nil unless declared)
+  meaning = (required)  -- what the option does (shown by --help)
+  allowed = nil         -- the allowed values (every element, for a list)
+  min = nil             -- the smallest number allowed
+  max = nil             -- the largest number allowed
+  check = nil           -- function(v) returning true, or false and why
+returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
+  positional arguments), or nil and a message naming the option and the allowed values
+errors: a bad declaration: a missing meaning, an unknown type, an option declared twice
+example:
+  local options = require "smi.options"
+  local spec = {name = "demo", {name = "metric", default = "pr", allowed = {"pr", "loglik"}, meaning = "metric"},
+                {name = "starts", type = "integer", default = 1, min = 1, meaning = "optimizer starts"}}
+  print(options.check({"--starts=4"}, spec).starts)
+  print(options.check({"--metric", "rmse"}, spec))
+]==]
+--- Parses argv against spec without exiting: returns opt, or nil and a message naming the
+-- option and what it accepts; opt.help is true when --help was given.
+function M.check(argv, spec)
+  if type(spec) ~= "table" then error("smi.options: spec must be a table of option declarations", 2) end
+  local decl, by = declarations(spec)
+  local opt, given = {}, {}
+  argv = argv or {}
+  local i = 1
+  while i <= #argv do
+    local a = tostring(argv[i])
+    if a == "--help" or a == "-h" then
+      opt.help = true
+      i = i + 1
+    elseif a:sub(1, 2) == "--" then
+      local name, value = a:match("^%-%-([^=]+)=(.*)$")
+      name = name or a:sub(3)
+      local d = by[name]
+      if not d then
+        local names = {}
+        for _, e in ipairs(decl) do names[#names + 1] = "--" .. e.name end
+        local s = suggest(by, name)
+        return nil, ("unknown option '%s'%s; options: %s (--help explains them)"):format(a, s and (" (did you mean --" .. s .. "?)") or "", table.concat(names, ", "))
+      end
+      if d.type == "flag" then
+        if value ~= nil then
+          if value == "true" or value == "1" then value = true elseif value == "false" or value == "0" then value = false
+          else return nil, ("--%s is a flag: give it alone (or =true/=false), got '%s'"):format(d.name, value) end
+        else value = true end
+        i = i + 1
+      else
+        if value == nil then
+          value = argv[i + 1]
+          if value == nil or tostring(value):sub(1, 2) == "--" then
+            return nil, ("--%s needs a value (%s)"):format(d.name, accepts(d) ~= "" and accepts(d) or d.meaning)
+          end
+          i = i + 2
+        else
+          i = i + 1
+        end
+        local v, err = convert(d, value)
+        if v == nil then return nil, err end
+        value = v
+      end
+      local key = d.name:gsub("%-", "_")
+      if d.type == "list" and type(opt[key]) == "table" and given[key] then
+        for _, v in ipairs(value) do opt[key][#opt[key] + 1] = v end
+      else
+        opt[key] = value
+      end
+      given[key] = true
+    elseif spec.args then
+      opt.args = opt.args or {}
+      opt.args[#opt.args + 1] = a
+      i = i + 1
+    else
+      return nil, ("unexpected argument '%s': options start with -- (--help lists them)"):format(a)
+    end
+  end
+  for _, d in ipairs(decl) do
+    local key = d.name:gsub("%-", "_")
+    if not given[key] then
+      -- a flag not given keeps its declared default (nil when none: smi.study's --quiet must
+      -- stay unset so that smi-lua's own --quiet still applies)
+      if d.default ~= nil then opt[key] = d.default end
+    end
+  end
+  return opt
+end
+
+doc.add[==[
+@ smi.options.parse(argv, spec) -> opt
+Parses the script's arguments (arg) against the declared options, as smi.options.check; --help
+prints the list and ends the run with status 0, and a wrong value or an unknown option prints
+"<study>: --metric: 'rmse' is not allowed; allowed values: pr, loglik" and ends it with status 2.
+returns: the options table, defaults filled in
+errors: a bad declaration (as smi.options.check); the run ends (os.exit) on --help or a bad value
+example:
+  local options = require "smi.options"
+  local opt = options.parse({"--quick"}, {name = "demo",
+    {name = "quick", type = "flag", default = false, meaning = "the reduced run"},
+    options.study_steps})
+  print(opt.quick, opt.only)
+]==]
+--- Parses argv (the script's `arg`) against the declared options. --help prints the list and
+-- ends the run (exit status 0); a wrong value or an unknown option prints what is wrong, naming
+-- the option and its allowed values, and ends the run with status 2 (a usage error).
+function M.parse(argv, spec)
+  local opt, err = M.check(argv, spec)
+  local name = type(spec) == "table" and spec.name or "study"
+  if not opt then
+    io.stderr:write(name, ": ", err, "\n")
+    io.stderr:flush()
+    os.exit(2)
+  end
+  if opt.help then
+    io.stdout:write(M.help(spec))
+    io.stdout:flush()
+    os.exit(0)
+  end
+  return opt
+end
+
+return M
