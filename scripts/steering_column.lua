@@ -323,8 +323,8 @@ local function calibration_step(k)
     for _, n in ipairs(sv.inputs) do srows[#srows + 1] = { n, sv.sensitivity.mode1[n], sv.sensitivity.mode2[n], sv.sensitivity.mode4[n] } end
     r:table{ caption = "Relative sensitivities d ln f / d ln x of the Kriging modes at the calibrated means.", columns = { "Input", "Mode 1", "Mode 2", "Mode 4" }, rows = srows }
     local no = res.near_optimal
-    r:callout(("Identifiability (beyond the paper): modes 1 and 4 fix 2 combinations of the %d means and leave %d undetermined; %.0f %% of mode 2's sensitivity lies outside what modes 1 and 4 constrain. Near-optimal calibrations (objective within %.3g of the optimum; %s): %d points."):format(
-      #sv.inputs, sv.undetermined, 100 * sv.mode2_unconstrained_share, no.tolerance, no.source, #no.points), sv.mode2_unconstrained_share > 0.2 and "warn" or "info")
+    r:callout(("Identifiability (beyond the paper): modes 1 and 4 fix 2 combinations of the %d means and leave %d undetermined; %.0f %% of mode 2's sensitivity lies outside what modes 1 and 4 constrain. Near-optimal calibrations (objective within %.3g of the optimum, the %s; %s): %d points."):format(
+      #sv.inputs, sv.undetermined, 100 * sv.mode2_unconstrained_share, no.tolerance, no.tolerance_basis and no.tolerance_basis.basis or "tolerance", no.source, #no.points), sv.mode2_unconstrained_share > 0.2 and "warn" or "info")
     if #res.weak > 0 then
       r:callout(("Identifiability: the objective hardly changes with %s over its whole range; these parameters are not determined by modes 1 and 4."):format(table.concat(res.weak, ", ")), "warn")
     end

@@ -5,6 +5,7 @@
 # calibrated means against the truth and the solver runs (summarize.lua).
 #   usage: [STUDY_ARGS="--max-refinements 1"] run.sh BUILD_DIR OUT_DIR [ci|full|all] [--check]
 # STUDY_ARGS: more options for every study run (CI caps the refinements to bound its time).
+# ROWS="1 2 3": only these experiment ids (of the chosen set; use "all" to pick from every row).
 # ci: the two experiments CI runs; full: the other twelve; all: both. Exit 1 when a study does not
 # finish or writes no conclusion; with --check also unless every
 # experiment meets the criteria (summarize.lua says which). The experiments run one after
@@ -22,6 +23,7 @@ ran=() failed=0
 while IFS=, read -r id eset truth noise seed rest; do
   [ "$id" = id ] && continue
   if [ "$set" != all ] && [ "$eset" != "$set" ]; then continue; fi
+  if [ -n "${ROWS:-}" ] && [[ " $ROWS " != *" $id "* ]]; then continue; fi
   dir=$out/exp$id
   rm -rf "$dir"; mkdir -p "$dir"
   args=(--seed "$seed" --truth "$truth" --noise "$noise")
