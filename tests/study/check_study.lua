@@ -60,6 +60,14 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(t1.candidate, "initial")
   T.eq(t1.airbag, "rigid")
   T.truthy(t1.modes.mode1 == "invalid" or t1.modes.mode4 == "invalid", "trial 1 invalid on a calibrated mode")
+  -- as in the paper: the rigid airbag fits mode 1 and gives up mode 4 (the model-form
+  -- calibration's overlapping start; the objective form stayed at a corner with PR saturated
+  -- on every mode)
+  T.eq(t1.modes.mode1, "valid", "trial 1 fits mode 1")
+  T.eq(t1.modes.mode4, "invalid", "trial 1 fails on mode 4")
+  for i, t in ipairs(C.trials) do
+    T.truthy(t.calibration.converged, ("trial %d's calibration converged (%s)"):format(i, t.calibration.status))
+  end
   T.eq(C.refinements[1], "airbag modelling type", "refinement picks the airbag modelling")
   T.eq(last.candidate, "airbag modelling type")
   T.eq(last.airbag, "spring")
