@@ -281,6 +281,9 @@ function M.calibrate(t)
   local near = require "steering_column.near_optimal"
   local data_objective = objective(t.f_exp, t.data)
   local function full_objective(th) return data_objective(th) + prior_terms(t.prior, th) end
+  -- the objective the objective form minimized (the study's own CRN sample through
+  -- smi.propagate) at this optimum: before/after comparisons on one sample
+  out.objective_study_sample = data_objective(r.params)
   local pushes = near.by_prediction_extremes{ params = params1, optimum = r.params, objective = full_objective,
     value = full_objective(r.params), predicted = predicted, prior = t.prior and function(th) return prior_terms(t.prior, th) end, tolerance = tol.value,
     calibration_modes = M.calibration_modes, validation_modes = M.validation_modes, data = t.data }
