@@ -239,8 +239,15 @@ function M.calibrate(t)
   -- the directions and near-optimal points at that tolerance.
   local r = stage2(t.f_exp, t.data, r0.params, 40, { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value }, 1)
   r.evaluations = r.evaluations + r0.evaluations
-  if r.objective > r0.objective + 1e-9 then r.params, r.objective, r.metrics = r0.params, r0.objective, r0.metrics end
-  r.converged, r.status, r.starts, r.history, r.at_bounds = r0.converged, r0.status, r0.starts, r0.history, r0.at_bounds
+  local kept = r.objective <= r0.objective + 1e-9
+  if not kept then r.params, r.objective, r.metrics = r0.params, r0.objective, r0.metrics end
+  -- the restart is SLSQP again from the first call's point: when that call stopped on its budget
+  -- and the restart on its tolerances (at a point no worse), the optimum is converged
+  local restarted = kept and not r0.converged and r.converged
+  r.status = restarted and ("%s, then %s on the restart from its point"):format(r0.status, r.status) or r0.status
+  r.converged = r0.converged or restarted
+  r.starts, r.history = r0.starts, r0.history
+  if not restarted then r.at_bounds = r0.at_bounds end
   local params = {}
   for _, n in ipairs(t.unknowns) do
     local u = t.specs[n]
