@@ -143,10 +143,11 @@ end
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
 -- data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist}, kriging, design_bounds, n,
 -- seed, maxeval, bootstrap, boot_maxeval, metric = "pr"|"loglik", multistart, prior (the
--- analyst's, smi.calibrate's `prior` list; nil: none)}. Both stages are smi.calibrate in its
--- objective form: a moment fit, then the paper's metric. (The model form computes the same PR to
--- 1e-4; from trial 1's saturated start, PR ≈ 2 on both modes, SLSQP's finite differences see only
--- the tails and the two forms walked apart, so the study keeps the form it was validated with.)
+-- analyst's, smi.calibrate's `prior` list; nil: none)}. Stage 1, a moment fit, is smi.calibrate in
+-- its objective form; stage 2, the paper's metric, in its model form (analytic gradients and the
+-- kernel's overlapping start: on 14 generated experiments 20 of 21 PR stages converged on their
+-- tolerances, against 2 of 24 in the objective form on finite differences, which also stayed at
+-- a saturated corner on the committed data's trial 1).
 -- Nothing but the data and the analyst's priors enters the objective: modes 1 and 4 leave
 -- combinations of the means undetermined, and the study reports what that leaves open
 -- (near_optimal.lua, the validation's "inconclusive") instead of choosing for the analyst.
