@@ -59,7 +59,8 @@ CommandResult run_command(const std::vector<std::string>& argv, double timeout, 
   if (rc != 0) {
     ::close(out[0]);
     ::close(err[0]);
-    r.err = fmt::format("cannot run '{}': {}", prog, std::strerror(rc));
+    r.err = fmt::format("cannot run '{}': {} (is slurm-client installed? --slurm-opt bin_dir=DIR names its folder)",
+                        prog, std::strerror(rc));
     return r;
   }
   const double deadline = monotonic_seconds() + timeout;
@@ -104,7 +105,7 @@ bool transient_failure(const CommandResult& r) {
   for (const char* s : {"Unable to contact slurm controller", "Socket timed out", "Connection refused",
                         "temporarily unavailable", "Try again", "try again", "Zero Bytes were transmitted",
                         "Connection reset", "Transport endpoint", "slurm_load_jobs error: Unable",
-                        "Communication connection failure", "cannot run '"})
+                        "Communication connection failure"})
     if (r.err.find(s) != std::string::npos) return true;
   return false;
 }
@@ -162,6 +163,7 @@ std::vector<QueueEntry> parse_squeue(const std::string& out) {
     e.state_text = f[1];
     e.state = parse_task_state(f[1]);
     if (f.size() > 2) e.reason = f[2];
+    if (f.size() > 3) e.raw_id = f[3];
     v.push_back(std::move(e));
   }
   return v;

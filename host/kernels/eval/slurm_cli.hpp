@@ -44,9 +44,10 @@ struct QueueEntry {
   int index = -1;            // the array task index, -1 when not an array task
   TaskState state = TaskState::Unknown;
   std::string state_text, reason;
+  std::string raw_id;        // the task's own job id (%A): `sacct -c` knows array tasks only by it
 };
 
-/// Parses `squeue -h -r -t all -o '%i|%T|%r'` lines. Lines it cannot read are skipped.
+/// Parses `squeue -h -r -t all -o '%i|%T|%r|%A'` lines. Lines it cannot read are skipped.
 std::vector<QueueEntry> parse_squeue(const std::string& out);
 
 /// Parses `sacct -n -P -X -o JobID,State,ExitCode` (or `sacct -c`): task "123_4" -> state text.

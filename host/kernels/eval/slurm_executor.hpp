@@ -52,7 +52,7 @@ class SlurmExecutor final : public Executor {
     std::string job_name, job_id;
     int index = 0;
     TaskState state = TaskState::Unknown;
-    std::string state_text, reason;
+    std::string state_text, reason, raw_id;
     double gone_since = -1;   // when squeue stopped listing it (or showed it final) without an exit file
     int requeues = 0;         // infrastructure failures so far (not counted against the run)
   };

@@ -1,14 +1,15 @@
 -- The study of the slurm tests: n runs of the test solver, the last of which sleeps past the
 -- model's 3 s timeout, and a second model whose one run exits with status 3 (failures are
 -- results too), printed so that a run on the local executor and one on Slurm compare line by line.
--- arg[1] = solver, arg[2] = launch log, arg[3] = seconds per run, arg[4] = n
+-- arg[1] = solver, arg[2] = launch log, arg[3] = seconds per run, arg[4] = n, arg[5] = timeout
 local solver, log, sleep, n = arg[1], arg[2], tonumber(arg[3] or "0.2"), tonumber(arg[4] or "10")
+local timeout = tonumber(arg[5] or "3")
 local function model(name, mode)
   return smi.model.command{
     name = name, inputs = {"x1", "x2", "sleep"}, outputs = {"f", "g"},
     template_string = "x1 = {{x1}}\nx2 = {{x2}}\nmode = {{mode}}\nexit_code = 3\nsleep = {{sleep}}\nlog = {{log}}\n",
     constants = {log = log, mode = mode},
-    deck = "run.deck", version = "slurm-test-1", timeout = 3, on_failure = "skip", concurrency = 4,
+    deck = "run.deck", version = "slurm-test-1", timeout = timeout, on_failure = "skip", concurrency = 4,
     command = {solver, "{deck}", "-o", "out.txt"},
     parse = function(dir, h)
       return {f = h.regex("out.txt", "f = (\\S+)"), g = h.regex("out.txt", "g = (\\S+)")}
@@ -16,7 +17,7 @@ local function model(name, mode)
   }
 end
 local X = {}
-for i = 1, n do X[i] = {i * 0.25, 1 - i * 0.125, i == n and 30 or sleep} end
+for i = 1, n do X[i] = {i * 0.25, 1 - i * 0.125, i == n and timeout + 27 or sleep} end
 local Y, info = model("arr", "ok"):evaluate(X)
 for i = 1, n do
   print(("row %d %s f=%.17g g=%.17g %s"):format(i, info.status[i], Y.f[i], Y.g[i], info.reason[i] or ""))
