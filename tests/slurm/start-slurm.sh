@@ -10,6 +10,7 @@
 #    taking the node's whole memory, proctrack/linuxproc + task/none work without cgroups;
 #  - a requeued job waits cred_expire + 1 s before it may start again (121 s by default): the
 #    tests lower it (AuthInfo cred_expire) so the node-failure test takes seconds, not minutes;
+#  - the main scheduling loop runs every 60 s by default and a requeued job waits for it: 1 s here;
 #  - MaxArraySize is small here so that every test also exercises chunked arrays.
 set -euo pipefail
 DIR=${SMI_SLURM_DIR:-/var/tmp/smi-slurm}
@@ -84,6 +85,7 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 DefMemPerCPU=64
 SchedulerType=sched/backfill
+SchedulerParameters=sched_interval=1,bf_interval=1
 ReturnToService=2
 MaxArraySize=${SMI_SLURM_MAX_ARRAY:-8}
 MinJobAge=300

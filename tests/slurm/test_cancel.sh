@@ -7,14 +7,14 @@ SMI=$1 SOLVER=$2 W=$3
 (exec "$SMI" --quiet --allow-exec "$SOLVER" --out "$W/sl" "${FAST[@]}" "$STUDY" "$SOLVER" "$W/launches.txt" 20 12 60 \
    > "$W/run.txt" 2>&1) &
 PID=$!
-wait_for 30 test "$(running_jobs)" -gt 0 || fail "no job started running: $(squeue)"
+wait_for 30 'test "$(running_jobs)" -gt 0' || fail "no job started running: $(squeue)"
 [ "$(live_jobs)" -eq 12 ] || fail "expected 12 live tasks, squeue: $(squeue -r)"
 t0=$(date +%s.%N)
 kill -INT $PID
 rc=0; wait $PID || rc=$?
 [ $rc -ne 0 ] || fail "the interrupted study exited 0"
 grep -q "interrupted" "$W/run.txt" || fail "no 'interrupted' message: $(cat "$W/run.txt")"
-wait_for 5 test "$(live_jobs)" -eq 0 || fail "jobs still live 5 s after Ctrl-C: $(squeue -r)"
+wait_for 5 'test "$(live_jobs)" -eq 0' || fail "jobs still live 5 s after Ctrl-C: $(squeue -r)"
 echo "stopped and cancelled in $(echo "$(date +%s.%N) - $t0" | bc) s"
 states=$(squeue -h -r -t all -o '%j %T' | awk '/^smi-arr/{print $2}' | sort | uniq -c | tr '\n' ' ')
 case "$states" in *CANCELLED*) ;; *) fail "our tasks are not CANCELLED: $states";; esac

@@ -11,7 +11,7 @@ stop_ctld() { local p; p=$(ctld_pid); kill -TERM "$p"; for _ in $(seq 1 100); do
 start_ctld() {
   slurmctld -D >> "$SLURM_DIR/log/slurmctld.out" 2>&1 &
   echo "slurmctld $!" >> "$SLURM_DIR/pids"
-  wait_for 30 sinfo -h >/dev/null 2>&1 || fail "slurmctld did not come back"
+  wait_for 30 'sinfo -h >/dev/null 2>&1' || fail "slurmctld did not come back"
 }
 trap 'kill -0 "$(ctld_pid)" 2>/dev/null || start_ctld; scancel_ours' EXIT
 reference 2 10 20
@@ -19,7 +19,7 @@ reference 2 10 20
 (exec "$SMI" --quiet --allow-exec "$SOLVER" --out "$W/a" "${FAST[@]}" --slurm-opt throttle=4 --slurm-opt down_after=60 \
    "$STUDY" "$SOLVER" "$W/a-launches.txt" 2 10 20 > "$W/a.txt" 2>&1) &
 PID=$!
-wait_for 30 test "$(running_jobs)" -gt 0 || fail "no job started running"
+wait_for 30 'test "$(running_jobs)" -gt 0' || fail "no job started running"
 stop_ctld; sleep 3; start_ctld
 wait $PID || fail "the study did not survive a controller restart: $(cat "$W/a.txt")"
 diff <(grep -v '^launched=' "$W/local.txt") <(grep -v '^launched=' "$W/a.txt") || fail "results differ after the restart"
@@ -29,7 +29,7 @@ echo "survived a controller restart"
 (exec "$SMI" --quiet --allow-exec "$SOLVER" --out "$W/b" "${FAST[@]}" --slurm-opt throttle=4 --slurm-opt down_after=4 \
    "$STUDY" "$SOLVER" "$W/b-launches.txt" 2 10 20 > "$W/b.txt" 2>&1) &
 PID=$!
-wait_for 30 test "$(lines "$W/b-launches.txt")" -ge 4 || fail "no run started"
+wait_for 30 'test "$(lines "$W/b-launches.txt")" -ge 4' || fail "no run started"
 stop_ctld
 rc=0; wait $PID || rc=$?
 [ $rc -eq 1 ] || fail "the study went on without a controller (rc=$rc): $(cat "$W/b.txt")"
