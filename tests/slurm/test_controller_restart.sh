@@ -14,20 +14,21 @@ start_ctld() {
   wait_for 30 'sinfo -h >/dev/null 2>&1' || fail "slurmctld did not come back"
 }
 trap 'kill -0 "$(ctld_pid)" 2>/dev/null || start_ctld; scancel_ours' EXIT
+STUDY_ARGS=nohang
 reference 2 10 20
 
 (exec "$SMI" --quiet --allow-exec "$SOLVER" --out "$W/a" "${FAST[@]}" --slurm-opt throttle=4 --slurm-opt down_after=60 \
-   "$STUDY" "$SOLVER" "$W/a-launches.txt" 2 10 20 > "$W/a.txt" 2>&1) &
+   "$STUDY" "$SOLVER" "$W/a-launches.txt" 2 10 20 nohang > "$W/a.txt" 2>&1) &
 PID=$!
 wait_for 30 'test "$(running_jobs)" -gt 0' || fail "no job started running"
 stop_ctld; sleep 3; start_ctld
 wait $PID || fail "the study did not survive a controller restart: $(cat "$W/a.txt")"
 diff <(grep -v '^launched=' "$W/local.txt") <(grep -v '^launched=' "$W/a.txt") || fail "results differ after the restart"
-no_double_submission "$W/a" 10
+no_double_submission "$W/a" 11
 echo "survived a controller restart"
 
 (exec "$SMI" --quiet --allow-exec "$SOLVER" --out "$W/b" "${FAST[@]}" --slurm-opt throttle=4 --slurm-opt down_after=4 \
-   "$STUDY" "$SOLVER" "$W/b-launches.txt" 2 10 20 > "$W/b.txt" 2>&1) &
+   "$STUDY" "$SOLVER" "$W/b-launches.txt" 2 10 20 nohang > "$W/b.txt" 2>&1) &
 PID=$!
 wait_for 30 'test "$(lines "$W/b-launches.txt")" -ge 4' || fail "no run started"
 stop_ctld
@@ -42,5 +43,5 @@ stored=$(sed -n 's/.*(\([0-9]*\) found in the store).*/\1/p' "$W/b-dry.txt" | he
 [ "${stored:-0}" -ge 1 ] || fail "no finished run was kept: $(cat "$W/b-dry.txt")"
 study "$W/b" "$W/b-launches.txt" 2 10 20 "${FAST[@]}" > "$W/b2.txt" 2>&1 || fail "rerun: $(cat "$W/b2.txt")"
 diff <(grep -v '^launched=' "$W/local.txt") <(grep -v '^launched=' "$W/b2.txt") || fail "results differ after the rerun"
-no_double_submission "$W/b" 10
+no_double_submission "$W/b" 11
 echo "ok: stopped with a clear message ($stored runs kept), rerun reattached"

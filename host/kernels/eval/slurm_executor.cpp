@@ -163,13 +163,14 @@ std::size_t SlurmExecutor::running() const {
   return static_cast<std::size_t>(std::count_if(live_.begin(), live_.end(), [](const Task& t) { return t.state == TaskState::Running; }));
 }
 
-CommandResult SlurmExecutor::call(const std::vector<std::string>& argv, const char* what) {
+CommandResult SlurmExecutor::call(const std::vector<std::string>& argv, const char* what, bool harvest) {
   const double t0 = monotonic_seconds();
   double backoff = 0.5;
   for (;;) {
     CommandResult r = run_command(argv, cfg_.cmd_timeout, cfg_.bin_dir);
     if (!transient_failure(r)) return r;
     const double spent = monotonic_seconds() - t0;
+    if (harvest && on_done_) scan_exit_files(*on_done_);  // what finished meanwhile is kept
     if (spent >= cfg_.down_after) {
       down_ = true;
       std::string err = r.err;
@@ -179,7 +180,11 @@ CommandResult SlurmExecutor::call(const std::vector<std::string>& argv, const ch
           "stored, and submitted jobs stay in the store's pending table: run the study again once the controller "
           "answers and it reattaches to them", join(argv, " ").substr(0, 200), what, spent, err));
     }
-    nap(std::min({backoff, 5.0, std::max(0.05, cfg_.down_after - spent)}));
+    const double until = monotonic_seconds() + std::min({backoff, 5.0, std::max(0.05, cfg_.down_after - spent)});
+    while (monotonic_seconds() < until) {
+      nap(std::min(0.2, until - monotonic_seconds()));
+      if (harvest && on_tick_ && *on_tick_) (*on_tick_)();  // Ctrl-C and --timeout still stop the study
+    }
     backoff *= 2;
   }
 }
@@ -389,7 +394,7 @@ bool SlurmExecutor::poll_queue(const std::function<void(const Outcome&)>&) {
   if (ids.empty()) return false;
   ++calls_.squeue;
   const CommandResult r = call({"squeue", "-h", "-r", "-t", "all", "-j", join({ids.begin(), ids.end()}, ","), "-o", "%i|%T|%r|%A"},
-                               "poll the study's jobs");
+                               "poll the study's jobs", true);
   std::vector<QueueEntry> entries;
   if (r.status == 0) entries = parse_squeue(r.out);
   else if (r.err.find("Invalid job id") == std::string::npos)  // one unknown id alone makes squeue fail
@@ -514,6 +519,12 @@ void SlurmExecutor::run(const std::function<void(const Outcome&)>& on_done, cons
   // asked once per cycle, from poll_min backing off to poll_max while nothing changes.
   // A stat per live run costs the scheduler nothing: a tenth of the polling interval, 0.2 to 1 s.
   const double scan_every = std::clamp(0.1 * cfg_.poll_min, 0.2, 1.0);
+  on_done_ = &on_done;
+  on_tick_ = &on_tick;
+  struct Reset {
+    SlurmExecutor* x;
+    ~Reset() { x->on_done_ = nullptr, x->on_tick_ = nullptr; }
+  } reset{this};
   double now = monotonic_seconds();
   double last_tick = now, next_scan = now, next_poll = now + interval_;
   while (!live_.empty() || (!stopping_ && !queue_.empty())) {

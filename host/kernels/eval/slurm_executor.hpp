@@ -66,8 +66,9 @@ class SlurmExecutor final : public Executor {
   void requeue(std::size_t i, const std::string& why, const std::function<void(const Outcome&)>& on_done);
   void cancel_pending_tasks();
   /// Runs a scheduler command, retrying transient failures until down_after; throws
-  /// SchedulerDown then.
-  CommandResult call(const std::vector<std::string>& argv, const char* what);
+  /// SchedulerDown then. With `harvest`, runs that end while it waits are reported (exit files
+  /// need no scheduler) and on_tick keeps running, so Ctrl-C works and finished runs are stored.
+  CommandResult call(const std::vector<std::string>& argv, const char* what, bool harvest = false);
   int max_array();
 
   ExecutorConfig cfg_;
@@ -78,6 +79,8 @@ class SlurmExecutor final : public Executor {
   std::map<std::string, int> requeues_;  // key -> infrastructure requeues so far
   bool stopping_ = false, stop_done_ = false, down_ = false;
   Calls calls_;
+  const std::function<void(const Outcome&)>* on_done_ = nullptr;  // set while run() runs
+  const std::function<void()>* on_tick_ = nullptr;
   std::size_t submitted_ = 0, reattached_ = 0, requeued_ = 0;
   int max_array_ = 0;
   int chunks_ = 0;
