@@ -2,8 +2,12 @@
 // scontrol parsing, state classes, --time arithmetic, the sbatch line, option checking, and the
 // command runner's time limit. The executor against a real cluster: tests/slurm (label slurm).
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <unistd.h>
 
 #include "eval/executor.hpp"
+#include "eval/pending.hpp"
+#include "eval/store.hpp"
 #include "eval/process.hpp"
 #include "eval/slurm_cli.hpp"
 #include "eval/slurm_executor.hpp"
@@ -131,4 +135,38 @@ TEST_CASE("scheduler commands: output captured, a hung command killed at its tim
   CHECK(missing.status == -1);
   CHECK_FALSE(transient_failure(missing));  // fails at once, naming the tool, not after down_after
   CHECK_THAT(missing.err, Catch::Contains("no-such-slurm-tool-here") && Catch::Contains("slurm-client"));
+}
+
+TEST_CASE("the pending table: a job recorded before sbatch answers, its id set after, a retry's row kept") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("smi-pending-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    Store store((dir / "evaluations.sqlite").string(), false);
+    PendingTable p(store.handle());
+    CHECK_FALSE(p.find("k1"));
+    p.put({{"k1", "smi-m-ab-0", "", 0, 1, "/runs/k1"}, {"k2", "smi-m-ab-0", "", 1, 1, "/runs/k2"}});
+    CHECK(p.find("k2")->job_id.empty());  // smi-lua killed here: a rerun looks the job name up
+    p.set_job_id("smi-m-ab-0", "417");
+    const auto r = p.find("k2");
+    REQUIRE(r);
+    CHECK(r->job_id == "417");
+    CHECK(r->array_index == 1);
+    CHECK(r->workdir == "/runs/k2");
+    // attempt 2 of k1 replaces attempt 1; finishing attempt 1 must not erase it
+    p.put({{"k1", "smi-m-cd-0", "420", 0, 2, "/runs/k1"}});
+    p.erase("k1", "417");
+    REQUIRE(p.find("k1"));
+    CHECK(p.find("k1")->attempt == 2);
+    p.erase("k1", "420");
+    CHECK_FALSE(p.find("k1"));
+    CHECK(p.count() == 1);
+  }
+  {  // it lives in the store's file: a new process sees it
+    Store store((dir / "evaluations.sqlite").string(), false);
+    PendingTable p(store.handle());
+    CHECK(p.find("k2")->job_id == "417");
+  }
+  fs::remove_all(dir);
 }
