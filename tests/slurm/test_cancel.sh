@@ -15,7 +15,7 @@ rc=0; wait $PID || rc=$?
 [ $rc -ne 0 ] || fail "the interrupted study exited 0"
 grep -q "interrupted" "$W/run.txt" || fail "no 'interrupted' message: $(cat "$W/run.txt")"
 wait_for 5 'test "$(live_jobs)" -eq 0' || fail "jobs still live 5 s after Ctrl-C: $(squeue -r)"
-echo "stopped and cancelled in $(echo "$(date +%s.%N) - $t0" | bc) s"
+echo "stopped and cancelled in $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }') s"
 states=$(squeue -h -r -t all -o '%j %T' | awk '/^smi-arr/{print $2}' | sort | uniq -c | tr '\n' ' ')
 case "$states" in *CANCELLED*) ;; *) fail "our tasks are not CANCELLED: $states";; esac
 sleep 1

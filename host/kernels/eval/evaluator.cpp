@@ -220,7 +220,7 @@ Plan Evaluator::plan(const Eigen::MatrixXd& X) {
 }
 
 std::string Evaluator::executor_plan(const Plan& pl) {
-  if (cfg_.executor.kind == "local") return "";
+  if (cfg_.executor.kind == "local" || pl.runs == 0) return "";
   return slurm_dry_run(cfg_.executor, pl.runs, cfg_.timeout, pl.timing.count > 0 ? pl.timing.mean : -1, cfg_.runs_dir,
                        cfg_.name);
 }

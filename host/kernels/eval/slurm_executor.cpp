@@ -191,11 +191,15 @@ CommandResult SlurmExecutor::call(const std::vector<std::string>& argv, const ch
 
 int SlurmExecutor::max_array() {
   if (max_array_ > 0) return max_array_;
-  int cluster = 0;
-  ++calls_.scontrol;
-  const CommandResult r = run_command({"scontrol", "show", "config"}, cfg_.cmd_timeout, cfg_.bin_dir);
-  if (r.status == 0) cluster = parse_max_array_size(r.out);
-  if (cluster <= 0) cluster = 1001;  // Slurm's default
+  // Asked once per smi-lua process (a study makes an executor per evaluation).
+  static std::map<std::string, int> known;  // bin_dir -> MaxArraySize
+  int cluster = known[cfg_.bin_dir];
+  if (cluster <= 0) {
+    ++calls_.scontrol;
+    const CommandResult r = run_command({"scontrol", "show", "config"}, cfg_.cmd_timeout, cfg_.bin_dir);
+    if (r.status == 0) cluster = known[cfg_.bin_dir] = parse_max_array_size(r.out);
+    if (cluster <= 0) cluster = 1001;  // Slurm's default (asked again next time)
+  }
   max_array_ = cfg_.max_array > 0 ? std::min(cfg_.max_array, cluster) : cluster;
   return max_array_;
 }
