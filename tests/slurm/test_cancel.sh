@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Ctrl-C while runs are queued and running on Slurm: smi-lua stops promptly, one scancel takes
+# (1) Ctrl-C while runs are queued and running on Slurm: smi-lua stops promptly, one scancel takes
 # every job of the study out of the queue (running ones get TERM), and no solver finishes.
+# (2) on_failure = "stop": the first run times out while the others wait in the queue (throttle
+# 1): the study stops with the failure, the queued runs are cancelled and never start.
 # usage: test_cancel.sh SMI_LUA SOLVER WORKDIR
 SMI=$1 SOLVER=$2 W=$3
 . "$(dirname "$0")/lib.sh"
@@ -22,4 +24,14 @@ sleep 1
 for d in "$W"/sl/runs/arr/*/; do
   [ ! -e "$d/.smi/exit" ] || fail "a run finished although cancelled: $d"
 done
-echo "ok: $states"
+echo "Ctrl-C ok: $states"
+
+rc=0; STUDY_ARGS=first,stop study "$W/stop" "$W/stop-launches.txt" 0.2 6 2 "${FAST[@]}" --slurm-opt throttle=1 \
+  > "$W/stop.txt" 2>&1 || rc=$?
+[ $rc -eq 1 ] || fail "on_failure = 'stop': exit status $rc: $(cat "$W/stop.txt")"
+grep -q "on_failure = 'stop'" "$W/stop.txt" || fail "no stop message: $(cat "$W/stop.txt")"
+grep -q "timeout after 2 s" "$W/stop.txt" || fail "the failure is not named: $(cat "$W/stop.txt")"
+wait_for 5 'test "$(live_jobs)" -eq 0' || fail "queued runs left after the stop: $(squeue -r)"
+sleep 2
+[ "$(lines "$W/stop-launches.txt")" -eq 1 ] || fail "$(lines "$W/stop-launches.txt") runs started, expected only the failing one"
+echo "ok: Ctrl-C cancelled everything; on_failure = 'stop' cancelled the 5 queued runs"
