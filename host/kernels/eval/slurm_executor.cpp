@@ -329,9 +329,11 @@ void SlurmExecutor::submit_chunk(std::vector<Task> chunk) {
     const double spent = monotonic_seconds() - t0;
     if (spent >= cfg_.down_after) {
       down_ = true;
+      std::string err = r.err;
+      while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
       throw SchedulerDown(fmt::format("Slurm is not answering: sbatch failed for {:.0f} s: {}. The study stops here; "
                                       "finished runs are stored: run it again once the controller answers",
-                                      spent, r.err));
+                                      spent, err));
     }
     nap(std::min(backoff, 5.0));
     backoff *= 2;
