@@ -237,6 +237,9 @@ void Runtime::build_policy() {
   policy_.unrestricted = !cfg_.sandbox;
   policy_.store_path = cfg_.store_path;
   policy_.dry_run = cfg_.dry_run;
+  policy_.executor = cfg_.executor;
+  policy_.slurm_opts = cfg_.slurm_opts;
+  policy_.detach = cfg_.detach;
   policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
 }
 

@@ -26,6 +26,9 @@ struct Config {
   std::string out_dir;                // --out; empty = smi-out/<script name>/
   std::string store_path;             // --store
   bool dry_run = false;               // --dry-run
+  std::string executor;               // --executor ("" = local)
+  std::vector<std::string> slurm_opts;  // --slurm-opt KEY=VALUE, in order
+  bool detach = false;                // --detach
   double timeout_s = 0;               // --timeout; 0 = none
   std::size_t max_memory_mb = 0;      // --max-memory; 0 = none
   bool sandbox = true;                // false only in tests of the runtime itself
