@@ -184,7 +184,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
     c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
     // Work folders live under --out: one process per output folder keeps them unique.
-    se::lock_output_folder(pol.checked_write_dir(out.string()));
+    se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
     c.store_path = pol.checked_write_file(store.empty() ? (out / "evaluations.sqlite").string() : store);
     if (!pol.store_path.empty()) {
       const std::string shared = pol.checked_read_file(pol.store_path);

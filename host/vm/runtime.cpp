@@ -124,7 +124,10 @@ int smi_lock_out(lua_State* L) {
   const char* folder = luaL_optstring(L, 1, nullptr);
   lua::protect(L, "smi.lock_out", [&] {
     const Policy& pol = lua::policy(L);
-    smi::eval::lock_output_folder(folder ? pol.checked_write_dir(folder) : pol.ensure_out_dir().string());
+    // The output folder is a write root itself (made and checked by ensure_out_dir); any other
+    // folder must lie below a write root.
+    const std::string out = pol.ensure_out_dir().string();
+    smi::eval::lock_output_folder(!folder || resolve_path(folder) == out ? out : pol.checked_write_dir(folder));
     return 0;
   });
   return 0;
