@@ -6,6 +6,7 @@
 
 #include "core/descriptive.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 #include "modules.hpp"
 
 namespace smi::bind {
@@ -29,6 +30,7 @@ int vec_new(lua_State* L) {
   if (lua_type(L, 2) == LUA_TNUMBER) {
     const lua_Integer n = luaL_checkinteger(L, 2);
     luaL_argcheck(L, n >= 0, 2, "length must be >= 0");
+    lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec(n)");
     push_vec(L, Vec::Zero(static_cast<Eigen::Index>(n)));
     return 1;
   }
@@ -39,6 +41,7 @@ int vec_new(lua_State* L) {
 int vec_zeros(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   luaL_argcheck(L, n >= 0, 1, "length must be >= 0");
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.zeros(n)");
   push_vec(L, Vec::Zero(static_cast<Eigen::Index>(n)));
   return 1;
 }
@@ -46,6 +49,7 @@ int vec_zeros(lua_State* L) {
 int vec_ones(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   luaL_argcheck(L, n >= 0, 1, "length must be >= 0");
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.ones(n)");
   push_vec(L, Vec::Ones(static_cast<Eigen::Index>(n)));
   return 1;
 }
@@ -55,6 +59,7 @@ int vec_linspace(lua_State* L) {
   const double a = luaL_checknumber(L, 1), b = luaL_checknumber(L, 2);
   const lua_Integer n = luaL_checkinteger(L, 3);
   luaL_argcheck(L, n >= 2, 3, "need at least 2 points");
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.linspace(a, b, n)");
   push_vec(L, Vec::LinSpaced(static_cast<Eigen::Index>(n), a, b));
   return 1;
 }

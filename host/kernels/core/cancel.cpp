@@ -51,6 +51,8 @@ bool stop_requested() noexcept {
   return d != 0 && now_ns() >= d;
 }
 
+bool interrupt_requested() noexcept { return g_interrupted.load(std::memory_order_relaxed) != 0; }
+
 std::string reason() {
   if (g_interrupted.load()) return "interrupted";
   const long long d = g_deadline_ns.load();

@@ -28,6 +28,8 @@ void reset() noexcept;
 std::string reason();
 /// True once interrupted or past the deadline (cheap; no allocation). Signal-safe.
 bool stop_requested() noexcept;
+/// True once request_interrupt() was called (and not reset). Signal-safe.
+bool interrupt_requested() noexcept;
 /// Throws smi::Interrupted with reason() when stop_requested().
 void poll();
 
