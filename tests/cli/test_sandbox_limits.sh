@@ -37,6 +37,8 @@ start=$SECONDS
 pid=$!
 sleep 1
 kill -INT $pid
+for _ in $(seq 100); do kill -0 $pid 2> /dev/null || break; sleep 0.1; done
+if kill -0 $pid 2> /dev/null; then kill -KILL $pid; fi  # still running 10 s after Ctrl-C: a failure below
 wait $pid
 rc=$?
 secs=$((SECONDS - start))
