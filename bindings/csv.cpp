@@ -1,7 +1,10 @@
 // smi.csv: comma-separated tables with a header row, columns by name.
-//   local d, header = smi.csv.read(path [, {sep = ",", strings = {"name", ...}}])
+//   local d, header, notes = smi.csv.read(path [, {sep = ",", strings = {"name", ...}}])
 //       d.<column> is a smi.vec when every cell of the column is a number, a table of strings
-//       otherwise; header lists the column names in file order.
+//       otherwise; header lists the column names in file order; notes.warnings lists data
+//       sanity warnings (duplicated rows, also printed on stderr unless quiet) for a report and
+//       notes.duplicates the {first line, repeated line} pairs. A UTF-8 BOM is dropped; a file
+//       with a header but no data rows is an error.
 //   smi.csv.write(path, t [, {header = {...}, sep = ","}])
 //       t.<column> a vec or a table of numbers/strings, all the same length; the header row
 //       follows opts.header, else the column names sorted.
@@ -17,6 +20,8 @@
 #include <sstream>
 #include <string>
 #include <variant>
+#include <map>
+#include <string_view>
 #include <vector>
 
 #include "luax/luax.hpp"
@@ -99,9 +104,13 @@ using Column = std::variant<std::vector<double>, std::vector<std::string>>;
 struct Table {
   std::vector<std::string> header;
   std::vector<Column> columns;
+  std::vector<std::pair<long, long>> duplicates;  // (line of the first, line of the repeat)
 };
 
-Table parse_table(const std::string& text, char sep, const std::string& file, const std::set<std::string>& strings) {
+Table parse_table(const std::string& raw, char sep, const std::string& file, const std::set<std::string>& strings) {
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+  const std::string_view bom = "\xEF\xBB\xBF";
+  const std::string text = raw.compare(0, bom.size(), bom) == 0 ? raw.substr(bom.size()) : raw;
   std::vector<Record> recs = split_records(text, sep, file);
   if (recs.empty()) throw Error(fmt::format("{}: the file is empty (a header row is needed)", file));
   Table t;
@@ -113,6 +122,12 @@ Table parse_table(const std::string& text, char sep, const std::string& file, co
     t.header.push_back(std::move(name));
   }
   const std::size_t ncol = t.header.size();
+  if (recs.size() == 1) {
+    std::string names;
+    for (const auto& h : t.header) names += (names.empty() ? "" : ", ") + h;
+    throw Error(fmt::format("{}: only a header row (columns: {}) and no data rows; add the data below line {}", file,
+                            names, recs[0].line));
+  }
   for (std::size_t r = 1; r < recs.size(); ++r)
     if (recs[r].fields.size() != ncol)
       throw Error(fmt::format("{}:{}: {} fields, but the header has {} columns", file, recs[r].line,
@@ -146,6 +161,15 @@ Table parse_table(const std::string& text, char sep, const std::string& file, co
       for (std::size_t r = 1; r < recs.size(); ++r) col.push_back(recs[r].fields[j]);
       t.columns.emplace_back(std::move(col));
     }
+  }
+  // Rows entered twice weigh double in every fit and every validation: say so (not an error,
+  // repeated measurements can be real).
+  std::map<std::vector<std::string>, long> first_line;
+  for (std::size_t r = 1; r < recs.size(); ++r) {
+    std::vector<std::string> key;
+    for (const auto& f : recs[r].fields) key.push_back(trim(f));
+    const auto [it, fresh] = first_line.emplace(std::move(key), recs[r].line);
+    if (!fresh) t.duplicates.emplace_back(it->second, recs[r].line);
   }
   return t;
 }
@@ -193,7 +217,33 @@ int csv_read(lua_State* L) {
       lua_pushstring(L, t.header[j].c_str());
       lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
     }
-    return 2;
+    // stack: [..., columns, header, notes]: notes.warnings (text, for a report) and
+    // notes.duplicates ({first_line, repeat_line} pairs)
+    lua_createtable(L, 0, 2);
+    lua_createtable(L, 0, 0);
+    lua_createtable(L, static_cast<int>(t.duplicates.size()), 0);
+    std::string lines;
+    for (std::size_t k = 0; k < t.duplicates.size(); ++k) {
+      lua_createtable(L, 2, 0);
+      lua_pushinteger(L, t.duplicates[k].first);
+      lua_rawseti(L, -2, 1);
+      lua_pushinteger(L, t.duplicates[k].second);
+      lua_rawseti(L, -2, 2);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+      if (k < 5) lines += fmt::format("{}line {} repeats line {}", k ? ", " : "", t.duplicates[k].second, t.duplicates[k].first);
+    }
+    lua_setfield(L, -3, "duplicates");
+    if (!t.duplicates.empty()) {
+      const std::string w = fmt::format(
+          "{}: {} duplicated data row{} ({}{}); a row entered twice counts twice in every fit and validation: "
+          "remove the copies unless they are real repeated measurements",
+          path, t.duplicates.size(), t.duplicates.size() == 1 ? "" : "s", lines, t.duplicates.size() > 5 ? ", ..." : "");
+      lua_pushstring(L, w.c_str());
+      lua_rawseti(L, -2, 1);
+      if (!lua::policy(L).quiet) std::fprintf(stderr, "smi.csv.read: warning: %s\n", w.c_str());
+    }
+    lua_setfield(L, -2, "warnings");
+    return 3;
   });
 }
 

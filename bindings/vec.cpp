@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <new>
+#include <unistd.h>
 
 #include "core/descriptive.hpp"
 #include "luax/luax.hpp"
@@ -24,35 +26,50 @@ Eigen::Index resolve(lua_Integer i, Eigen::Index n) { return i < 0 ? n + static_
 
 // ---- constructors
 
+/// The length argument at `idx` of `fname`, checked: a whole number >= 0 whose vector fits in
+/// this machine's memory. smi.vec(1e12) used to die on an uncaught std::bad_alloc whose Lua
+/// error object was the number itself ("1000000000000.0"); now the message says what happened
+/// and what was probably meant.
+Eigen::Index checked_length(lua_State* L, int idx, const char* fname) {
+  const double x = luaL_checknumber(L, idx);
+  const std::string shown = fmt::format("{}", x);  // 1e+12, not 1000000000000.0
+  std::string msg;
+  if (!(x >= 0) || std::floor(x) != x)
+    msg = fmt::format("{}({}): a length must be a whole number >= 0; to make a vector holding the number {}, write "
+                      "smi.vec{{{}}}", fname, shown, shown, shown);
+  const double mem = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (msg.empty() && mem > 0 && 8.0 * x > mem)
+    msg = fmt::format("{}({}): a vector of {:.0f} numbers needs {:.3g} GB of memory, more than this machine has "
+                      "({:.3g} GB); to make a vector holding the number {}, write smi.vec{{{}}}",
+                      fname, shown, x, 8e-9 * x, mem / 1e9, shown, shown);
+  if (!msg.empty()) luaL_error(L, "%s", msg.c_str());
+  return static_cast<Eigen::Index>(x);
+}
+
+/// A vector of n copies of `value`; a failed allocation is a Lua error naming the size.
+int push_filled(lua_State* L, Eigen::Index n, double value, const char* fname) {
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), fname);  // --max-memory, before allocating
+  return lua::protect(L, fname, [&] {
+    try {
+      push_vec(L, Vec::Constant(n, value));
+    } catch (const std::bad_alloc&) {
+      throw Error(fmt::format("not enough memory for a vector of {} numbers ({:.3g} GB)", n, 8e-9 * static_cast<double>(n)));
+    }
+    return 1;
+  });
+}
+
 /// smi.vec(x): x a table of numbers, a vec or a one-column mat (copied), or a length (zeros).
 int vec_new(lua_State* L) {
   // stack: [smi.vec table, x]
-  if (lua_type(L, 2) == LUA_TNUMBER) {
-    const lua_Integer n = luaL_checkinteger(L, 2);
-    luaL_argcheck(L, n >= 0, 2, "length must be >= 0");
-    lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec(n)");
-    push_vec(L, Vec::Zero(static_cast<Eigen::Index>(n)));
-    return 1;
-  }
+  if (lua_type(L, 2) == LUA_TNUMBER) return push_filled(L, checked_length(L, 2, "smi.vec"), 0.0, "smi.vec");
   push_vec(L, lua::to_vector(L, 2, "smi.vec"));
   return 1;
 }
 
-int vec_zeros(lua_State* L) {
-  const lua_Integer n = luaL_checkinteger(L, 1);
-  luaL_argcheck(L, n >= 0, 1, "length must be >= 0");
-  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.zeros(n)");
-  push_vec(L, Vec::Zero(static_cast<Eigen::Index>(n)));
-  return 1;
-}
+int vec_zeros(lua_State* L) { return push_filled(L, checked_length(L, 1, "smi.vec.zeros"), 0.0, "smi.vec.zeros"); }
 
-int vec_ones(lua_State* L) {
-  const lua_Integer n = luaL_checkinteger(L, 1);
-  luaL_argcheck(L, n >= 0, 1, "length must be >= 0");
-  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.ones(n)");
-  push_vec(L, Vec::Ones(static_cast<Eigen::Index>(n)));
-  return 1;
-}
+int vec_ones(lua_State* L) { return push_filled(L, checked_length(L, 1, "smi.vec.ones"), 1.0, "smi.vec.ones"); }
 
 /// smi.vec.linspace(a, b, n): n equally spaced values from a to b inclusive.
 int vec_linspace(lua_State* L) {

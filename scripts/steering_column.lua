@@ -112,7 +112,7 @@ end
 -- 1. Data
 -- ---------------------------------------------------------------------------------------------
 s:step("data", timed(function(ctx)
-  local d, header = smi.csv.read(opt.data)
+  local d, header, notes = smi.csv.read(opt.data)
   local out = { file = opt.data, n = 0 }
   for _, m in ipairs(MODES) do
     local col = d[m .. "_hz"]
@@ -133,6 +133,10 @@ s:step("data", timed(function(ctx)
   local rows = {}
   for i = 1, out.n do rows[i] = { i, out.mode1[i], out.mode2[i], out.mode4[i] } end
   r:table{ caption = "Measured natural frequencies (Hz).", columns = { "Specimen", { title = "Mode 1", digits = 6 }, { title = "Mode 2", digits = 6 }, { title = "Mode 4", digits = 6 } }, rows = rows }
+  -- data sanity (duplicated rows) in the report, not only on stderr
+  local warnings = notes and notes.warnings or {}
+  for _, w in ipairs(warnings) do r:callout("Data: " .. w, "warn") end
+  out.warnings = #warnings > 0 and warnings or nil
   return out
 end))
 
@@ -221,6 +225,11 @@ local function surrogate_step(name)
       figures[#figures + 1] = { figs.loo(m, d), figs.title[m] .. ": leave-one-out predictions." }
       rows[#rows + 1] = { figs.title[m], d.loo_q2, d.loo_rmse, d.test_rmse }
       for _, w in ipairs(d.warnings or {}) do r:callout(figs.title[m] .. ": " .. w, "warn") end
+      -- data far outside everything the model gives over the design box: likely units (issue 14)
+      local lo, hi = math.huge, -math.huge
+      for _, v in ipairs(d.observed) do lo, hi = math.min(lo, v), math.max(hi, v) end
+      local units = require("smi.sanity").units(figs.title[m] .. " (Hz)", ctx.results.data[m], lo, hi)
+      if units then r:callout(units, "warn") ctx:log("%s", units) end
     end
     r:figures(figures)
     r:table{ caption = "Kriging accuracy (Hz).", columns = { "Mode", "LOO Q²", "LOO RMSE", "Test RMSE" }, rows = rows }

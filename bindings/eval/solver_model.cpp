@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "eval/folder_lock.hpp"
 #include "eval/process.hpp"
 #include "eval/progress_line.hpp"
 #include "luax/luax.hpp"
@@ -142,6 +143,8 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
       c.deck = std::make_shared<se::DeckTemplate>(template_text, "(template_string)");
     const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
     c.runs_dir = pol.check_write((out / "runs" / c.name).string(), fname).string();
+    // Work folders live under --out: one process per output folder keeps them unique.
+    se::lock_output_folder(pol.check_write(out.string(), fname).string());
     c.store_path = pol.check_write(store.empty() ? (out / "evaluations.sqlite").string() : store, fname).string();
     if (!pol.store_path.empty()) {
       const std::string shared = pol.check_read(pol.store_path, fname).string();
@@ -276,12 +279,14 @@ int evaluate_solver(lua_State* L, Model& m) {
 
   se::EvalResult r;
   std::string summary;
+  std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored
   lua::protect(L, fname, [&] {
     if (pol.dry_run) {
       const se::Plan plan = m.ev->plan(X);
       std::printf("%s\n", se::format_plan(m.name, plan, concurrency).c_str());
       std::fflush(stdout);
       add_planned(L, plan);
+      dry_missing = plan.runs;
     }
     r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
     if (r.failed > 0) {
@@ -301,6 +306,26 @@ int evaluate_solver(lua_State* L, Model& m) {
   }
   if (!summary.empty() && !pol.quiet) std::fprintf(stderr, "smi.model: %s\n", summary.c_str());
   push_results(L, m, r);
+  if (dry_missing > 0 && pol.request_exit) {
+    // What comes next is computed from these outputs, which a dry run does not have: planning
+    // further would feed NaN to the next step. Stop here, cleanly, with the plan so far.
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
+    auto total = [&](const char* k) {
+      lua_getfield(L, -1, k);
+      const double v = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+      return v;
+    };
+    const double runs = total("runs"), points = total("points"), reused = total("reused"), eta = total("eta");
+    lua_pop(L, 1);
+    std::printf("dry run: stopped at model '%s': %zu of its runs are not in the store, and what the study does next "
+                "depends on their results.\ndry run: plan so far: %.0f solver run%s for %.0f point%s (%.0f already "
+                "stored), ETA %s; run without --dry-run to make them, then --dry-run again plans the rest.\n",
+                m.name.c_str(), dry_missing, runs, runs == 1 ? "" : "s", points, points == 1 ? "" : "s", reused,
+                eta < 0 ? "unknown (no stored timing)" : se::format_duration(eta).c_str());
+    std::fflush(stdout);
+    pol.request_exit(0);  // the next Lua instruction ends the run quietly, exit status 0
+  }
   return 2;
 }
 

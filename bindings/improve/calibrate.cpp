@@ -6,8 +6,11 @@
 // Statistical form (Son et al. eq. 9, CRN, spec §7):
 //   smi.calibrate{model = function(X, names) return {y = vec} end | obj with obj:evaluate(X)
 //                         | {response = surrogate, ...},
-//                 inputs = {name = {dist = "normal"|"lognormal"|"uniform"|"constant",
-//                                   mean = number | {lower, upper, start}, std = ...}, ...}
+//                 inputs = {name = {dist = "normal"|"lognormal"|"uniform"|"truncnormal"|"weibull"|"gumbel"
+//                                          |"gamma"|"beta"|"triangular"|"constant",
+//                                   mean = number | {lower, upper, start}, std = ...,
+//                                   fixed shape: lower/upper (truncnormal, beta), loc (weibull, gamma),
+//                                   mode_at (triangular); see improve::kInputFamiliesHelp}, ...}
 //                          (a list of {name =, ...} keeps its order; else the model's inputs order,
 //                           `order`, or sorted names),
 //                 data = {response = vec | smi.dist}, metric = "pr" | "loglik" | function(pred, data),

@@ -98,6 +98,28 @@ void read_moment(lua_State* L, int in, const char* key, const std::string& input
   lua_pop(L, 1);
 }
 
+/// The fixed shape fields of the families beyond normal/lognormal/uniform (see InputShape):
+/// lower/upper (truncnormal, beta), loc (weibull, gamma), mode_at (triangular).
+void read_input_shape(lua_State* L, int in, const std::string& name, InputSpec& spec_in) {
+  auto number = [&](const char* key, double& out) {
+    const int t = lua_getfield(L, in, key);
+    if (t == LUA_TNUMBER) out = lua_tonumber(L, -1);
+    else if (t != LUA_TNIL) throw InvalidArgument(fmt::format("inputs.{}.{} must be a number (fixed), got {}", name, key, lua_typename(L, t)));
+    lua_pop(L, 1);
+  };
+  switch (spec_in.family) {
+    case InputFamily::truncnormal: number("lower", spec_in.shape.lower), number("upper", spec_in.shape.upper); break;
+    case InputFamily::beta:
+      spec_in.shape.lower = 0.0, spec_in.shape.upper = 1.0;
+      number("lower", spec_in.shape.lower), number("upper", spec_in.shape.upper);
+      break;
+    case InputFamily::weibull:
+    case InputFamily::gamma: number("loc", spec_in.shape.loc); break;
+    case InputFamily::triangular: number("mode_at", spec_in.shape.mode_at); break;
+    default: break;
+  }
+}
+
 void read_inputs(lua_State* L, int spec, CalibrateSpec& s) {
   if (lua_getfield(L, spec, "inputs") != LUA_TTABLE)
     throw InvalidArgument("inputs must be a table {name = {dist = \"normal\", mean = ..., std = ...}, ...}");
@@ -164,6 +186,7 @@ void read_inputs(lua_State* L, int spec, CalibrateSpec& s) {
     } else {
       read_moment(L, in, "mean", name, spec_in.mean, spec_in.mean_param, s);
       read_moment(L, in, "std", name, spec_in.std, spec_in.std_param, s);
+      read_input_shape(L, in, name, spec_in);
     }
     s.inputs.push_back(spec_in);
     lua_pop(L, 1);

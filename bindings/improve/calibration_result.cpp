@@ -33,18 +33,6 @@ void push_strings(lua_State* L, const std::vector<std::string>& v) {
   }
 }
 
-/// The calibrated distribution of an input, or null when it has none (constant, zero std).
-DistributionPtr make_distribution(InputFamily fam, double mean, double std) {
-  if (!(std > 0.0)) return nullptr;
-  switch (fam) {
-    case InputFamily::normal: return std::make_shared<Normal>(mean, std);
-    case InputFamily::lognormal: return std::make_shared<LogNormal>(LogNormal::from_moments(mean, std));
-    case InputFamily::uniform: return std::make_shared<Uniform>(Uniform::from_moments(mean, std));
-    case InputFamily::constant: return nullptr;
-  }
-  return nullptr;
-}
-
 /// result.inputs, result.distributions, result.grids, n/seed. Stack: [res] -> [res].
 void push_statistical(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
   const StatisticalObjective& obj = *out.stat;
@@ -59,7 +47,7 @@ void push_statistical(lua_State* L, const CalibrateSpec& s, const CalibrationOut
     lua::set_number(L, "std", m[j].second);
     lua::set_boolean(L, "calibrated", in.mean_param >= 0 || in.std_param >= 0);
     lua_setfield(L, -3, in.name.c_str());
-    if (DistributionPtr d = make_distribution(in.family, m[j].first, m[j].second)) {
+    if (DistributionPtr d = input_distribution(in.family, m[j].first, m[j].second, in.shape, fmt::format("input '{}'", in.name))) {
       push_distribution(L, std::move(d));
       lua_setfield(L, -2, in.name.c_str());
     }

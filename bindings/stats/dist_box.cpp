@@ -32,6 +32,33 @@ int dist_quantile(lua_State* L) {
     return d.quantile(p);
   });
 }
+/// d:logpdf(x), d:logcdf(x), d:sf(x): in log space / as complements, so tails keep their
+/// relative precision (d:sf(x) is not 1 − d:cdf(x) rounded).
+template <double (Distribution::*F)(double) const>
+int dist_scalar_map(lua_State* L, const char* fname) {
+  const Distribution& d = self(L);
+  return lua::push_mapped(L, 2, fname, [&](const Eigen::VectorXd& x) {
+    Eigen::VectorXd y(x.size());
+    for (Eigen::Index i = 0; i < x.size(); ++i) y[i] = (d.*F)(x[i]);
+    return y;
+  });
+}
+int dist_logpdf(lua_State* L) { return dist_scalar_map<&Distribution::logpdf>(L, "dist:logpdf"); }
+int dist_logcdf(lua_State* L) { return dist_scalar_map<&Distribution::logcdf>(L, "dist:logcdf"); }
+int dist_sf(lua_State* L) { return dist_scalar_map<&Distribution::sf>(L, "dist:sf"); }
+/// d:isf(q): x with sf(x) = q, q in [0, 1] (the upper-tail quantile without rounding 1 − q).
+int dist_isf(lua_State* L) {
+  const Distribution& d = self(L);
+  return lua::push_mapped(L, 2, "dist:isf", [&](const Eigen::VectorXd& q) {
+    Eigen::VectorXd y(q.size());
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (!(q[i] >= 0.0 && q[i] <= 1.0))
+        throw InvalidArgument("upper-tail probability must be in [0, 1], got " + std::to_string(q[i]));
+      y[i] = d.isf(q[i]);
+    }
+    return y;
+  });
+}
 /// d:sample(n, seed_or_rng): n draws; the generator is explicit (an integer seed or an smi.rng).
 int dist_sample(lua_State* L) {
   const Distribution& d = self(L);
@@ -118,7 +145,9 @@ int dist_field(lua_State* L) {
 
 const luaL_Reg kMethods[] = {{"pdf", dist_pdf},   {"cdf", dist_cdf}, {"quantile", dist_quantile},
                              {"sample", dist_sample}, {"mean", dist_mean}, {"std", dist_std},
-                             {"support", dist_support}, {"curve", dist_curve}, {nullptr, nullptr}};
+                             {"support", dist_support}, {"curve", dist_curve}, {"logpdf", dist_logpdf},
+                             {"logcdf", dist_logcdf}, {"sf", dist_sf},   {"isf", dist_isf},
+                             {nullptr, nullptr}};
 const luaL_Reg kMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
 
 }  // namespace

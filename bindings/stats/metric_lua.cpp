@@ -1,5 +1,6 @@
 // smi.metric: area, pr, intersection, loglik, upool, upool_threshold, upool_pvalue, and the
 // verdict object.
+#include <cstdio>
 #include <fmt/format.h>
 
 #include "luax/luax.hpp"
@@ -52,26 +53,38 @@ Grid resolve_grid(const std::optional<Grid>& g, const Distribution& a, const Dis
   return comparison_grid(a, b, g ? g->n : 4001);
 }
 
-/// smi.metric.pr(a, b [, {grid = {lower=, upper=, nodes=}} | {nodes = n}]) -> PR in [0, 2]
-int m_pr(lua_State* L) {
-  const auto a = dist_or_kde(L, 1, "smi.metric.pr", "a");
-  const auto b = dist_or_kde(L, 2, "smi.metric.pr", "b");
-  const auto g = grid_option(L, 3, "smi.metric.pr");
-  return lua::protect(L, "smi.metric.pr", [&] {
-    lua_pushnumber(L, pr(*a, *b, resolve_grid(g, *a, *b)));
-    return 1;
+/// PR (l1 = true) or intersection of a and b: exact between the pdf crossings without grid
+/// options; on the grid when one is given (with a warning on stderr, and the exact integral
+/// over the grid's range, when the grid does not resolve a pdf).
+double overlap(lua_State* L, const char* fname, bool l1) {
+  const auto a = dist_or_kde(L, 1, fname, "a");
+  const auto b = dist_or_kde(L, 2, fname, "b");
+  const auto g = grid_option(L, 3, fname);
+  double v = 0.0;
+  lua::protect(L, fname, [&] {
+    if (!g) {
+      const PdfOverlap o = pdf_overlap(*a, *b);
+      v = l1 ? o.l1 : o.intersection;
+      return 0;
+    }
+    const GridComparison c = compare_on_grid(*a, *b, resolve_grid(g, *a, *b));
+    for (const auto& w : c.warnings) std::fprintf(stderr, "%s: warning: %s\n", fname, w.c_str());
+    v = l1 ? c.pr : c.intersection;
+    return 0;
   });
+  return v;
 }
 
-/// smi.metric.intersection(a, b [, grid options]) -> ∫ min(f_a, f_b)
+/// smi.metric.pr(a, b [, {grid = {lower=, upper=, nodes=}} | {nodes = n}]) -> PR in [0, 2]
+int m_pr(lua_State* L) {
+  lua_pushnumber(L, overlap(L, "smi.metric.pr", true));
+  return 1;
+}
+
+/// smi.metric.intersection(a, b [, grid options]) -> ∫ min(f_a, f_b) in [0, 1]
 int m_intersection(lua_State* L) {
-  const auto a = dist_or_kde(L, 1, "smi.metric.intersection", "a");
-  const auto b = dist_or_kde(L, 2, "smi.metric.intersection", "b");
-  const auto g = grid_option(L, 3, "smi.metric.intersection");
-  return lua::protect(L, "smi.metric.intersection", [&] {
-    lua_pushnumber(L, intersection_area(*a, *b, resolve_grid(g, *a, *b)));
-    return 1;
-  });
+  lua_pushnumber(L, overlap(L, "smi.metric.intersection", false));
+  return 1;
 }
 
 /// smi.metric.area(a, b): a, b each a sample (vec/table) or a distribution.

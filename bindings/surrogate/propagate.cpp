@@ -5,6 +5,9 @@
 #include "luax/policy.hpp"
 #include "surrogate/model_arg.hpp"
 
+#include <cmath>
+#include <fmt/format.h>
+
 namespace smi::bind::surrogate {
 namespace {
 
@@ -21,6 +24,25 @@ int propagate_call(lua_State* L) {
     Eigen::MatrixXd X = propagate::crn_sample(inputs, n, seed);
     const Eigen::MatrixXd Y = model.fn(X);
     if (Y.rows() != X.rows()) throw DimensionMismatch("the model returned " + std::to_string(Y.rows()) + " rows for " + std::to_string(X.rows()) + " points");
+    // A NaN passed on would make every statistic of the output NaN, or be dropped silently by
+    // a KDE: name the first bad sample, its inputs, and how many there are.
+    Eigen::Index bad = 0, first_i = -1, first_j = -1;
+    for (Eigen::Index i = 0; i < Y.rows(); ++i)
+      for (Eigen::Index j = 0; j < Y.cols(); ++j)
+        if (!std::isfinite(Y(i, j)) && bad++ == 0) first_i = i, first_j = j;
+    if (bad > 0) {
+      std::string at;
+      for (std::size_t c = 0; c < inputs.size(); ++c)
+        at += fmt::format("{}{} = {}", c ? ", " : "", inputs[c].name, X(first_i, static_cast<Eigen::Index>(c)));
+      const auto& outs = *model.outputs;
+      const std::string out = static_cast<std::size_t>(first_j) < outs.size() ? outs[static_cast<std::size_t>(first_j)]
+                                                                              : std::to_string(first_j + 1);
+      throw InvalidArgument(fmt::format("the model returned {} for output '{}' at sample {} ({}); {} non-finite "
+                                        "value{} in all. Fix the model there (or its inputs' ranges): propagation "
+                                        "does not pass NaN or infinity on",
+                                        std::isnan(Y(first_i, first_j)) ? "NaN" : fmt::format("{}", Y(first_i, first_j)),
+                                        out, first_i + 1, at, bad, bad == 1 ? "" : "s"));
+    }
     lua::push_named_vectors(L, *model.outputs, Y);
     lua::push_mat(L, std::move(X));
     return 2;

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <re2/re2.h>
 #include <string>
 #include <sys/wait.h>
 
@@ -26,9 +26,10 @@ std::string read_all(const fs::path& p) {
 
 /// The last "N passed, N failed" line a test printed, or "".
 std::string case_summary(const std::string& out) {
-  static const std::regex re(R"((\d+) passed, (\d+) failed)");
-  std::string last;
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), re); it != std::sregex_iterator(); ++it) last = it->str();
+  static const RE2 re(R"((\d+ passed, \d+ failed))");
+  re2::StringPiece rest(out);
+  std::string m, last;
+  while (RE2::FindAndConsume(&rest, re, &m)) last = m;
   return last;
 }
 

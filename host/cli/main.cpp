@@ -1,6 +1,7 @@
 // smi-lua [options] [script [args]]: parses the command line, builds the runtime, runs -e/-l,
 // the script and the REPL in lua.c's order. Exit status: 0 ok, 1 script error, 2 usage error,
-// or the code given to os.exit.
+// 128 + signal when SIGINT, SIGTERM or SIGHUP stopped the run (130, 143, 129), or the code given
+// to os.exit.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -10,6 +11,7 @@
 
 #include "cli/args.hpp"
 #include "cli/commands.hpp"
+#include "eval/process.hpp"
 #include "repl/repl.hpp"
 #include "vm/runtime.hpp"
 
@@ -58,6 +60,9 @@ int run(smi::cli::Args& a, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Orphans of the solvers we start (a setsid daemon) are reparented to us, not to init, so a
+  // stop can find and kill them (eval/process.hpp).
+  smi::eval::become_subreaper();
   smi::cli::Args a = smi::cli::parse(argc, argv);
   if (!a.error.empty()) {
     std::fprintf(stderr, "smi-lua: %s\n%s\n", a.error.c_str(), smi::cli::usage_line());

@@ -35,6 +35,10 @@ struct Policy {
   /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.
   /// Once it is non-empty, the next Lua instruction raises that message as well.
   std::function<std::string()> stop_reason;
+  /// Set by the runtime: ends the run quietly with exit status `code` from the next Lua
+  /// instruction on (as os.exit does; pcall cannot catch it). --dry-run uses it to stop where a
+  /// step needs solver runs that were not made.
+  std::function<void(int code)> request_exit;
 
   /// Resolves `path` (relative to the working directory; "..", symlinks) and returns it if it
   /// lies under a read root (write roots are readable too); throws SandboxDenied otherwise.

@@ -57,10 +57,12 @@ void hook(lua_State* L, lua_Debug*) {
 
 Limits* g_sigint_limits = nullptr;  // the run Ctrl-C stops (lua.c's globalL)
 
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
 extern "C" void on_sigint(int sig) {
-  std::signal(sig, SIG_DFL);  // a second Ctrl-C before the hook runs kills the process
+  std::signal(sig, SIG_DFL);  // a second signal before the hook runs kills the process
   if (Limits* lim = g_sigint_limits) {
-    lim->interrupted = 1;
+    lim->interrupted = sig;
     cancel::request_interrupt();  // kernels running in C++ see it too
     lua_sethook(lim->main, hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
   }
@@ -132,7 +134,11 @@ void trip(lua_State* L, Abort why) {
 const char* abort_message(const Limits& lim, char* buf, std::size_t size) {
   switch (lim.abort) {
     case Abort::interrupt:
-      std::snprintf(buf, size, "interrupted!");
+      // Ctrl-C keeps lua.c's word; SIGTERM/SIGHUP (timeout, Slurm, systemd, a closed terminal) say which
+      if (lim.interrupted > 0 && lim.interrupted != SIGINT)
+        std::snprintf(buf, size, "interrupted by %s", signal_name(lim.interrupted));
+      else
+        std::snprintf(buf, size, "interrupted!");
       break;
     case Abort::timeout:
       std::snprintf(buf, size, "timeout: the run took longer than --timeout %g s; raise --timeout to allow more",
@@ -152,12 +158,21 @@ const char* abort_message(const Limits& lim, char* buf, std::size_t size) {
 
 void catch_sigint(lua_State* L) {
   g_sigint_limits = &limits(L);
-  std::signal(SIGINT, on_sigint);
+  for (int sig : kStopSignals) std::signal(sig, on_sigint);
 }
 
 void release_sigint() {
-  std::signal(SIGINT, SIG_DFL);
+  for (int sig : kStopSignals) std::signal(sig, SIG_DFL);
   g_sigint_limits = nullptr;
+}
+
+const char* signal_name(int sig) {
+  switch (sig) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "a signal";
+  }
 }
 
 void* exit_sentinel() {

@@ -25,7 +25,7 @@ struct Limits {
   std::size_t mem_used = 0;
   const std::size_t* external = nullptr;  // C++ heap held by boxes (luax/memory.hpp), same ceiling
   std::size_t refused = 0;  // size of a request refused once (Lua collects garbage and retries)
-  // set asynchronously by SIGINT
+  // set asynchronously by SIGINT, SIGTERM or SIGHUP: the signal's number (0 = none)
   volatile std::sig_atomic_t interrupted = 0;
   Abort abort = Abort::none;
   int exit_code = 0;  // for Abort::exit
@@ -51,10 +51,14 @@ void trip(lua_State* L, Abort why);
 /// The message an abort raises ("interrupted!", "timeout: ..."); nullptr for none and exit.
 const char* abort_message(const Limits& lim, char* buf, std::size_t size);
 
-/// SIGINT handling while a chunk runs (lua.c's laction): the handler sets the flag and arms the
-/// hook; a second Ctrl-C before the hook ran kills the process, as in lua.c.
+/// SIGINT, SIGTERM and SIGHUP handling while a chunk runs (lua.c's laction): the handler records
+/// the signal and arms the hook; a second signal before the hook ran kills the process, as in
+/// lua.c. All three stop a run the same way (what `timeout`, Slurm and systemd send is SIGTERM;
+/// a closed terminal sends SIGHUP): the solver process groups are killed, stored runs are kept.
 void catch_sigint(lua_State* L);
 void release_sigint();
+/// "SIGINT", "SIGTERM", "SIGHUP".
+const char* signal_name(int sig);
 
 /// Light userdata raised by os.exit; the host recognises it and leaves quietly.
 void* exit_sentinel();

@@ -5,7 +5,9 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "core/atomic_file.hpp"
 #include "core/cancel.hpp"
+#include "eval/folder_lock.hpp"
 #include "modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
@@ -96,6 +98,35 @@ int smi_now(lua_State* L) {
   return 1;
 }
 
+/// smi.write_file(path, text): writes the whole file atomically (temporary file, fsync, rename;
+/// core/atomic_file.hpp) after the sandbox's write check; raises naming the file and the reason
+/// (disk full) and leaves the old file as it was. Stack: [path, text] -> [path].
+int smi_write_file(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  std::size_t len = 0;
+  const char* text = luaL_checklstring(L, 2, &len);
+  lua::protect(L, "smi.write_file", [&] {
+    const std::string p = lua::policy(L).check_write(path, "smi.write_file").string();
+    write_file_atomic(p, std::string_view(text, len));
+    return 0;
+  });
+  lua_settop(L, 1);
+  return 1;
+}
+
+/// smi.lock_out([folder]): takes this process's lock on the output folder (default --out;
+/// eval/folder_lock.hpp); a study calls it before its first step. Raises naming the holder if
+/// another process has it.
+int smi_lock_out(lua_State* L) {
+  const char* folder = luaL_optstring(L, 1, nullptr);
+  lua::protect(L, "smi.lock_out", [&] {
+    const Policy& pol = lua::policy(L);
+    smi::eval::lock_output_folder(folder ? pol.check_write(folder, "smi.lock_out").string() : pol.ensure_out_dir().string());
+    return 0;
+  });
+  return 0;
+}
+
 /// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
@@ -115,6 +146,12 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "out");
   lua_pushcfunction(L, smi_now);
   lua_setfield(L, -2, "now");
+  lua_pushcfunction(L, smi_write_file);
+  lua_setfield(L, -2, "write_file");
+  lua_pushcfunction(L, smi_lock_out);
+  lua_setfield(L, -2, "lock_out");
+  lua_pushboolean(L, cfg.dry_run);  // a study neither saves results nor writes a report then
+  lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
   lua_pop(L, 1);
@@ -204,12 +241,18 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
   policy_.stop_reason = [this]() -> std::string {
+    if (limits_.interrupted && limits_.interrupted != SIGINT)
+      return std::string("interrupted by ") + signal_name(limits_.interrupted);
     if (limits_.interrupted || limits_.abort == Abort::interrupt) return "interrupted";
     if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
       trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
     char buf[200];
     const char* msg = abort_message(limits_, buf, sizeof buf);
     return msg ? msg : "";
+  };
+  policy_.request_exit = [this](int code) {
+    limits_.exit_code = code;
+    trip(L_, Abort::exit);
   };
   lua::set_policy(L_, &policy_);
   lua_pushcfunction(L_, init_state);
@@ -296,8 +339,18 @@ int Runtime::report(int status) {
   } else {
     std::fprintf(stderr, "smi-lua: %s\n", msg ? msg : "(error object is not a string)");
   }
-  std::fflush(stderr);
   lua_pop(L_, 1);
+  if (limits_.interrupted > 0) {
+    // Stopped by a signal: say what survives and how to go on; exit 128 + signal, as a shell does.
+    const std::string store = (policy_.out_dir / "evaluations.sqlite").string();  // the local store of the runs
+    std::fprintf(stderr,
+                 "smi-lua: stopped by %s. Kept: every finished solver run (in %s) and the study steps that "
+                 "finished (a study keeps them in %s). To resume, run the same command again: stored runs are reused, not rerun.\n",
+                 signal_name(limits_.interrupted), store.c_str(), (policy_.out_dir / "results.json").string().c_str());
+    std::fflush(stderr);
+    return 128 + limits_.interrupted;
+  }
+  std::fflush(stderr);
   return 1;
 }
 

@@ -96,14 +96,12 @@ function Study:load()
   return data
 end
 
+-- results.json is replaced whole or not at all (smi.file: temporary file, checked writes, fsync,
+-- rename): a full disk or a kill mid-write leaves the previous file, and the error says so.
 function Study:_save(saved)
+  if type(smi) == "table" and smi.dry_run then return end -- a dry run's numbers are not results
   local text = json.lua_encode(saved, { indent = "  ", root = "results" })
-  local f, err = io.open(self.results_path, "wb")
-  if not f then
-    error(("study '%s': cannot write %s: %s (does the folder exist and is it under --out?)"):format(self.name, self.results_path, tostring(err)), 0)
-  end
-  f:write(text, "\n")
-  f:close()
+  require("smi.file").write(self.results_path, text .. "\n", ("study '%s'"):format(self.name))
 end
 
 -- Which steps to run, from run{only=..., from=...}.
@@ -132,20 +130,31 @@ end
 
 --- Runs the steps (all, or opts.only = name | {names}, or opts.from = name) and returns the
 -- results by step name. Steps not run keep their saved results; results.json is rewritten
--- after every step, so a failure keeps what was done.
+-- (atomically) after every step, so a failure keeps what was done. report.html is written only
+-- when every step of a full run succeeded (a partial run writes report-partial.html).
 function Study:run(opts)
   opts = opts or {}
   if opts.quiet ~= nil then self.quiet = opts.quiet end
   if #self.steps == 0 then error(("study '%s': no steps; add some with study:step(name, fn)"):format(self.name), 2) end
   local selected = self:_selection(opts)
+  -- one study per output folder at a time (the lock names the holder; it lasts until exit)
+  if type(smi) == "table" and type(smi.lock_out) == "function" then smi.lock_out(self.out) end
   local partial = false
   for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
 
+  -- Every run merges into the saved results: a step that does not run now (not selected, or
+  -- not reached because an earlier one failed or the run was stopped) keeps its saved result,
+  -- so results.json never shrinks. A file that does not parse is an error for a partial run
+  -- (its steps are needed) and is replaced by a full run.
   local saved = { study = self.name, seed = self.seed, order = {}, steps = {}, provenance = provenance() }
+  local old, why
   if partial then
-    local old, why = self:load()
-    if old then saved.steps = old.steps else self.load_problem = why end
+    old, why = self:load()
+  else
+    local okl, o, w = pcall(self.load, self)
+    if okl then old, why = o, w else why = tostring(o) end
   end
+  if old then saved.steps = old.steps else self.load_problem = why end
   for i, st in ipairs(self.steps) do saved.order[i] = st.name end
 
   local live = {} -- results of this run, with values JSON cannot hold
@@ -153,7 +162,8 @@ function Study:run(opts)
   local results = setmetatable({}, {
     __index = function(_, name)
       if live[name] ~= nil then return live[name] end
-      local s = saved.steps[name]
+      -- a step selected in this run is read from this run only, never from an older file
+      local s = not selected[name] and saved.steps[name] or nil
       if s and s.status == "ok" and s.result ~= nil then return s.result end
       local why = not study.by_name[name] and "there is no such step"
         or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
@@ -205,7 +215,11 @@ function Study:run(opts)
         end
       end
       if not ok then
-        saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace }
+        -- the failure is recorded; a result saved by an earlier run is kept beside it
+        local prev = saved.steps[st.name]
+        if prev and prev.status == "failed" then prev = prev.previous end
+        saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace,
+                                 previous = prev }
         self.timings[#self.timings + 1] = { st.name, "failed", dt }
         pcall(self._save, self, saved)
         self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
@@ -228,7 +242,7 @@ function Study:run(opts)
   local total = now() - t_start
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
   for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
-  if self.report then self:_finish_report(partial, selected, total) end
+  if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total) end
 
   local out = {}
   for _, st in ipairs(self.steps) do

@@ -229,7 +229,7 @@ T.case("errors name the culprit", function()
     smi.calibrate{parameters = {{"a", 0, 1}}, objective = function() return 0 / 0 end}
   end, "finite")
   T.raises(function()
-    smi.calibrate{model = model, data = data, inputs = {a = {dist = "gamma", mean = 1, std = 1}}}
+    smi.calibrate{model = model, data = data, inputs = {a = {dist = "gama", mean = 1, std = 1}}}
   end, "inputs.a.dist")
   T.raises(function() smi.calibrate{parameters = {{"a", 0, 1}}, objective = function() return 1 end, model = model} end,
            "either objective")

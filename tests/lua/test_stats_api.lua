@@ -85,6 +85,23 @@ T.case("distributions (spec 8.5 parameterisations)", function()
   T.eq(n:sample(5, 42)[3], n:sample(5, 42)[3], "seeded sample")
 end)
 
+T.case("logpdf, logcdf, sf, isf in the tails (SciPy 1.10, tests/reference/families_tails.csv)", function()
+  local g = smi.dist.gamma{shape = 2.5, scale = 1.5}
+  T.near(g:isf(1e-12) / 48.92897716002588, 1, 1e-9, "gamma isf(1e-12)")
+  T.near(g:sf(48.92897716002588) / 9.999999999999994e-13, 1, 1e-9, "gamma sf")
+  T.near(g:logcdf(48.92897716002588) / -1.0000000000004994e-12, 1, 1e-9, "gamma logcdf near 1")
+  T.near(g:logpdf(48.92897716002588) / -28.082109046025828, 1, 1e-9, "gamma logpdf")
+  local t = smi.dist.truncnormal{mean = 0, std = 1, lower = 6}
+  T.near(t:isf(1e-12) / 9.50643028070483, 1, 1e-9, "truncnormal [6, inf) isf(1e-12)")
+  T.near(smi.dist.beta{alpha = 2, beta = 5}:isf(1e-12) / 0.9972166267363152, 1, 1e-9, "beta isf")
+  local n = smi.dist.normal{mean = 1.5, std = 2}
+  T.near(n:logcdf(-12.568967650602263) / -27.63102111592854, 1, 1e-9, "normal logcdf")
+  local v = n:sf({1.5, 3.5})
+  T.near(v[1], 0.5, 1e-15, "sf vec 1")
+  T.near(v[2], 0.15865525393145707, 1e-15, "sf vec 2")
+  T.raises(function() n:isf(1.5) end, "upper-tail probability must be in [0, 1]")
+end)
+
 T.case("fit ranks families by AIC", function()
   local r = smi.dist.fit(X, {"normal", "uniform", "gumbel"})
   T.eq(#r, 3, "three fits")

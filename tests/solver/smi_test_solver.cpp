@@ -6,7 +6,9 @@
 //     f = sum of x_i^2        g = sum of i * x_i (i = 1.. in deck order)
 //     start = t0   end = t1   (CLOCK_MONOTONIC seconds, so tests can see runs overlap)
 // and results.csv with columns f,g. Behaviour keys:
-//     mode = ok | crash | exit | hang | hang_group | garbage | no_output | flaky
+//     mode = ok | crash | exit | hang | hang_group | hang_setsid | garbage | no_output | stderr_only | flaky
+//     hang_setsid: like hang, with a child that leaves the group and session (setsid) and
+//     appends "<its pid> escape" to `log`, as a solver's licence daemon would
 //     sleep = seconds before writing    exit_code = n (mode = exit)
 //     log = /abs/path: appends "<pid> <first x>" per run (counts launches across a study)
 //     flaky: fails (exit 7) unless the file flaky.ok exists in the folder of `log`; creates it
@@ -150,7 +152,17 @@ int main(int argc, char** argv) {
       return 7;
     }
   }
-  if (mode == "hang" || mode == "hang_group") {
+  if (mode == "hang_setsid") {
+    const pid_t child = fork();
+    if (child == 0) {
+      setsid();
+      if (keys.count("log")) std::ofstream(keys["log"], std::ios::app) << getpid() << " escape\n";
+      signal(SIGTERM, SIG_IGN);
+      signal(SIGHUP, SIG_IGN);
+      for (;;) pause();
+    }
+  }
+  if (mode == "hang" || mode == "hang_group" || mode == "hang_setsid") {
     if (mode == "hang_group") {
       const pid_t child = fork();
       if (child == 0) {
@@ -162,6 +174,10 @@ int main(int argc, char** argv) {
     for (;;) pause();
   }
   if (mode == "no_output") return 0;
+  if (mode == "stderr_only") {  // a solver that exits 0 after a fatal error, saying so on stderr only
+    std::fprintf(stderr, "smi-test-solver: reading deck\nsmi-test-solver: licence expired (on purpose)\n");
+    return 0;
+  }
   std::ofstream out(out_path);
   if (mode == "garbage") {
     out << "f = banana\ng = ####\n";

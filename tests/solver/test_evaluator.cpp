@@ -127,7 +127,9 @@ TEST_CASE("failures become records with their reason; skip keeps going, stop sto
   // Each point picks its own behaviour through a string constant rendered into the deck.
   struct Case { const char* mode; const char* reason; };
   for (const Case& k : {Case{"crash", "killed by signal 6"}, Case{"exit", "exit status 1: smi-test-solver: fatal error 1234"},
-                        Case{"garbage", "unparsable output"}, Case{"no_output", "out.txt' is missing"}}) {
+                        Case{"garbage", "unparsable output"}, Case{"no_output", "out.txt' is missing"},
+                        // exit 0, no output, the cause only on stderr: the reason shows it
+                        Case{"stderr_only", "licence expired (on purpose)"}}) {
     CommandConfig c = config(dir / k.mode, std::string("mode = ") + k.mode + "\n");
     c.on_failure = OnFailure::Skip;
     const EvalResult r = Evaluator(c).evaluate(design(2), parse_out, nullptr, nullptr);

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
-#include <regex>
+#include <re2/re2.h>
 #include <sstream>
 
 namespace smi::eval {
@@ -22,8 +22,8 @@ bool valid_name(const std::string& s) {
 
 // One printf conversion of a number, nothing else: the format goes to snprintf, so it is
 // checked to be exactly this shape (a stray %s or %n would read memory that is not there).
-const std::regex& format_re() {
-  static const std::regex re(R"(%[-+ 0#]{0,5}[0-9]{0,3}(\.[0-9]{0,3})?[eEfFgGd])");
+const RE2& format_re() {
+  static const RE2 re(R"(%[-+ 0#]{0,5}[0-9]{0,3}(\.[0-9]{0,3})?[eEfFgGd])");
   return re;
 }
 
@@ -76,7 +76,7 @@ DeckTemplate::DeckTemplate(std::string text, std::string source) : source_(std::
       throw TemplateError(fmt::format(
           "template '{}' line {}: placeholder '{{{{{}}}}}' is not a name (letters, digits and _, "
           "not starting with a digit)", source_, line, inner));
-    if (!format.empty() && !std::regex_match(format, format_re()))
+    if (!format.empty() && !RE2::FullMatch(format, format_re()))
       throw TemplateError(fmt::format(
           "template '{}' line {}: placeholder '{}' has format '{}'; use one printf number conversion "
           "such as %.6E, %12.4f, %g or %d", source_, line, name, format));

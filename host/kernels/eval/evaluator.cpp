@@ -42,6 +42,22 @@ std::string last_line(const std::string& s) {
   return line;
 }
 
+/// The last `n` non-empty lines of a text joined by " | ", each cut to a readable length.
+std::string last_lines(std::string s, int n) {
+  std::vector<std::string> out;
+  while (static_cast<int>(out.size()) < n) {
+    const std::string line = last_line(s);
+    if (line.empty()) break;
+    out.insert(out.begin(), line);
+    const std::size_t end = s.find_last_not_of(" \t\r\n");
+    const std::size_t start = s.find_last_of('\n', end);
+    s.erase(start == std::string::npos ? 0 : start);
+  }
+  std::string r;
+  for (const auto& l : out) r += (r.empty() ? "" : " | ") + l;
+  return r;
+}
+
 std::string csv_of(const std::vector<std::string>& names, const Eigen::MatrixXd& rows) {
   std::string s;
   for (std::size_t j = 0; j < names.size(); ++j) s += (j ? "," : "") + names[j];
@@ -356,6 +372,9 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
               throw ParseError(fmt::format("output '{}' is {}", cfg_.outputs[static_cast<std::size_t>(j)], Yt(i, j)));
       } catch (const std::exception& e) {
         reason = fmt::format("unparsable output: {}", e.what());
+        // A solver that exits 0 after a fatal error says why only on stderr: show its end.
+        const std::string err = last_lines(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes), 3);
+        if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", err);
       }
       check_interrupt();  // a Ctrl-C that hit the parser is not the run's failure
     } else if (o.kind == Outcome::Exited || o.kind == Outcome::Signaled) {

@@ -1,13 +1,18 @@
 #include "eval/process.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <dirent.h>
+#include <iterator>
 #include <csignal>
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <fstream>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,59 +23,172 @@ extern char** environ;
 namespace smi::eval {
 namespace {
 
-/// Owns the posix_spawn attribute objects so every exit path destroys them.
-struct SpawnAttrs {
-  posix_spawnattr_t attr;
-  posix_spawn_file_actions_t actions;
-  SpawnAttrs() {
-    posix_spawnattr_init(&attr);
-    posix_spawn_file_actions_init(&actions);
+[[noreturn]] void child_fail(int fd, int err) {
+  // Tells the parent why exec did not happen (errno through the CLOEXEC pipe), then leaves.
+  while (::write(fd, &err, sizeof err) < 0 && errno == EINTR) {
   }
-  ~SpawnAttrs() {
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attr);
-  }
-  SpawnAttrs(const SpawnAttrs&) = delete;
-  SpawnAttrs& operator=(const SpawnAttrs&) = delete;
-};
+  ::_exit(127);
+}
 
-void check(int rc, const char* what) {
-  if (rc != 0) throw Error(fmt::format("{} failed: {}", what, std::strerror(rc)));
+/// The child after fork: only async-signal-safe calls (the parent may have threads).
+[[noreturn]] void exec_child(const SpawnSpec& spec, char* const* argv, char* const* envp, pid_t parent, int errfd) {
+  // Die with smi-lua (even by SIGKILL): a solver must not outlive the study that started it. If
+  // the parent died between fork and prctl, we were already reparented: leave at once.
+  if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) child_fail(errfd, errno);
+  if (::getppid() != parent) ::_exit(127);
+  // A new process group (pgid = pid), so a timeout or a stop can kill the solver and its helpers.
+  if (::setpgid(0, 0) != 0) child_fail(errfd, errno);
+  // Default signal handling and an empty mask: a solver does not inherit what the host set.
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  for (int sig = 1; sig < NSIG; ++sig)
+    if (sig != SIGKILL && sig != SIGSTOP) ::sigaction(sig, &dfl, nullptr);
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
+  const int in = ::open("/dev/null", O_RDONLY);
+  const int out = ::open(spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int err = ::open(spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (in < 0 || out < 0 || err < 0) child_fail(errfd, errno);
+  if (::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0) child_fail(errfd, errno);
+  // Descriptors the host holds (files a script opened, the store) are not the solver's business;
+  // errfd is close-on-exec, so it stays open until exec succeeds.
+  for (int fd : {in, out, err})
+    if (fd > 2 && fd != errfd) ::close(fd);
+  if (::chdir(spec.workdir.c_str()) != 0) child_fail(errfd, errno);
+  if ((errfd > 3 && ::close_range(3, static_cast<unsigned>(errfd) - 1, 0) != 0) ||
+      ::close_range(static_cast<unsigned>(errfd) + 1, ~0u, 0) != 0) {
+    const long maxfd = std::min(::sysconf(_SC_OPEN_MAX), 65536L);  // kernels before 5.9
+    for (int fd = 3; fd < maxfd; ++fd)
+      if (fd != errfd) ::close(fd);
+  }
+  ::execve(spec.program.c_str(), argv, envp);
+  child_fail(errfd, errno);
 }
 
 }  // namespace
 
 pid_t spawn_process(const SpawnSpec& spec) {
   if (spec.argv.empty()) throw Error("spawn_process: empty argv");
-  SpawnAttrs a;
-  // A new process group (pgid = child's pid); default signal handling and an empty mask, so a
-  // solver does not inherit whatever the host blocked or ignored.
-  sigset_t none, all;
-  sigemptyset(&none);
-  sigfillset(&all);
-  check(posix_spawnattr_setpgroup(&a.attr, 0), "posix_spawnattr_setpgroup");
-  check(posix_spawnattr_setsigmask(&a.attr, &none), "posix_spawnattr_setsigmask");
-  check(posix_spawnattr_setsigdefault(&a.attr, &all), "posix_spawnattr_setsigdefault");
-  check(posix_spawnattr_setflags(&a.attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF),
-        "posix_spawnattr_setflags");
-  check(posix_spawn_file_actions_addopen(&a.actions, 0, "/dev/null", O_RDONLY, 0), "addopen stdin");
-  check(posix_spawn_file_actions_addopen(&a.actions, 1, spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
-        "addopen stdout");
-  check(posix_spawn_file_actions_addopen(&a.actions, 2, spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644),
-        "addopen stderr");
-  // Descriptors the host holds (files a script opened, the store) are not the solver's business.
-  check(posix_spawn_file_actions_addclosefrom_np(&a.actions, 3), "addclosefrom");
-  check(posix_spawn_file_actions_addchdir_np(&a.actions, spec.workdir.c_str()), "addchdir");
-
   std::vector<char*> argv;
   argv.reserve(spec.argv.size() + 1);
   for (const auto& s : spec.argv) argv.push_back(const_cast<char*>(s.c_str()));
   argv.push_back(nullptr);
-  pid_t pid = 0;
-  // glibc's posix_spawn reports a failed exec (ENOENT, EACCES, ENOEXEC) as its return value.
-  const int rc = posix_spawn(&pid, spec.program.c_str(), &a.actions, &a.attr, argv.data(), environ);
-  if (rc != 0) throw Error(fmt::format("cannot start '{}': {}", spec.program, std::strerror(rc)));
+  // The environment plus a mark naming this smi-lua: descendants that escape the process group
+  // (setsid) and are reparented to us (the child subreaper) are recognised by it and killed.
+  const std::string mark = std::string(kSolverMarkVar) + "=" + std::to_string(::getpid());
+  std::vector<char*> envp;
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, kSolverMarkVar, std::strlen(kSolverMarkVar)) != 0 || (*e)[std::strlen(kSolverMarkVar)] != '=')
+      envp.push_back(*e);
+  envp.push_back(const_cast<char*>(mark.c_str()));
+  envp.push_back(nullptr);
+
+  int pipefd[2];
+  if (::pipe2(pipefd, O_CLOEXEC) != 0) throw Error(fmt::format("pipe failed: {}", std::strerror(errno)));
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int e = errno;
+    ::close(pipefd[0]);
+    ::close(pipefd[1]);
+    throw Error(fmt::format("cannot start '{}': fork failed: {}", spec.program, std::strerror(e)));
+  }
+  if (pid == 0) {
+    ::close(pipefd[0]);
+    exec_child(spec, argv.data(), envp.data(), parent, pipefd[1]);
+  }
+  ::close(pipefd[1]);
+  // Also set the group from this side, so a kill(-pid) right after we return cannot miss it.
+  ::setpgid(pid, pid);
+  int err = 0;
+  ssize_t r;
+  while ((r = ::read(pipefd[0], &err, sizeof err)) < 0 && errno == EINTR) {
+  }
+  ::close(pipefd[0]);
+  if (r == static_cast<ssize_t>(sizeof err)) {  // exec failed: reap the child, report why
+    int st = 0;
+    while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+    }
+    throw Error(fmt::format("cannot start '{}': {}", spec.program, std::strerror(err)));
+  }
   return pid;
+}
+
+void become_subreaper() { ::prctl(PR_SET_CHILD_SUBREAPER, 1); }
+
+namespace {
+
+/// Children of this process (parent pid field of /proc/<pid>/stat).
+std::vector<pid_t> own_children() {
+  std::vector<pid_t> out;
+  const pid_t me = ::getpid();
+  DIR* d = ::opendir("/proc");
+  if (!d) return out;
+  while (dirent* e = ::readdir(d)) {
+    char* end = nullptr;
+    const long pid = std::strtol(e->d_name, &end, 10);
+    if (pid <= 0 || *end) continue;
+    std::ifstream st(fmt::format("/proc/{}/stat", pid));
+    std::string text((std::istreambuf_iterator<char>(st)), std::istreambuf_iterator<char>());
+    const auto rp = text.rfind(')');  // the command name may hold spaces and parentheses
+    if (rp == std::string::npos) continue;
+    char state = 0;
+    long ppid = 0;
+    if (std::sscanf(text.c_str() + rp + 1, " %c %ld", &state, &ppid) == 2 && ppid == me)
+      out.push_back(static_cast<pid_t>(pid));
+  }
+  ::closedir(d);
+  return out;
+}
+
+/// True if `pid`'s environment holds kSolverMarkVar=<our pid>. A zombie's environ reads empty:
+/// it is ours to reap either way if it is not one we track (the caller passes those in keep).
+bool marked_as_ours(pid_t pid, bool& zombie) {
+  std::ifstream env(fmt::format("/proc/{}/environ", pid), std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(env)), std::istreambuf_iterator<char>());
+  zombie = text.empty();
+  const std::string mark = std::string(kSolverMarkVar) + "=" + std::to_string(::getpid());
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t nul = text.find('\0', at);
+    if (text.compare(at, (nul == std::string::npos ? text.size() : nul) - at, mark) == 0) return true;
+    if (nul == std::string::npos) break;
+    at = nul + 1;
+  }
+  return false;
+}
+
+}  // namespace
+
+int reap_escaped_descendants(const std::vector<pid_t>& keep) {
+  int killed = 0;
+  for (int round = 0; round < 50; ++round) {  // each round's victims' children come to us next
+    std::vector<pid_t> victims;
+    for (pid_t pid : own_children()) {
+      if (std::find(keep.begin(), keep.end(), pid) != keep.end()) continue;
+      bool zombie = false;
+      if (marked_as_ours(pid, zombie)) victims.push_back(pid);
+      else if (zombie) {
+        // An exited orphan of a solver (only marked processes are reparented to us while we
+        // run solvers; popen children of a script are waited for by Lua): reap it if it is
+        // a zombie, never block on a live process we do not know.
+        int st = 0;
+        ::waitpid(pid, &st, WNOHANG);
+      }
+    }
+    if (victims.empty()) break;
+    for (pid_t pid : victims) {
+      ::kill(pid, SIGKILL);
+      if (::getpgid(pid) == pid) ::kill(-pid, SIGKILL);  // a group it leads (after setsid)
+    }
+    for (pid_t pid : victims) {
+      int st = 0;
+      while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+      }
+    }
+    killed += static_cast<int>(victims.size());
+  }
+  return killed;
 }
 
 void signal_group(pid_t pgid, int sig) {

@@ -1,7 +1,10 @@
 #pragma once
-// Launching one solver process: posix_spawn of an argv vector (never a shell), in its own
+// Launching one solver process: fork + exec of an argv vector (never a shell), in its own
 // process group so that a timeout can kill the solver and everything it started, with the
 // work directory as its current directory, stdin from /dev/null and stdout/stderr to files.
+// The solver dies with smi-lua (PR_SET_PDEATHSIG), and carries kSolverMarkVar in its
+// environment so that descendants escaping its group (setsid) can be found and killed
+// (reap_escaped_descendants, with smi-lua a child subreaper).
 #include <string>
 #include <sys/types.h>
 #include <vector>
@@ -19,6 +22,17 @@ struct SpawnSpec {
 /// Starts the process; returns its pid, which is also its process-group id. Throws smi::Error
 /// with the program and the system's reason when it cannot be started (missing, not executable).
 pid_t spawn_process(const SpawnSpec& spec);
+
+/// Environment variable set in every solver's environment to smi-lua's pid.
+inline constexpr const char* kSolverMarkVar = "SMI_LUA_SOLVER_OF";
+
+/// Makes this process the child subreaper (PR_SET_CHILD_SUBREAPER): orphans of the solvers it
+/// starts are reparented to it instead of to init, so they can be found and reaped.
+void become_subreaper();
+/// Kills (SIGKILL) and reaps every child of this process that carries kSolverMarkVar with our
+/// pid but is not in `keep` (a solver's setsid escape, reparented to us), repeating until none
+/// is left (their own children are reparented to us in turn). Returns how many it killed.
+int reap_escaped_descendants(const std::vector<pid_t>& keep = {});
 
 /// Sends `sig` to the whole process group `pgid` (ignores an already empty group).
 void signal_group(pid_t pgid, int sig);

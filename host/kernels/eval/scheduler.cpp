@@ -60,6 +60,8 @@ void Scheduler::kill_all() {
     if (r.pidfd >= 0) ::close(r.pidfd);
   }
   running_.clear();
+  // Solver descendants that left their process group (setsid) and were reparented to us.
+  reap_escaped_descendants();
 }
 
 void Scheduler::submit(Job job) { queue_.push_back(std::move(job)); }

@@ -38,8 +38,9 @@ class Scheduler {
  public:
   /// `kill_grace`: seconds between SIGTERM and SIGKILL to a timed-out process group.
   explicit Scheduler(int concurrency, double kill_grace = 1.0);
-  /// Kills (SIGKILL) and reaps every process group still running: an exception or a Lua error
-  /// unwinding through the caller leaves no solver behind.
+  /// Kills (SIGKILL) and reaps every process group still running, then every solver descendant
+  /// that escaped its group and was reparented to us (see become_subreaper): an exception or a
+  /// Lua error unwinding through the caller, or a plain end, leaves no solver process behind.
   ~Scheduler();
   Scheduler(const Scheduler&) = delete;
   Scheduler& operator=(const Scheduler&) = delete;

@@ -1,6 +1,7 @@
 #include "eval/store.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 #include <fmt/format.h>
 #include <sqlite3.h>
 
@@ -81,7 +82,19 @@ NamedValues decode_values(const std::string& s) {
 }
 
 void Store::fail(const char* what) {
-  throw Error(fmt::format("evaluation store '{}': {}: {}", path_, what, db_ ? sqlite3_errmsg(db_) : "out of memory"));
+  const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+  // SQLite's own words name no fix: say what the file is and what to do about it.
+  if (msg.find("no such column") != std::string::npos || msg.find("no such table") != std::string::npos ||
+      msg.find("has no column") != std::string::npos)
+    throw Error(fmt::format("evaluation store '{}' has another layout ({}): it was written by another program or "
+                            "another smi-lua version. Give a store written by this smi-lua, or move the file away "
+                            "(with its -wal and -shm files) and a new store is started",
+                            path_, msg));
+  if (msg.find("not a database") != std::string::npos)
+    throw Error(fmt::format("evaluation store '{}' is not an SQLite database ({}); give the path of an "
+                            "evaluations.sqlite that smi-lua wrote",
+                            path_, msg));
+  throw Error(fmt::format("evaluation store '{}': {}: {}", path_, what, msg));
 }
 
 void Store::exec(const char* sql) {
@@ -94,6 +107,13 @@ void Store::exec(const char* sql) {
 }
 
 Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(read_only) {
+  {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+      throw Error(fmt::format("evaluation store '{}' is a folder; a store is one SQLite file: give its path, e.g. "
+                              "--store {}/evaluations.sqlite",
+                              path, path == "/" ? "" : std::filesystem::path(path).lexically_normal().string()));
+  }
   const int flags = read_only ? (SQLITE_OPEN_READONLY | SQLITE_OPEN_URI) : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -116,9 +136,9 @@ Store::Store(const std::string& path, bool read_only) : path_(path), read_only_(
           fail("cannot open read-only");
       }
     } else {
-      exec("PRAGMA journal_mode=WAL");
+      if (sqlite3_exec(db_, "PRAGMA journal_mode=WAL", nullptr, nullptr, nullptr) != SQLITE_OK) fail("open");
       exec("PRAGMA synchronous=NORMAL");
-      exec(kSchema);
+      if (sqlite3_exec(db_, kSchema, nullptr, nullptr, nullptr) != SQLITE_OK) fail("create the tables");
       if (sqlite3_prepare_v2(db_, kPut, -1, &put_, nullptr) != SQLITE_OK) fail("prepare insert");
     }
     if (sqlite3_prepare_v2(db_, kFind, -1, &find_, nullptr) != SQLITE_OK)

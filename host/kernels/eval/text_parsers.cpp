@@ -6,31 +6,57 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
-#include <regex>
+#include <memory>
+#include <re2/re2.h>
+#include <string_view>
 #include <sstream>
 
 namespace smi::eval {
 namespace {
 
-std::regex compile(const std::string& pattern, const std::string& source) {
-  try {
-    return std::regex(pattern, std::regex::ECMAScript);
-  } catch (const std::regex_error& e) {
-    throw ParseError(fmt::format("bad regular expression /{}/ for '{}': {}", pattern, source, e.what()));
-  }
+/// RE2 runs in time linear in the text with no recursion (std::regex recursed per character
+/// and overflowed the stack on a 200 KB line, even inside pcall). It has no backreferences or
+/// lookaround; such a pattern is refused here with the reason and the pattern named.
+std::unique_ptr<RE2> compile(const std::string& pattern, const std::string& source) {
+  RE2::Options opt;
+  opt.set_log_errors(false);
+  opt.set_max_mem(64 << 20);  // big alternations still compile; a runaway one is an error, not a crash
+  auto re = std::make_unique<RE2>(pattern, opt);
+  if (!re->ok())
+    throw ParseError(fmt::format(
+        "bad regular expression /{}/ for '{}': {} (RE2 syntax: Perl-like classes \\d \\s \\S \\w, groups (...), "
+        "(?:...); no backreferences like \\1 and no lookaround like (?=...))",
+        pattern, source, re->error()));
+  return re;
 }
 
 int line_of(const std::string& text, std::ptrdiff_t pos) {
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + pos, '\n'));
 }
 
-double match_number(const std::smatch& m, const std::string& text, const std::string& pattern,
-                    const std::string& source) {
-  const std::string s = m.size() > 1 ? m[1].str() : m[0].str();
+/// The text a match gives: capture group 1 if the pattern has one, else the whole match.
+struct Match {
+  std::string_view whole, value;
+};
+
+/// The first match at or after `from`; false if none.
+bool find(const RE2& re, const std::string& text, std::size_t from, Match& m) {
+  re2::StringPiece groups[2];
+  const int ngroups = re.NumberOfCapturingGroups() > 0 ? 2 : 1;
+  if (!re.Match(text, from, text.size(), RE2::UNANCHORED, groups, ngroups)) return false;
+  m.whole = std::string_view(groups[0].data(), groups[0].size());
+  m.value = ngroups == 2 ? std::string_view(groups[1].data() ? groups[1].data() : "", groups[1].size()) : m.whole;
+  return true;
+}
+
+double match_number(const Match& m, const std::string& text, const std::string& pattern, const std::string& source) {
+  std::string s(m.value);
   double v = 0;
-  if (!parse_number(s, v))
+  if (!parse_number(s, v)) {
+    if (s.size() > 200) s = s.substr(0, 200) + "...";
     throw ParseError(fmt::format("'{}' line {}: /{}/ matched '{}', which is not a number", source,
-                                 line_of(text, m.position(0)), pattern, s));
+                                 line_of(text, m.whole.data() - text.data()), pattern, s));
+  }
   return v;
 }
 
@@ -72,18 +98,21 @@ std::string read_text_file(const std::string& path) {
 }
 
 double regex_number(const std::string& text, const std::string& pattern, const std::string& source) {
-  const std::regex re = compile(pattern, source);
-  std::smatch m;
-  if (!std::regex_search(text, m, re))
-    throw ParseError(fmt::format("'{}': no match for /{}/", source, pattern));
+  const auto re = compile(pattern, source);
+  Match m;
+  if (!find(*re, text, 0, m)) throw ParseError(fmt::format("'{}': no match for /{}/", source, pattern));
   return match_number(m, text, pattern, source);
 }
 
 Eigen::VectorXd regex_numbers(const std::string& text, const std::string& pattern, const std::string& source) {
-  const std::regex re = compile(pattern, source);
+  const auto re = compile(pattern, source);
   std::vector<double> vals;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
-    vals.push_back(match_number(*it, text, pattern, source));
+  Match m;
+  for (std::size_t at = 0; at <= text.size() && find(*re, text, at, m);) {
+    vals.push_back(match_number(m, text, pattern, source));
+    const std::size_t end = static_cast<std::size_t>(m.whole.data() - text.data()) + m.whole.size();
+    at = m.whole.empty() ? end + 1 : end;  // an empty match moves on by one character
+  }
   return Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
 }
 

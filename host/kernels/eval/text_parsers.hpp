@@ -18,8 +18,8 @@ struct ParseError : Error {
 /// Reads a whole file; throws ParseError naming it if it is missing or unreadable.
 std::string read_text_file(const std::string& path);
 
-/// The number captured by `pattern` (ECMAScript syntax; capture group 1 if the pattern has one,
-/// else the whole match) at its first match in `text`. `source` names the file in errors.
+/// The number captured by `pattern` (RE2 syntax, linear time, no recursion; capture group 1 if
+/// the pattern has one, else the whole match) at its first match in `text`. `source` names the file in errors.
 double regex_number(const std::string& text, const std::string& pattern, const std::string& source);
 /// Every match, in order.
 Eigen::VectorXd regex_numbers(const std::string& text, const std::string& pattern, const std::string& source);

@@ -10,26 +10,101 @@
 #include "core/errors.hpp"
 #include "core/normal.hpp"
 #include "core/rng.hpp"
+#include "stats/families.hpp"
 
 namespace smi::improve {
 
+const char* const kInputFamiliesHelp =
+    "the calibrated parameters are mean and std of the variable for \"normal\", \"lognormal\", \"uniform\", \"gumbel\", "
+    "\"gamma\" (fixed loc = 0), \"weibull\" (fixed loc = 0), \"beta\" (fixed lower = 0, upper = 1) and \"triangular\" (fixed "
+    "mode_at = (mode - lower)/(upper - lower) = 0.5); mean and std of the parent normal for \"truncnormal\" (fixed lower, upper); "
+    "value (or mean) for \"constant\"";
+
+namespace {
+constexpr std::pair<std::string_view, InputFamily> kFamilies[] = {
+    {"normal", InputFamily::normal},   {"lognormal", InputFamily::lognormal},     {"uniform", InputFamily::uniform},
+    {"constant", InputFamily::constant}, {"truncnormal", InputFamily::truncnormal}, {"weibull", InputFamily::weibull},
+    {"gumbel", InputFamily::gumbel},   {"gamma", InputFamily::gamma},             {"beta", InputFamily::beta},
+    {"triangular", InputFamily::triangular}};
+constexpr double kEulerGamma = 0.57721566490153286061;
+
+/// Weibull shape k with coefficient of variation cv: cv(k)² = Γ(1+2/k)/Γ(1+1/k)² − 1 falls
+/// monotonically in k; bisection on log k over [0.05, 2000] (cv from 1.6e5 down to 6.4e-4).
+double weibull_shape_for_cv(double cv, std::string_view what) {
+  auto cv_of = [](double k) {
+    return std::sqrt(std::max(0.0, std::exp(std::lgamma(1.0 + 2.0 / k) - 2.0 * std::lgamma(1.0 + 1.0 / k)) - 1.0));
+  };
+  double lo = std::log(0.05), hi = std::log(2000.0);
+  if (!(cv < cv_of(0.05) && cv > cv_of(2000.0)))
+    throw InvalidArgument(fmt::format("{}: weibull with std/(mean - loc) = {} is outside what a Weibull can have ({:.3g} .. {:.3g})", what, cv,
+                                      cv_of(2000.0), cv_of(0.05)));
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double m = 0.5 * (lo + hi);
+    if (cv_of(std::exp(m)) > cv) lo = m; else hi = m;
+  }
+  return std::exp(0.5 * (lo + hi));
+}
+}  // namespace
+
 InputFamily parse_family(std::string_view name, std::string_view what) {
-  if (name == "normal") return InputFamily::normal;
-  if (name == "lognormal") return InputFamily::lognormal;
-  if (name == "uniform") return InputFamily::uniform;
-  if (name == "constant") return InputFamily::constant;
-  throw InvalidArgument(fmt::format("{}: unknown distribution \"{}\" (use \"normal\", \"lognormal\", \"uniform\" or \"constant\")",
-                                    what, name));
+  for (const auto& [n, f] : kFamilies)
+    if (n == name) return f;
+  throw InvalidArgument(fmt::format("{}: unknown distribution \"{}\" (use one of normal, lognormal, uniform, truncnormal, weibull, gumbel, "
+                                    "gamma, beta, triangular, constant; {})",
+                                    what, name, kInputFamiliesHelp));
 }
 
 std::string family_name(InputFamily f) {
-  switch (f) {
-    case InputFamily::normal: return "normal";
-    case InputFamily::lognormal: return "lognormal";
-    case InputFamily::uniform: return "uniform";
-    case InputFamily::constant: return "constant";
-  }
+  for (const auto& [n, g] : kFamilies)
+    if (g == f) return std::string(n);
   return "?";
+}
+
+DistributionPtr input_distribution(InputFamily family, double mean, double std, const InputShape& shape, std::string_view what) {
+  if (family == InputFamily::constant || !(std > 0.0)) return nullptr;
+  try {
+    switch (family) {
+      case InputFamily::normal: return std::make_shared<Normal>(mean, std);
+      case InputFamily::lognormal: return std::make_shared<LogNormal>(LogNormal::from_moments(mean, std));
+      case InputFamily::uniform: return std::make_shared<Uniform>(Uniform::from_moments(mean, std));
+      case InputFamily::constant: return nullptr;
+      case InputFamily::truncnormal: return std::make_shared<TruncNormal>(mean, std, shape.lower, shape.upper);
+      case InputFamily::gumbel: {
+        const double scale = std * std::sqrt(6.0) / M_PI;
+        return std::make_shared<Gumbel>(mean - kEulerGamma * scale, scale);
+      }
+      case InputFamily::gamma: {
+        const double m = mean - shape.loc;
+        if (!(m > 0.0)) throw InvalidArgument(fmt::format("gamma needs mean > loc = {}, got mean = {}", shape.loc, mean));
+        return std::make_shared<Gamma>(m * m / (std * std), std * std / m, shape.loc);
+      }
+      case InputFamily::weibull: {
+        const double m = mean - shape.loc;
+        if (!(m > 0.0)) throw InvalidArgument(fmt::format("weibull needs mean > loc = {}, got mean = {}", shape.loc, mean));
+        const double k = weibull_shape_for_cv(std / m, what);
+        return std::make_shared<Weibull>(k, m / std::exp(std::lgamma(1.0 + 1.0 / k)), shape.loc);
+      }
+      case InputFamily::beta: {
+        const double lo = std::isfinite(shape.lower) ? shape.lower : 0.0, hi = std::isfinite(shape.upper) ? shape.upper : 1.0;
+        const double w = hi - lo, m = (mean - lo) / w, v = (std / w) * (std / w);
+        if (!(m > 0.0 && m < 1.0 && v < m * (1.0 - m)))
+          throw InvalidArgument(fmt::format("beta on [{}, {}] needs lower < mean < upper and std < sqrt((mean - lower)(upper - mean)) = {:.6g}, "
+                                            "got mean = {}, std = {}",
+                                            lo, hi, w * std::sqrt(std::max(0.0, m * (1.0 - m))), mean, std));
+        const double nu = m * (1.0 - m) / v - 1.0;
+        return std::make_shared<Beta>(m * nu, (1.0 - m) * nu, lo, hi);
+      }
+      case InputFamily::triangular: {
+        const double c = shape.mode_at;
+        if (!(c >= 0.0 && c <= 1.0)) throw InvalidArgument(fmt::format("triangular mode_at must be in [0, 1], got {}", c));
+        const double w = std / std::sqrt((1.0 - c + c * c) / 18.0), lo = mean - w * (1.0 + c) / 3.0;
+        return std::make_shared<Triangular>(lo, lo + c * w, lo + w);
+      }
+    }
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(fmt::format("{}: {}", what, e.what()));
+  }
+  return nullptr;
 }
 
 LognormalParams lognormal_params(double mean, double std) {
@@ -49,7 +124,7 @@ UniformBounds uniform_bounds(double mean, double std) {
 }
 
 Eigen::VectorXd map_standard_normal(InputFamily family, double mean, double std, const Eigen::Ref<const Eigen::VectorXd>& z,
-                                    std::string_view what) {
+                                    std::string_view what, const InputShape& shape) {
   if (!std::isfinite(mean) || !std::isfinite(std) || std < 0.0)
     throw InvalidArgument(fmt::format("{}: need finite mean and std >= 0, got mean = {}, std = {}", what, mean, std));
   switch (family) {
@@ -66,6 +141,13 @@ Eigen::VectorXd map_standard_normal(InputFamily family, double mean, double std,
       const UniformBounds b = uniform_bounds(mean, std);
       Eigen::VectorXd x(z.size());
       for (Eigen::Index i = 0; i < z.size(); ++i) x[i] = b.lower + (b.upper - b.lower) * normal_cdf(z[i]);
+      return x;
+    }
+    default: {
+      const DistributionPtr d = input_distribution(family, mean, std, shape, what);
+      if (!d) return Eigen::VectorXd::Constant(z.size(), mean);  // std = 0: the point mass
+      Eigen::VectorXd x(z.size());
+      for (Eigen::Index i = 0; i < z.size(); ++i) x[i] = z[i] <= 0 ? d->quantile(normal_cdf(z[i])) : d->isf(normal_cdf(-z[i]));
       return x;
     }
   }

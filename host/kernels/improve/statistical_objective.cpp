@@ -133,7 +133,7 @@ Eigen::MatrixXd StatisticalObjective::inputs_at(const Eigen::VectorXd& theta) co
   for (std::size_t j = 0; j < inputs_.size(); ++j)
     X.col(static_cast<Eigen::Index>(j)) =
         map_standard_normal(inputs_[j].family, m[j].first, m[j].second, z_.col(static_cast<Eigen::Index>(j)),
-                            fmt::format("input '{}'", inputs_[j].name));
+                            fmt::format("input '{}'", inputs_[j].name), inputs_[j].shape);
   return X;
 }
 

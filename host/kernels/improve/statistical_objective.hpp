@@ -28,6 +28,7 @@ struct InputSpec {
   double std = 0.0;      ///< used when std_param < 0
   int mean_param = -1;   ///< index of the mean in θ, or -1 when fixed
   int std_param = -1;    ///< index of the std in θ, or -1 when fixed
+  InputShape shape;      ///< fixed shape of the families beyond normal/lognormal/uniform
 };
 
 /// One observed response.

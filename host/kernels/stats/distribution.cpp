@@ -1,6 +1,17 @@
 #include "stats/distribution.hpp"
 
+#include <cmath>
+
 namespace smi {
+
+double Distribution::logpdf(double x) const { return std::log(pdf(x)); }
+double Distribution::logcdf(double x) const {
+  // Above the median log(1 − sf) keeps the precision that rounding cdf to 1 − sf would lose.
+  const double c = cdf(x);
+  return c > 0.5 ? std::log1p(-sf(x)) : std::log(c);
+}
+double Distribution::sf(double x) const { return 1.0 - cdf(x); }
+double Distribution::isf(double q) const { return quantile(1.0 - q); }
 
 Eigen::VectorXd Distribution::pdf(const Eigen::VectorXd& x) const {
   Eigen::VectorXd y(x.size());

@@ -26,6 +26,16 @@ class Distribution {
   virtual double cdf(double x) const = 0;
   /// Inverse CDF for p in (0, 1).
   virtual double quantile(double p) const = 0;
+  /// log pdf(x); the families compute it in log space (finite where pdf underflows).
+  virtual double logpdf(double x) const;
+  /// log cdf(x); the families keep precision where cdf(x) is tiny.
+  virtual double logcdf(double x) const;
+  /// Survival function 1 − cdf(x); the families compute it as a complement, not a difference,
+  /// so that it keeps its relative precision in the upper tail.
+  virtual double sf(double x) const;
+  /// Inverse survival function: x with sf(x) = q, q in [0, 1] (quantile(1 − q) without
+  /// the rounding of 1 − q).
+  virtual double isf(double q) const;
   virtual double mean() const = 0;
   virtual double stddev() const = 0;
   /// Where the density is positive (may be infinite).

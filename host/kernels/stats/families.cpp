@@ -6,11 +6,13 @@
 #include "core/errors.hpp"
 #include "core/normal.hpp"
 #include "stats/families.hpp"
+#include "stats/special.hpp"
 
 namespace smi {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSqrt3 = 1.7320508075688772935;
+constexpr double kLogSqrt2Pi = 0.91893853320467274178;
 
 void require_positive(double v, const char* name, const char* family) {
   if (!(v > 0.0) || !std::isfinite(v))
@@ -28,26 +30,43 @@ void require_order(double lo, double hi, const char* family) {
 // ---- Parametric ---------------------------------------------------------------------------
 
 double Parametric::quantile(double p) const {
+  const auto [lo, hi] = support();
+  if (!(p > 0.0)) return p == 0.0 ? lo : std::numeric_limits<double>::quiet_NaN();
+  if (!(p < 1.0)) return p == 1.0 ? hi : std::numeric_limits<double>::quiet_NaN();
+  return p > 0.5 ? invert(1.0 - p, true) : invert(p, false);
+}
+
+double Parametric::isf(double q) const {
+  const auto [lo, hi] = support();
+  if (!(q > 0.0)) return q == 0.0 ? hi : std::numeric_limits<double>::quiet_NaN();
+  if (!(q < 1.0)) return q == 1.0 ? lo : std::numeric_limits<double>::quiet_NaN();
+  return q > 0.5 ? invert(1.0 - q, false) : invert(q, true);
+}
+
+double Parametric::invert(double t, bool upper) const {
+  // r(x) increases with x and is 0 at the answer; upper-tail targets are matched on sf, whose
+  // small values carry full relative precision (1 − cdf would not).
+  auto r = [&](double x) { return upper ? t - sf(x) : cdf(x) - t; };
   auto [lo, hi] = support();
-  if (p <= 0.0) return lo;
-  if (p >= 1.0) return hi;
   const double m = mean(), s = stddev();
   if (!std::isfinite(lo)) {
     lo = m - s;
-    while (cdf(lo) > p) lo -= 2.0 * (m - lo);
+    while (r(lo) > 0) lo = m - 2.0 * (m - lo);
   }
   if (!std::isfinite(hi)) {
     hi = m + s;
-    while (cdf(hi) < p) hi += 2.0 * (hi - m);
+    while (r(hi) < 0) hi = m + 2.0 * (hi - m);
   }
   double x = 0.5 * (lo + hi);
-  for (int it = 0; it < 300; ++it) {
-    const double f = cdf(x) - p;
+  for (int it = 0; it < 2000; ++it) {
+    const double f = r(x);
+    if (f == 0.0) return x;
     if (f > 0) hi = x; else lo = x;
     const double d = pdf(x);
-    double xn = d > 0 ? x - f / d : 0.5 * (lo + hi);
+    double xn = d > 0 && std::isfinite(d) ? x - f / d : 0.5 * (lo + hi);
     if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
-    if (std::abs(xn - x) <= 1e-15 * std::max(1.0, std::abs(x)) || hi - lo <= 1e-15 * std::max(1.0, std::abs(x))) return xn;
+    const double tol = 4e-16 * std::max(std::abs(xn), 1e-300);
+    if (std::abs(xn - x) <= tol || hi - lo <= tol) return xn;
     x = xn;
   }
   return x;
@@ -78,6 +97,13 @@ Normal::Normal(double mean, double sd) : m_(mean), s_(sd) {
 double Normal::pdf(double x) const { return normal_pdf((x - m_) / s_) / s_; }
 double Normal::cdf(double x) const { return normal_cdf((x - m_) / s_); }
 double Normal::quantile(double p) const { return m_ + s_ * normal_quantile(p); }
+double Normal::logpdf(double x) const {
+  const double z = (x - m_) / s_;
+  return -0.5 * z * z - kLogSqrt2Pi - std::log(s_);
+}
+double Normal::logcdf(double x) const { return log_normal_cdf((x - m_) / s_); }
+double Normal::sf(double x) const { return normal_cdf((m_ - x) / s_); }
+double Normal::isf(double q) const { return m_ - s_ * normal_quantile(q); }
 std::pair<double, double> Normal::support() const { return {-kInf, kInf}; }
 Eigen::VectorXd Normal::pdf(const Eigen::VectorXd& x) const {
   return ((-0.5 * ((x.array() - m_) / s_).square()).exp() * (kInvSqrt2Pi / s_)).matrix();
@@ -99,6 +125,14 @@ LogNormal LogNormal::from_log_params(double mu_log, double sigma_log) {
 double LogNormal::pdf(double x) const { return x <= 0 ? 0.0 : normal_pdf((std::log(x) - mu_) / sig_) / (sig_ * x); }
 double LogNormal::cdf(double x) const { return x <= 0 ? 0.0 : normal_cdf((std::log(x) - mu_) / sig_); }
 double LogNormal::quantile(double p) const { return std::exp(mu_ + sig_ * normal_quantile(p)); }
+double LogNormal::logpdf(double x) const {
+  if (x <= 0) return -kInf;
+  const double z = (std::log(x) - mu_) / sig_;
+  return -0.5 * z * z - kLogSqrt2Pi - std::log(sig_ * x);
+}
+double LogNormal::logcdf(double x) const { return x <= 0 ? -kInf : log_normal_cdf((std::log(x) - mu_) / sig_); }
+double LogNormal::sf(double x) const { return x <= 0 ? 1.0 : normal_cdf((mu_ - std::log(x)) / sig_); }
+double LogNormal::isf(double q) const { return std::exp(mu_ - sig_ * normal_quantile(q)); }
 double LogNormal::mean() const { return std::exp(mu_ + 0.5 * sig_ * sig_); }
 double LogNormal::stddev() const { return mean() * std::sqrt(std::expm1(sig_ * sig_)); }
 std::pair<double, double> LogNormal::support() const { return {0.0, kInf}; }
@@ -121,6 +155,9 @@ Uniform Uniform::from_moments(double mean, double sd) {
 double Uniform::pdf(double x) const { return x < a_ || x > b_ ? 0.0 : 1.0 / (b_ - a_); }
 double Uniform::cdf(double x) const { return x <= a_ ? 0.0 : x >= b_ ? 1.0 : (x - a_) / (b_ - a_); }
 double Uniform::quantile(double p) const { return a_ + p * (b_ - a_); }
+double Uniform::logpdf(double x) const { return x < a_ || x > b_ ? -kInf : -std::log(b_ - a_); }
+double Uniform::sf(double x) const { return x <= a_ ? 1.0 : x >= b_ ? 0.0 : (b_ - x) / (b_ - a_); }
+double Uniform::isf(double q) const { return b_ - q * (b_ - a_); }
 double Uniform::stddev() const { return (b_ - a_) / (2.0 * kSqrt3); }
 
 // ---- TruncNormal --------------------------------------------------------------------------
@@ -129,21 +166,37 @@ TruncNormal::TruncNormal(double mu, double sigma, double lower, double upper) : 
   require_finite_param(mu, "mean", "truncnormal");
   require_positive(sigma, "std", "truncnormal");
   require_order(lower, upper, "truncnormal");
-  pa_ = normal_cdf((a_ - mu_) / sig_);
-  z_ = normal_cdf((b_ - mu_) / sig_) - pa_;
+  al_ = (a_ - mu_) / sig_;
+  be_ = (b_ - mu_) / sig_;
+  z_ = normal_mass(al_, be_);
   if (!(z_ > 1e-300))
     throw InvalidArgument(fmt::format("truncnormal: [{}, {}] holds no mass of normal({}, {}); move the interval", a_, b_, mu_, sig_));
 }
 double TruncNormal::pdf(double x) const { return x < a_ || x > b_ ? 0.0 : normal_pdf((x - mu_) / sig_) / (sig_ * z_); }
+// Masses as Φ-differences by normal_mass: on [6, ∞) Φ(x) − Φ(6) would cancel to 1e-7 garbage.
+// Widths from the bound, (x − a)/σ, keep their precision where (x − μ)/σ − α would not.
 double TruncNormal::cdf(double x) const {
-  return x <= a_ ? 0.0 : x >= b_ ? 1.0 : (normal_cdf((x - mu_) / sig_) - pa_) / z_;
+  if (x <= a_) return 0.0;
+  if (x >= b_) return 1.0;
+  return (std::isfinite(a_) ? normal_mass_width(al_, (x - a_) / sig_) : normal_cdf((x - mu_) / sig_)) / z_;
+}
+double TruncNormal::sf(double x) const {
+  if (x <= a_) return 1.0;
+  if (x >= b_) return 0.0;
+  const double xi = (x - mu_) / sig_;
+  return (std::isfinite(b_) ? normal_mass_width(xi, (b_ - x) / sig_) : normal_cdf(-xi)) / z_;
+}
+double TruncNormal::logpdf(double x) const {
+  if (x < a_ || x > b_) return -kInf;
+  const double z = (x - mu_) / sig_;
+  return -0.5 * z * z - kLogSqrt2Pi - std::log(sig_ * z_);
 }
 double TruncNormal::mean() const {
-  const double al = (a_ - mu_) / sig_, be = (b_ - mu_) / sig_;
+  const double al = al_, be = be_;
   return mu_ + sig_ * (normal_pdf(al) - normal_pdf(be)) / z_;
 }
 double TruncNormal::stddev() const {
-  const double al = (a_ - mu_) / sig_, be = (b_ - mu_) / sig_;
+  const double al = al_, be = be_;
   const double pa = normal_pdf(al), pb = normal_pdf(be);
   const double ta = std::isfinite(al) ? al * pa : 0.0, tb = std::isfinite(be) ? be * pb : 0.0;
   const double r = (pa - pb) / z_;
@@ -175,6 +228,16 @@ double Triangular::quantile(double p) const {
   const double fc = (c_ - a_) / (b_ - a_);
   return p < fc ? a_ + std::sqrt(p * (b_ - a_) * (c_ - a_)) : b_ - std::sqrt((1.0 - p) * (b_ - a_) * (b_ - c_));
 }
+double Triangular::sf(double x) const {
+  if (x <= a_) return 1.0;
+  if (x >= b_) return 0.0;
+  return x <= c_ ? 1.0 - (x - a_) * (x - a_) / ((b_ - a_) * (c_ - a_)) : (b_ - x) * (b_ - x) / ((b_ - a_) * (b_ - c_));
+}
+double Triangular::isf(double q) const {
+  const double fc = (b_ - c_) / (b_ - a_);  // sf at the mode
+  return q <= fc ? b_ - std::sqrt(q * (b_ - a_) * (b_ - c_)) : a_ + std::sqrt((1.0 - q) * (b_ - a_) * (c_ - a_));
+}
+double Triangular::logpdf(double x) const { return std::log(pdf(x)); }
 double Triangular::stddev() const {
   return std::sqrt((a_ * a_ + b_ * b_ + c_ * c_ - a_ * b_ - a_ * c_ - b_ * c_) / 18.0);
 }

@@ -10,11 +10,13 @@
 
 namespace smi {
 
-/// Shared by the families: quantile by bracketed Newton/bisection on cdf (used unless a family
-/// has a closed form), parameter list for describe() and field().
+/// Shared by the families: quantile and isf by bracketed Newton/bisection (used unless a family
+/// has a closed form) on cdf below the median and on sf above it, so both tails keep their
+/// relative precision; parameter list for describe() and field().
 class Parametric : public Distribution {
  public:
   double quantile(double p) const override;
+  double isf(double q) const override;
   using Distribution::cdf;
   using Distribution::pdf;
   using Distribution::quantile;
@@ -22,6 +24,10 @@ class Parametric : public Distribution {
   std::optional<double> field(std::string_view name) const override;
   /// (name, value) of the defining parameters, e.g. {("mean", 30.25), ("std", 0.36)}.
   virtual std::vector<std::pair<std::string, double>> params() const = 0;
+
+ protected:
+  /// x with cdf(x) = t (upper = false) or sf(x) = t (upper = true), t in (0, 1).
+  double invert(double t, bool upper) const;
 };
 
 class Normal : public Parametric {
@@ -30,6 +36,10 @@ class Normal : public Parametric {
   std::string family() const override { return "normal"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override { return m_; }
   double stddev() const override { return s_; }
@@ -50,6 +60,10 @@ class LogNormal : public Parametric {
   std::string family() const override { return "lognormal"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override;
   double stddev() const override;
@@ -69,6 +83,9 @@ class Uniform : public Parametric {
   std::string family() const override { return "uniform"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override { return 0.5 * (a_ + b_); }
   double stddev() const override;
@@ -86,13 +103,17 @@ class TruncNormal : public Parametric {
   std::string family() const override { return "truncnormal"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double sf(double x) const override;
   double mean() const override;
   double stddev() const override;
   std::pair<double, double> support() const override { return {a_, b_}; }
   std::vector<std::pair<std::string, double>> params() const override;
 
  private:
-  double mu_, sig_, a_, b_, pa_, z_;
+  double mu_, sig_, a_, b_;
+  double al_, be_;  ///< standardised bounds (a − μ)/σ, (b − μ)/σ
+  double z_;         ///< Φ(β) − Φ(α), by normal_mass (precise in the tails)
 };
 
 /// Weibull: F(x) = 1 − exp(−((x − loc)/scale)^shape), x >= loc.
@@ -102,6 +123,10 @@ class Weibull : public Parametric {
   std::string family() const override { return "weibull"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override;
   double stddev() const override;
@@ -119,6 +144,10 @@ class Gumbel : public Parametric {
   std::string family() const override { return "gumbel"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override;
   double stddev() const override;
@@ -136,6 +165,9 @@ class Gamma : public Parametric {
   std::string family() const override { return "gamma"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
   double mean() const override { return loc_ + k_ * th_; }
   double stddev() const override;
   std::pair<double, double> support() const override;
@@ -152,6 +184,9 @@ class Beta : public Parametric {
   std::string family() const override { return "beta"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  double sf(double x) const override;
   double mean() const override;
   double stddev() const override;
   std::pair<double, double> support() const override { return {lo_, hi_}; }
@@ -167,6 +202,9 @@ class Triangular : public Parametric {
   std::string family() const override { return "triangular"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
+  double logpdf(double x) const override;
+  double sf(double x) const override;
+  double isf(double q) const override;
   double quantile(double p) const override;
   double mean() const override { return (a_ + c_ + b_) / 3.0; }
   double stddev() const override;

@@ -39,6 +39,23 @@ double Weibull::cdf(double x) const {
   return z <= 0 ? 0.0 : -std::expm1(-std::pow(z, k_));
 }
 double Weibull::quantile(double p) const { return loc_ + l_ * std::pow(-std::log1p(-p), 1.0 / k_); }
+double Weibull::isf(double q) const { return loc_ + l_ * std::pow(-std::log(q), 1.0 / k_); }
+double Weibull::sf(double x) const {
+  const double z = (x - loc_) / l_;
+  return z <= 0 ? 1.0 : std::exp(-std::pow(z, k_));
+}
+double Weibull::logcdf(double x) const {
+  const double z = (x - loc_) / l_;
+  if (z <= 0) return -kInf;
+  const double t = std::pow(z, k_);
+  return t > M_LN2 ? std::log1p(-std::exp(-t)) : std::log(-std::expm1(-t));
+}
+double Weibull::logpdf(double x) const {
+  const double z = (x - loc_) / l_;
+  if (z < 0) return -kInf;
+  if (z == 0) return std::log(pdf(x));
+  return std::log(k_ / l_) + (k_ - 1.0) * std::log(z) - std::pow(z, k_);
+}
 double Weibull::mean() const { return loc_ + l_ * std::tgamma(1.0 + 1.0 / k_); }
 double Weibull::stddev() const {
   const double g1 = std::tgamma(1.0 + 1.0 / k_), g2 = std::tgamma(1.0 + 2.0 / k_);
@@ -59,6 +76,13 @@ double Gumbel::pdf(double x) const {
 }
 double Gumbel::cdf(double x) const { return std::exp(-std::exp(-(x - mu_) / b_)); }
 double Gumbel::quantile(double p) const { return mu_ - b_ * std::log(-std::log(p)); }
+double Gumbel::isf(double q) const { return mu_ - b_ * std::log(-std::log1p(-q)); }
+double Gumbel::sf(double x) const { return -std::expm1(-std::exp(-(x - mu_) / b_)); }
+double Gumbel::logcdf(double x) const { return -std::exp(-(x - mu_) / b_); }
+double Gumbel::logpdf(double x) const {
+  const double z = (x - mu_) / b_;
+  return -z - std::exp(-z) - std::log(b_);
+}
 double Gumbel::mean() const { return mu_ + b_ * kEulerGamma; }
 double Gumbel::stddev() const { return M_PI * b_ / std::sqrt(6.0); }
 std::pair<double, double> Gumbel::support() const { return {-kInf, kInf}; }
@@ -76,7 +100,15 @@ double Gamma::pdf(double x) const {
   if (z == 0) return k_ < 1 ? kInf : k_ == 1 ? 1.0 / th_ : 0.0;
   return std::exp((k_ - 1.0) * std::log(z) - z - std::lgamma(k_)) / th_;
 }
-double Gamma::cdf(double x) const { return gamma_p(k_, (x - loc_) / th_); }
+double Gamma::cdf(double x) const { return gamma_pq(k_, (x - loc_) / th_).p; }
+double Gamma::sf(double x) const { return gamma_pq(k_, (x - loc_) / th_).q; }
+double Gamma::logcdf(double x) const { return gamma_pq(k_, (x - loc_) / th_).log_p; }
+double Gamma::logpdf(double x) const {
+  const double z = (x - loc_) / th_;
+  if (z < 0) return -kInf;
+  if (z == 0) return std::log(pdf(x));
+  return (k_ - 1.0) * std::log(z) - z - std::lgamma(k_) - std::log(th_);
+}
 double Gamma::stddev() const { return std::sqrt(k_) * th_; }
 std::pair<double, double> Gamma::support() const { return {loc_, kInf}; }
 std::vector<std::pair<std::string, double>> Gamma::params() const { return {{"shape", k_}, {"scale", th_}, {"loc", loc_}}; }
@@ -101,7 +133,15 @@ double Beta::pdf(double x) const {
   const double lr = y == 1 ? 0.0 : (b_ - 1.0) * std::log1p(-y);
   return std::exp(la + lr - lb) / w;
 }
-double Beta::cdf(double x) const { return beta_inc(a_, b_, (x - lo_) / (hi_ - lo_)); }
+double Beta::cdf(double x) const { return beta_inc_both(a_, b_, (x - lo_) / (hi_ - lo_)).lower; }
+double Beta::sf(double x) const { return beta_inc_both(a_, b_, (x - lo_) / (hi_ - lo_)).upper; }
+double Beta::logcdf(double x) const { return beta_inc_both(a_, b_, (x - lo_) / (hi_ - lo_)).log_lower; }
+double Beta::logpdf(double x) const {
+  const double w = hi_ - lo_, y = (x - lo_) / w;
+  if (y <= 0 || y >= 1) return std::log(pdf(x));
+  const double lb = std::lgamma(a_) + std::lgamma(b_) - std::lgamma(a_ + b_);
+  return (a_ - 1.0) * std::log(y) + (b_ - 1.0) * std::log1p(-y) - lb - std::log(w);
+}
 double Beta::mean() const { return lo_ + (hi_ - lo_) * a_ / (a_ + b_); }
 double Beta::stddev() const {
   const double s = a_ + b_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "core/errors.hpp"
 #include "stats/ecdf.hpp"
@@ -33,17 +34,33 @@ void check_sizes(ConstVec f, ConstVec g, const Grid& grid) {
 
 Eigen::VectorXd pdf_grid(const Distribution& d, const Grid& g) {
   g.validate();
-  return d.pdf(g.nodes());
+  Eigen::VectorXd f = d.pdf(g.nodes());
+  const double h = g.step();
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    if (std::isinf(f[i])) {
+      const double x = g.node(i);
+      f[i] = mass_between(d, x - 0.5 * h, x + 0.5 * h) / h;
+    }
+    // (Tiny negative values of a binned KDE are its stated error, not a broken pdf.)
+    if (std::isnan(f[i]))
+      throw InvalidArgument(fmt::format("the pdf of {} is {} at x = {}: it cannot be integrated; check its parameters", d.describe(),
+                                        f[i], g.node(i)));
+  }
+  return f;
 }
 
 double l1_area_on_grid(ConstVec f, ConstVec g, const Grid& grid) {
   check_sizes(f, g, grid);
-  return grid.trapezoid((f - g).cwiseAbs());
+  const double v = grid.trapezoid((f - g).cwiseAbs());
+  if (!std::isfinite(v)) throw InvalidArgument("∫|f − g| on the grid: the pdf values at the nodes hold NaN or inf");
+  return v;
 }
 
 double intersection_area_on_grid(ConstVec f, ConstVec g, const Grid& grid) {
   check_sizes(f, g, grid);
-  return grid.trapezoid(f.cwiseMin(g));
+  const double v = grid.trapezoid(f.cwiseMin(g));
+  if (!std::isfinite(v)) throw InvalidArgument("∫min(f, g) on the grid: the pdf values at the nodes hold NaN or inf");
+  return v;
 }
 
 Grid comparison_grid(const Distribution& a, const Distribution& b, Eigen::Index n) {
@@ -54,15 +71,49 @@ Grid comparison_grid(const Distribution& a, const Distribution& b, Eigen::Index 
   return g;
 }
 
-double pr(const Distribution& a, const Distribution& b, const Grid& g) {
-  return l1_area_on_grid(pdf_grid(a, g), pdf_grid(b, g), g);
+GridComparison compare_on_grid(const Distribution& a, const Distribution& b, const Grid& g) {
+  g.validate();
+  const Eigen::VectorXd x = g.nodes();
+  const Eigen::VectorXd fa = a.pdf(x), fb = b.pdf(x);
+  GridComparison out;
+  // Does the grid resolve each pdf? Its trapezoid mass plus its mass outside the grid is 1.
+  for (const auto& [d, f] : {std::pair<const Distribution*, const Eigen::VectorXd*>{&a, &fa}, {&b, &fb}}) {
+    if (!f->allFinite()) {
+      Eigen::Index i = 0;
+      while (std::isfinite((*f)[i])) ++i;
+      if (std::isnan((*f)[i]))
+        throw InvalidArgument(fmt::format("the pdf of {} is {} at x = {}: it cannot be integrated; check its parameters",
+                                          d->describe(), (*f)[i], x[i]));
+      out.warnings.push_back(fmt::format("the pdf of {} is infinite at the grid node {}; integrated exactly between the pdf "
+                                         "crossings instead of on the grid",
+                                         d->describe(), x[i]));
+      continue;
+    }
+    const double m = g.trapezoid(*f) + mass_between(*d, -std::numeric_limits<double>::infinity(), g.lo) +
+                     mass_between(*d, g.hi, std::numeric_limits<double>::infinity());
+    if (!(std::abs(m - 1.0) <= 1e-3))
+      out.warnings.push_back(fmt::format("the pdf of {} integrates to {:.6g} on the grid [{:.6g}, {:.6g}] of {} nodes (step {:.3g}), "
+                                         "not 1: the grid does not resolve it; integrated exactly between the pdf crossings instead",
+                                         d->describe(), m, g.lo, g.hi, g.n, g.step()));
+  }
+  if (out.warnings.empty()) {
+    out.pr = std::clamp(g.trapezoid((fa - fb).cwiseAbs()), 0.0, 2.0);
+    out.intersection = std::clamp(g.trapezoid(fa.cwiseMin(fb)), 0.0, 1.0);
+    return out;
+  }
+  const PdfOverlap o = pdf_overlap(a, b, g.lo, g.hi);
+  out.pr = o.l1;
+  out.intersection = o.intersection;
+  return out;
 }
 
-double pr(const Distribution& a, const Distribution& b) { return pr(a, b, comparison_grid(a, b)); }
+double pr(const Distribution& a, const Distribution& b, const Grid& g) { return compare_on_grid(a, b, g).pr; }
 
-double intersection_area(const Distribution& a, const Distribution& b, const Grid& g) {
-  return intersection_area_on_grid(pdf_grid(a, g), pdf_grid(b, g), g);
-}
+double pr(const Distribution& a, const Distribution& b) { return pdf_overlap(a, b).l1; }
+
+double intersection_area(const Distribution& a, const Distribution& b, const Grid& g) { return compare_on_grid(a, b, g).intersection; }
+
+double intersection_area(const Distribution& a, const Distribution& b) { return pdf_overlap(a, b).intersection; }
 
 double area_metric_samples(ConstVec a, ConstVec b) {
   require_size(a, 1, "sample a");
@@ -126,14 +177,23 @@ double loglik(ConstVec y, const Distribution& d, double floor, int* floored) {
   require_size(y, 1, "data");
   require_finite(y, "data");
   const Eigen::VectorXd f = d.pdf(Eigen::VectorXd(y));
+  const double log_floor = std::log(floor);
   double s = 0.0;
   int nf = 0;
   for (Eigen::Index i = 0; i < f.size(); ++i) {
-    if (!(f[i] > floor)) {
+    // Densities that are small, underflowed, infinite or NaN go through logpdf (log space).
+    const double lf = std::isnan(f[i]) ? f[i] : f[i] > 1e-280 && std::isfinite(f[i]) ? std::log(f[i]) : d.logpdf(y[i]);
+    if (std::isnan(lf))
+      throw InvalidArgument(fmt::format("loglik: the density of {} is NaN at data[{}] = {}; check its parameters", d.describe(), i + 1, y[i]));
+    if (lf == std::numeric_limits<double>::infinity())
+      throw InvalidArgument(fmt::format("loglik: the density of {} is infinite at data[{}] = {} (a support bound): the likelihood is "
+                                        "unbounded; move the bound (loc, lower) so the data lie inside the support",
+                                        d.describe(), i + 1, y[i]));
+    if (!(lf > log_floor)) {
       ++nf;
-      s += std::log(floor);
+      s += log_floor;
     } else {
-      s += std::log(f[i]);
+      s += lf;
     }
   }
   if (floored) *floored = nf;

@@ -28,9 +28,11 @@ struct UpoolMcSettings {
 /// seed), then cached for the process; thread-safe).
 std::shared_ptr<const std::vector<double>> upool_null_sample(int n, const UpoolMcSettings& s = {});
 /// U_crit(n, confidence): the confidence-quantile of U under H0 (type-7 on the MC sample).
-/// confidence in (0, 1), n >= 1; n = 1 uses the exact closed form ¼ + (confidence/2)².
+/// confidence in (0, 1), n >= 1; n = 1 uses the exact closed form ¼ + (confidence/2)²; n above
+/// kUpoolMonteCarloMaxN (50) the fitted large-n form of stats/upool_asymptotic.hpp (the MC
+/// settings then do not apply).
 double upool_threshold(int n, double confidence, const UpoolMcSettings& s = {});
-/// p = P_H0(U >= u_obs) from the MC sample (n = 1: exact).
+/// p = P_H0(U >= u_obs) from the MC sample (n = 1: exact; n > 50: the fitted large-n form).
 double upool_pvalue(int n, double u_obs, const UpoolMcSettings& s = {});
 /// E U under H0, exact: ∫_0^1 E|B/n − t| dt with B ~ Bin(n, t) (Gauss–Legendre per piece).
 double upool_null_mean(int n);

@@ -4,6 +4,8 @@
 //   mse = sigma2 sY^2 (1 + |U|^2 - |Rt|^2) per column, clamped at 0.
 // Blocks go to the workers as they free up; each writes its own rows only.
 #include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "surrogate/fused_mean.hpp"
@@ -20,6 +22,14 @@ void check_input(const Model& md, const Eigen::MatrixXd& X) {
   if (X.cols() != md.inputs())
     throw DimensionMismatch("points have " + std::to_string(X.cols()) + " columns but the model has " +
                             std::to_string(md.inputs()) + " inputs");
+  // A NaN coordinate makes every correlation NaN-free but meaningless (exp of NaN distances
+  // was clamped to a finite mean): refuse it, naming the point.
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    for (Eigen::Index j = 0; j < X.cols(); ++j)
+      if (!std::isfinite(X(i, j)))
+        throw InvalidArgument(fmt::format("point {} input {} is {}: Kriging predicts at finite points only (a NaN "
+                                          "usually comes from a failed model run or a missing data cell upstream)",
+                                          i + 1, j + 1, std::isnan(X(i, j)) ? "NaN" : fmt::format("{}", X(i, j))));
 }
 
 template <class Body>

@@ -216,14 +216,9 @@ local function target(self, path, name)
   return (tostring(dir):gsub("/+$", "")) .. "/" .. name
 end
 
+-- Whole file or nothing: a full disk never leaves a torn report (smi.file).
 local function write_file(path, content, what)
-  local f, err = io.open(path, "wb")
-  if not f then
-    error(("%s: cannot write '%s': %s (does the folder exist and is it under --out?)"):format(what, path, tostring(err)), 3)
-  end
-  f:write(content)
-  f:close()
-  return path
+  return require("smi.file").write(path, content, what)
 end
 
 --- Writes report.html (to `path`, or <out>/report.html) and returns the path.

@@ -8,6 +8,9 @@
 
 #include "eval/store.hpp"
 
+#include <fstream>
+#include <sqlite3.h>
+
 using namespace smi::eval;
 namespace fs = std::filesystem;
 
@@ -76,4 +79,32 @@ TEST_CASE("values encode in shortest round-trip text, NaN included") {
   CHECK(std::isnan(back[1].second));
   CHECK(std::signbit(back[2].second));
   CHECK(encode_values({{"a", 0.1}}) == "a\t0.1\n");
+}
+
+// Issue 14: SQLite's own words ("disk I/O error", "no such column: program") named no fix.
+TEST_CASE("a store path that is a folder, a foreign table or not a database: the message names the fix") {
+  const fs::path d = fresh_dir("messages");
+  for (bool ro : {false, true})
+    CHECK_THROWS_WITH(Store(d.string(), ro), Catch::Contains("is a folder; a store is one SQLite file") &&
+                                                 Catch::Contains("--store " + d.string() + "/evaluations.sqlite"));
+  // an 'evaluations' table of another layout (no 'program' column)
+  const std::string other = (d / "other.sqlite").string();
+  {
+    Store s(other, false);
+  }
+  {
+    // rebuild the table without 'program', as another tool might have
+    sqlite3* db = nullptr;
+    REQUIRE(sqlite3_open(other.c_str(), &db) == SQLITE_OK);
+    REQUIRE(sqlite3_exec(db, "DROP TABLE evaluations; CREATE TABLE evaluations(key TEXT, value REAL);", nullptr, nullptr,
+                         nullptr) == SQLITE_OK);
+    sqlite3_close(db);
+  }
+  CHECK_THROWS_WITH(Store(other, false), Catch::Contains("has another layout") && Catch::Contains("no such column") &&
+                                             Catch::Contains("move the file away"));
+  CHECK_THROWS_WITH(Store(other, true), Catch::Contains("has another layout"));
+  // a text file
+  const std::string text = (d / "notes.sqlite").string();
+  { std::ofstream(text) << "these are not records, just a text file long enough to have a header page\n"; }
+  CHECK_THROWS_WITH(Store(text, true), Catch::Contains("is not an SQLite database"));
 }

@@ -48,7 +48,7 @@ TEST_CASE("lognormal with mean <= 0 and negative std are clear errors") {
                     Catch::Contains("input 'k'") && Catch::Contains("mean > 0"));
   CHECK_THROWS_AS(lognormal_params(-1.0, 0.1), smi::InvalidArgument);
   CHECK_THROWS_WITH(map_standard_normal(InputFamily::normal, 1.0, -0.1, z, "input 'k'"), Catch::Contains("std >= 0"));
-  CHECK_THROWS_WITH(parse_family("gamma", "input 'k'"), Catch::Contains("\"lognormal\""));
+  CHECK_THROWS_WITH(parse_family("gama", "input 'k'"), Catch::Contains("\"lognormal\""));
 }
 
 TEST_CASE("CRN matrices: quantile points, permuted columns, same seed same matrix") {

@@ -32,7 +32,8 @@ TEST_CASE("the u-pooling Monte Carlo stops when interrupted") {
   UpoolMcSettings s;
   s.replications = 100000;
   s.seed = 99;  // a sample no other test caches
-  REQUIRE_THROWS_WITH(upool_threshold(5000, 0.95, s), "interrupted");
+  REQUIRE_THROWS_WITH(upool_null_sample(5000, s), "interrupted");  // the Monte Carlo (sort path)
+  REQUIRE_THROWS_WITH(upool_threshold(40, 0.95, s), "interrupted");  // through the threshold (network path)
   cancel::reset();
 }
 

@@ -1,11 +1,14 @@
 // u-pooling statistic, thresholds, p-values and exact null means against spec §5/§8.3.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "stats/kde.hpp"
 #include "stats/upool.hpp"
 
 using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
 
 namespace {
 Eigen::VectorXd vec(std::initializer_list<double> v) {
@@ -85,4 +88,33 @@ TEST_CASE("verdicts for the spec data under two normal predictions") {
   // Pooling: two groups, each against its own prediction, give the same U as one group.
   const auto v3 = smi::upool({x.head(4), x.tail(5)}, {good, good});
   CHECK_THAT(v3.metric, WithinAbs(v1.metric, 1e-15));
+}
+
+// Large n (issue 14 item 5): sqrt(n)·U tends to A = ∫|B(t)|dt (Brownian bridge), whose mean is
+// exactly sqrt(pi/32) (E|B(t)| = sqrt(2t(1-t)/pi)). The fitted table's limit must have that mean,
+// and the fitted form must agree with a Monte Carlo at n just above the switch.
+TEST_CASE("large-n u-pooling thresholds: fitted form against a closed form and Monte Carlo") {
+  // mean of A from its quantile function: E A = ∫_0^1 Q_A(p) dp, Q_A(p) = lim sqrt(n) U_crit(n, p)
+  const int big = 1000000000;
+  const double rn = std::sqrt(static_cast<double>(big));
+  double mean = 0;
+  const int m = 200000;
+  for (int i = 0; i < m; ++i) mean += rn * smi::upool_threshold(big, (i + 0.5) / m, {}) / m;
+  CHECK_THAT(mean, WithinRel(std::sqrt(M_PI / 32), 2e-3));
+  // n = 60 (past the switch): an independent MC of 10^5 sets (sampling error ~0.3 %)
+  smi::UpoolMcSettings s;
+  s.replications = 100000;
+  s.seed = 99;
+  std::vector<double> v(*smi::upool_null_sample(60, s));
+  std::sort(v.begin(), v.end());
+  for (double c : {0.5, 0.9, 0.95, 0.99}) {
+    const double mc = v[static_cast<std::size_t>(c * (v.size() - 1))];
+    CHECK_THAT(smi::upool_threshold(60, c), WithinRel(mc, 0.01));
+    CHECK_THAT(smi::upool_pvalue(60, mc), WithinAbs(1 - c, 0.004));
+  }
+  // n = 10,000 returns at once (10^6 MC sets took more than 10 minutes) and is consistent
+  const double t = smi::upool_threshold(10000, 0.95);
+  CHECK_THAT(smi::upool_pvalue(10000, t), WithinAbs(0.05, 1e-9));
+  CHECK(smi::upool_pvalue(10000, 2 * t) < 1e-3);  // past the table: the Gaussian tail of A
+  CHECK(smi::upool_pvalue(10000, 3 * t) < smi::upool_pvalue(10000, 2 * t));
 }

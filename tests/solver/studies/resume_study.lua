@@ -1,10 +1,11 @@
 -- A small study for the end-to-end CLI tests (test_cli_resume.sh): eight runs of the test
 -- solver, one at a time, each logging its launch to a shared file.
--- arg[1] = solver, arg[2] = launch log, arg[3] = seconds per run.
-local solver, log, sleep = arg[1], arg[2], arg[3] or "0.2"
+-- arg[1] = solver, arg[2] = launch log, arg[3] = seconds per run, arg[4] = the solver's mode
+-- (default ok; the signal tests use hang_setsid).
+local solver, log, sleep, mode = arg[1], arg[2], arg[3] or "0.2", arg[4] or "ok"
 local m = smi.model.command{
   name = "resume", inputs = {"x1", "x2"}, outputs = {"f"},
-  template_string = "x1 = {{x1}}\nx2 = {{x2}}\nsleep = " .. sleep .. "\nlog = {{log}}\n",
+  template_string = "x1 = {{x1}}\nx2 = {{x2}}\nsleep = " .. sleep .. "\nlog = {{log}}\nmode = " .. mode .. "\n",
   constants = {log = log}, deck = "run.deck", version = "resume-1",
   command = {solver, "{deck}", "-o", "out.txt"},
   parse = function(dir, h) return {f = h.regex("out.txt", "f = (\\S+)")} end,

@@ -1,0 +1,35 @@
+--- smi.file: writing a results file so that it is never torn or shortened.
+--
+--   require("smi.file").write(path, text, "study 'beam'")
+--
+-- Inside smi-lua this is smi.write_file (temporary file beside the target, every write checked,
+-- fsync, rename over the target): a full disk or a crash leaves the previous file as it was and
+-- raises an error naming the file and the reason. Outside smi-lua (plain Lua), the same steps
+-- without fsync, every result checked.
+local M = {}
+
+function M.write(path, text, who)
+  if type(smi) == "table" and type(smi.write_file) == "function" then
+    local ok, err = pcall(smi.write_file, path, text)
+    if not ok then error(("%s: %s"):format(who, tostring(err):gsub("^smi%.write_file: ", "")), 0) end
+    return path
+  end
+  local tmp = path .. ".tmp"
+  local f, err = io.open(tmp, "wb")
+  if not f then error(("%s: cannot write '%s': %s (does the folder exist and is it under --out?)"):format(who, path, tostring(err)), 0) end
+  local ok, werr = f:write(text)
+  if ok then ok, werr = f:flush() end
+  local closed, cerr = f:close()
+  if not ok or not closed then
+    os.remove(tmp)
+    error(("%s: cannot write '%s': %s; the previous file is unchanged"):format(who, path, tostring(werr or cerr)), 0)
+  end
+  local renamed, rerr = os.rename(tmp, path)
+  if not renamed then
+    os.remove(tmp)
+    error(("%s: cannot write '%s': %s; the previous file is unchanged"):format(who, path, tostring(rerr)), 0)
+  end
+  return path
+end
+
+return M
