@@ -9,9 +9,9 @@ namespace smi::cli {
 namespace {
 
 /// Options that take a value: "--name VALUE" or "--name=VALUE".
-const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--lib", "--out", "--seed",
-                               "--max-memory", "--timeout",     "--store",      "--stdlib-dir",
-                               "--executor",   "--slurm-opt"};
+const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--allow-env", "--lib",
+                               "--out",        "--seed",        "--max-memory", "--timeout",   "--store",
+                               "--stdlib-dir", "--executor",    "--slurm-opt"};
 
 bool parse_u64(const std::string& s, std::uint64_t& out) {
   if (s.empty() || s[0] == '-') return false;
@@ -37,6 +37,7 @@ std::string apply(Args& a, const std::string& name, const std::string& v) {
   if (name == "--allow-read") c.allow_read.push_back(v);
   else if (name == "--allow-write") c.allow_write.push_back(v);
   else if (name == "--allow-exec") c.allow_exec.push_back(v);
+  else if (name == "--allow-env") c.allow_env.push_back(v);
   else if (name == "--lib") c.lib_dirs.push_back(v);
   else if (name == "--out") c.out_dir = v;
   else if (name == "--store") c.store_path = v;
@@ -160,6 +161,7 @@ Sandbox (each option may be repeated):
                       the library folders)
   --allow-write PATH  let the script write under PATH (it always may write under --out)
   --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
+  --allow-env NAME    let os.getenv read the environment variable NAME (no other is readable)
 
 Modules:
   --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too);
@@ -171,8 +173,8 @@ Run:
   --out DIR           output folder, created when first written (default smi-out/<script>/)
   --seed N            seed of smi's and math.random's generators (default 20200214); smi.seed
   --quiet, -q         no progress output (automatic when stdout or stderr is not a terminal)
-  --max-memory MB     stop the script when the Lua heap would exceed MB megabytes (data held
-                      in C++, such as smi.vec contents, is not counted)
+  --max-memory MB     stop the script when the Lua heap plus the data of smi.vec, smi.mat and
+                      Kriging models would exceed MB megabytes
   --timeout SECONDS   stop the script (and each -e chunk, each REPL entry) after SECONDS of
                       running; pcall cannot catch it
   --store PATH        evaluation store (database of solver runs) to use
