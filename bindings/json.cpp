@@ -165,6 +165,9 @@ class Encoder {
   }
 
   void table(int idx, const std::string& where, int depth) {
+    // Each level keeps a key and a value on the Lua stack: make room (without it a table nested
+    // a few hundred levels wrote past the stack before the depth check could refuse it).
+    if (!lua_checkstack(L_, 4)) throw Error(fmt::format("value at {} is nested too deeply for the Lua stack", where));
     const void* id = lua_topointer(L_, idx);
     if (std::find(open_.begin(), open_.end(), id) != open_.end())
       throw Error(fmt::format("value at {} contains itself (a cycle)", where));
@@ -530,6 +533,7 @@ void open_json(lua_State* L) {
   lua_setfield(L, -2, "__tostring");
   lua_pushliteral(L, "smi.json.null");
   lua_setfield(L, -2, "__name");
+  lua::protect_metatable(L, -1, "smi.json.null");
   lua_setmetatable(L, -2);
   lua_pushvalue(L, -1);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kNullKey);

@@ -4,6 +4,7 @@
 
 #include "core/descriptive.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 #include "modules.hpp"
 
 namespace smi::bind {
@@ -35,6 +36,7 @@ int mat_new(lua_State* L) {
   if (lua_type(L, 2) == LUA_TNUMBER) {
     const lua_Integer r = luaL_checkinteger(L, 2), c = luaL_checkinteger(L, 3);
     luaL_argcheck(L, r >= 0 && c >= 0, 2, "sizes must be >= 0");
+    lua::check_alloc(L, static_cast<double>(r) * static_cast<double>(c), sizeof(double), "smi.mat(rows, cols)");
     push_mat(L, Mat::Zero(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)));
     return 1;
   }
@@ -45,6 +47,7 @@ int mat_new(lua_State* L) {
 int mat_zeros(lua_State* L) {
   const lua_Integer r = luaL_checkinteger(L, 1), c = luaL_checkinteger(L, 2);
   luaL_argcheck(L, r >= 0 && c >= 0, 1, "sizes must be >= 0");
+  lua::check_alloc(L, static_cast<double>(r) * static_cast<double>(c), sizeof(double), "smi.mat.zeros(rows, cols)");
   push_mat(L, Mat::Zero(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)));
   return 1;
 }
@@ -52,6 +55,7 @@ int mat_zeros(lua_State* L) {
 int mat_identity(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   luaL_argcheck(L, n >= 0, 1, "size must be >= 0");
+  lua::check_alloc(L, static_cast<double>(n) * static_cast<double>(n), sizeof(double), "smi.mat.identity(n)");
   push_mat(L, Mat::Identity(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n)));
   return 1;
 }

@@ -8,6 +8,7 @@
 
 #include "core/descriptive.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 #include "modules.hpp"
 
 namespace smi::bind {
@@ -47,6 +48,7 @@ Eigen::Index checked_length(lua_State* L, int idx, const char* fname) {
 
 /// A vector of n copies of `value`; a failed allocation is a Lua error naming the size.
 int push_filled(lua_State* L, Eigen::Index n, double value, const char* fname) {
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), fname);  // --max-memory, before allocating
   return lua::protect(L, fname, [&] {
     try {
       push_vec(L, Vec::Constant(n, value));
@@ -74,6 +76,7 @@ int vec_linspace(lua_State* L) {
   const double a = luaL_checknumber(L, 1), b = luaL_checknumber(L, 2);
   const lua_Integer n = luaL_checkinteger(L, 3);
   luaL_argcheck(L, n >= 2, 3, "need at least 2 points");
+  lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.vec.linspace(a, b, n)");
   push_vec(L, Vec::LinSpaced(static_cast<Eigen::Index>(n), a, b));
   return 1;
 }

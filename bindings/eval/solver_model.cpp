@@ -72,10 +72,11 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   lua::Options o(L, 1, fname);
   if (batch)
     o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
-                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store"});
+                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor"});
   else
     o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
-                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store"});
+                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
+                   "executor"});
   Policy& pol = lua::policy(L);
   se::CommandConfig c;
   c.batch = batch;
@@ -107,6 +108,29 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   c.batch_size = static_cast<int>(o.integer("batch_size", 0));
   c.reuse_failed = o.boolean("reuse_failed", false);
   const std::string on_failure = o.string("on_failure", "stop");
+  // executor = {kind = "slurm", partition = "short", ...} overrides --executor/--slurm-opt key by key.
+  std::vector<std::pair<std::string, std::string>> exec_opts;
+  if (const int t = o.push("executor"); t != LUA_TNIL) {
+    if (t != LUA_TTABLE) luaL_error(L, "%s: option 'executor' must be a table {kind = \"slurm\", partition = ..., ...}, got %s", fname, luaL_typename(L, -1));
+    lua_pushnil(L);
+    while (lua_next(L, -2)) {
+      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: executor option keys must be names", fname);
+      const std::string k = lua_tostring(L, -2);
+      // Which programs run as the scheduler's tools is the user's call, not the study's.
+      if (k == "bin_dir") luaL_error(L, "%s: executor option 'bin_dir' may only be given on the command line (--slurm-opt bin_dir=...)", fname);
+      if (lua_type(L, -1) == LUA_TTABLE && k == "sbatch") {
+        for (const auto& a : lua::to_strings(L, -1, "executor.sbatch")) exec_opts.emplace_back(k, a);
+      } else if (lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNUMBER) {
+        exec_opts.emplace_back(k, lua_tostring(L, -1));
+      } else if (lua_type(L, -1) == LUA_TBOOLEAN && k == "detach") {
+        exec_opts.emplace_back(k, lua_toboolean(L, -1) ? "1" : "0");
+      } else {
+        luaL_error(L, "%s: executor option '%s' must be a string or a number, got %s", fname, k.c_str(), luaL_typename(L, -1));
+      }
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
   const std::string store = o.string("store", "");
   std::string template_file, template_text;
   if (!batch) {
@@ -133,6 +157,14 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   }
   lua::protect(L, fname, [&] {
     c.on_failure = se::parse_on_failure(on_failure);
+    if (!pol.executor.empty()) c.executor.kind = pol.executor;
+    for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
+    c.executor.detach = pol.detach;
+    for (const auto& [k, v] : exec_opts) {
+      if (k == "detach") c.executor.detach = v == "1";
+      else c.executor.set(k, v);
+    }
+    c.executor.validate();
     c.program_name = argv[0];
     c.program = pol.check_exec(argv[0], fname).string();
     c.args.assign(argv.begin() + 1, argv.end());
@@ -152,7 +184,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
     c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
     // Work folders live under --out: one process per output folder keeps them unique.
-    se::lock_output_folder(pol.checked_write_dir(out.string()));
+    se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
     c.store_path = pol.checked_write_file(store.empty() ? (out / "evaluations.sqlite").string() : store);
     if (!pol.store_path.empty()) {
       const std::string shared = pol.checked_read_file(pol.store_path);
@@ -292,6 +324,7 @@ int evaluate_solver(lua_State* L, Model& m) {
     if (pol.dry_run) {
       const se::Plan plan = m.ev->plan(X);
       std::printf("%s\n", se::format_plan(m.name, plan, concurrency).c_str());
+      if (const std::string ex = m.ev->executor_plan(plan); !ex.empty()) std::printf("%s", ex.c_str());
       std::fflush(stdout);
       add_planned(L, plan);
       dry_missing = plan.runs;

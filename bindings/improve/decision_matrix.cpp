@@ -168,6 +168,7 @@ void register_decision_meta(lua_State* L) {
   if (luaL_newmetatable(L, kDecisionMeta)) {
     lua_pushcfunction(L, decision_tostring);
     lua_setfield(L, -2, "__tostring");
+    lua::protect_metatable(L, -1, kDecisionMeta);
   }
   lua_pop(L, 1);
 }

@@ -23,10 +23,19 @@ options:
   model = nil                 -- model form: an smi.Model, an smi.Kriging (or a table of them by
                               -- output), or a function(X) returning {output = vec}
   inputs = nil                -- model form: {name = {dist = "normal", mean = m | {lo, hi, start},
-                              -- std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =)
+                              -- std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =);
+                              -- dist: any of the nine families (truncnormal/beta with fixed lower/upper,
+                              -- gamma/weibull with a fixed loc, triangular with mode_at)
   data = nil                  -- model form: {output = vec of measurements | a dist (an experimental PDF)}
   metric = "pr"               -- "pr", "loglik", or function(predicted, data) returning a number
   penalty = nil               -- function(theta) returning a number added to the metric (prior knowledge)
+  prior = nil                 -- {{param = "x.mean", mean =, std =} | {name =, fn = function(theta), mean =,
+                              -- std =}, ...}: adds 0.5((v - mean)/std)^2 each, reported as metrics.prior
+  prior_weight = 1            -- factor on the prior part
+  gradient = "auto"           -- "auto" (analytic where the model gives one: Kriging, m:gradient),
+                              -- "analytic" or "differences"
+  overlap_start = true        -- a start where a response's PR is near 2 (no overlap) is first moved
+                              -- to a moment-matching start
   n = ${n}                    -- CRN sample size per evaluation
   crn = "random"              -- "random" draws or "quantiles" (stratified) common random numbers
   grid = nil                  -- {output = {lower, upper}}: PR integration ranges
@@ -46,16 +55,22 @@ options:
   initial_step = ${initial_step}  -- derivative-free methods' first step, scaled units
   seed = smi.seed             -- CRN sample, multistart points and bootstrap
   identifiability = true      -- true, false, or {points = ${ident_points}, rel_tol = ${ident_rel_tol},
-                              -- abs_tol = ${ident_abs_tol}}: a sweep of each parameter at the optimum
+                              -- abs_tol = ${ident_abs_tol}, tolerance =, directions = true}: a sweep
+                              -- of each parameter and the directions the data determine or not
+  intervals = nil             -- {level = 0.9} profile intervals (loglik / objective read as a negative
+                              -- log-likelihood) or {delta = rise}
   bootstrap = nil             -- replicates, or {replicates = ${boot_replicates}, level = ${boot_level},
-                              -- seed =, maxeval =}: refits on resampled data (model form)
+                              -- seed =, maxeval =, multistart =, warm = false}: full calibrations
+                              -- on resampled data (model form; warm = true starts at the optimum)
   progress = nil              -- function(row) called after each optimizer step
 returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
   r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
   {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
-  r.evaluations, r.model_runs, r.starts, r.at_bounds, r.warnings (at a bound, outside the design
-  range, not identifiable), r.identifiability {span, weak, profiles, evaluations}, r.bootstrap
-  {lower, upper, std, level, replicates, failed, samples}
+  r.evaluations, r.model_runs, r.starts, r.starts_agree, r.optima (distinct optima), r.gradient,
+  r.at_bounds, r.warnings (at a bound, outside the design range, not identifiable),
+  r.identifiability {span, weak, profiles, evaluations, directions = {{determined, loadings,
+  curvature, profile}, ...}}, r.near_optimal {tolerance, points, objectives}, r.intervals,
+  r.bootstrap {lower, upper, std, level, replicates, failed, samples}
 errors: both or neither form; a range with lower >= upper or a start outside it (named); a
   lognormal mean range reaching 0; data with fewer than 2 points; the model failing (its message);
   an unknown option (the closest name is suggested)

@@ -148,6 +148,37 @@ errors: a probability outside [0, 1]
 example:
   print(smi.dist.normal{mean = 0, std = 1}:quantile{0.05, 0.95})
 
+@ smi.dist:logpdf(x) -> number | vec
+The natural logarithm of the density, computed in log space (finite where the pdf underflows;
+-inf outside the support).
+returns: a number, or a vec
+errors: x holds something that is not a number
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:logpdf(40))
+
+@ smi.dist:logcdf(x) -> number | vec
+The natural logarithm of P(X <= x), accurate far in the lower tail (no underflow to -inf).
+returns: a number, or a vec
+errors: x holds something that is not a number
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:logcdf(-40))
+
+@ smi.dist:sf(x) -> number | vec
+The survival function P(X > x), computed as a complement in the upper tail (not 1 - cdf), so it
+keeps its relative accuracy down to 1e-300.
+returns: a number, or a vec
+errors: x holds something that is not a number
+example:
+  print(smi.dist.truncnormal{mean = 0, std = 1, lower = 6}:sf(7))
+
+@ smi.dist:isf(q) -> number | vec
+The inverse survival function: the x with P(X > x) = q, solved on sf, so upper-tail quantiles
+(q = 1e-12) are as accurate as lower-tail ones.
+returns: a number, or a vec
+errors: a probability outside [0, 1]
+example:
+  print(smi.dist.normal{mean = 0, std = 1}:isf(0.05))
+
 @ smi.dist:sample(n, seed | rng) -> vec
 n draws. The generator is explicit: an integer seed or an smi.rng (same seed, same numbers).
 returns: a vec of n numbers

@@ -291,6 +291,7 @@ void open_metric(lua_State* L) {
     lua_pushcfunction(L, verdict_curve);
     lua_setfield(L, -2, "curve");
     lua_setfield(L, -2, "__index");
+    lua::protect_metatable(L, -1, kVerdictType);
   }
   lua_pop(L, 1);
   const luaL_Reg fns[] = {{"pr", m_pr},

@@ -164,6 +164,14 @@ options:
   grid = ${grid}         -- grid nodes of the PDF areas
   output = nil           -- with several outputs: the one to rank (default: all, by name)
   order = nil            -- as smi.propagate
+  method = "full"        -- "full" (eq. 3 on the model) or "surrogate": a ridge-regularised quadratic
+                         -- (or linear) fit from `runs` model runs, checked by leave-one-out Q2, then
+                         -- eq. 3 on the surrogate at no model cost
+  runs = 300             -- surrogate: model runs of its Latin hypercube
+  basis = "quadratic"    -- surrogate: "quadratic" (main effects and squares) or "linear"
+  q2_min = 0.9           -- surrogate: a leave-one-out Q2 below this warns (add runs or use "full")
+  delta = true           -- surrogate: also Borgonovo's given-data delta from the same runs
+  classes = 0            -- surrogate: delta's conditioning classes (0: SALib's rule by run count)
 returns: rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi} sorted by rank, with fields
   output, n, variance, warnings, by_input; tostring() prints the table. Several outputs and no
   `output`: a table of rankings by output name

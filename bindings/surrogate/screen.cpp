@@ -198,6 +198,7 @@ void open_screen(lua_State* L) {
   luaL_newmetatable(L, kScreenMeta);
   lua_pushcfunction(L, screen_tostring);
   lua_setfield(L, -2, "__tostring");
+  lua::protect_metatable(L, -1, kScreenMeta);
   lua_pop(L, 1);
   lua_pushcfunction(L, screen_call);
   lua_setfield(L, -2, "screen");

@@ -9,8 +9,9 @@ namespace smi::cli {
 namespace {
 
 /// Options that take a value: "--name VALUE" or "--name=VALUE".
-const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--lib", "--out", "--seed",
-                               "--max-memory", "--timeout",     "--store",      "--stdlib-dir"};
+const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--allow-env", "--lib",
+                               "--out",        "--seed",        "--max-memory", "--timeout",   "--store",
+                               "--stdlib-dir", "--executor",    "--slurm-opt"};
 
 bool parse_u64(const std::string& s, std::uint64_t& out) {
   if (s.empty() || s[0] == '-') return false;
@@ -36,10 +37,19 @@ std::string apply(Args& a, const std::string& name, const std::string& v) {
   if (name == "--allow-read") c.allow_read.push_back(v);
   else if (name == "--allow-write") c.allow_write.push_back(v);
   else if (name == "--allow-exec") c.allow_exec.push_back(v);
+  else if (name == "--allow-env") c.allow_env.push_back(v);
   else if (name == "--lib") c.lib_dirs.push_back(v);
   else if (name == "--out") c.out_dir = v;
   else if (name == "--store") c.store_path = v;
   else if (name == "--stdlib-dir") c.stdlib_dir = v;
+  else if (name == "--executor") {
+    if (v != "local" && v != "slurm") return "--executor needs 'local' or 'slurm', got '" + v + "'";
+    c.executor = v;
+  } else if (name == "--slurm-opt") {
+    if (v.find('=') == std::string::npos || v[0] == '=')
+      return "--slurm-opt needs KEY=VALUE (partition, account, qos, time, mem, cpus, sbatch, throttle, ...), got '" + v + "'";
+    c.slurm_opts.push_back(v);
+  }
   else if (name == "--seed") {
     if (!parse_u64(v, c.seed)) return "--seed needs a non-negative integer, got '" + v + "'";
   } else if (name == "--timeout") {
@@ -82,6 +92,8 @@ Args parse(int argc, char** argv) {
       a.cfg.quiet = true;
     } else if (s == "--dry-run") {
       a.cfg.dry_run = true;
+    } else if (s == "--detach") {
+      a.cfg.detach = true;
     } else if (s.rfind("-e", 0) == 0 || s.rfind("-l", 0) == 0) {
       // -e chunk, -echunk, -l mod, -lmod (as lua.c)
       std::string v = s.substr(2);
@@ -149,6 +161,7 @@ Sandbox (each option may be repeated):
                       the library folders)
   --allow-write PATH  let the script write under PATH (it always may write under --out)
   --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
+  --allow-env NAME    let os.getenv read the environment variable NAME (no other is readable)
 
 Modules:
   --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too);
@@ -160,12 +173,25 @@ Run:
   --out DIR           output folder, created when first written (default smi-out/<script>/)
   --seed N            seed of smi's and math.random's generators (default 20200214); smi.seed
   --quiet, -q         no progress output (automatic when stdout or stderr is not a terminal)
-  --max-memory MB     stop the script when the Lua heap would exceed MB megabytes (data held
-                      in C++, such as smi.vec contents, is not counted)
+  --max-memory MB     stop the script when the Lua heap plus the data of smi.vec, smi.mat and
+                      Kriging models would exceed MB megabytes
   --timeout SECONDS   stop the script (and each -e chunk, each REPL entry) after SECONDS of
                       running; pcall cannot catch it
   --store PATH        evaluation store (database of solver runs) to use
-  --dry-run           count the solver runs a study would launch; launch none
+  --dry-run           count the solver runs a study would launch; launch none (with
+                      --executor slurm: print the job script, the sbatch lines, the cost plan)
+
+Cluster (solver runs of smi.model.command / smi.model.batch):
+  --executor KIND     where solver runs execute: local (default) or slurm (job arrays through
+                      sbatch, squeue, sacct, scancel); a model's executor = {...} overrides it
+  --slurm-opt K=V     a Slurm option, repeated: partition, account, qos, time (minutes or
+                      H:M:S; default: the model's timeout plus a margin), mem, cpus, sbatch
+                      (extra sbatch arguments), throttle (array %N, default 50), max_array,
+                      poll / poll_max (squeue interval, default 5 and 60 s), cmd_timeout,
+                      down_after (s of scheduler errors before stopping, default 300),
+                      exit_wait, max_requeues, bin_dir
+  --detach            an interrupted study (Ctrl-C, SIGTERM, --timeout) leaves its Slurm jobs
+                      running; running it again reattaches to them (default: one scancel)
   -h, --help          print this help and exit
 
 Commands (sharing libraries; options such as --lib go before or after them):

@@ -85,6 +85,7 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
     for (const auto& d : a.cfg.allow_read) av.insert(av.end(), {"--allow-read", d});
     for (const auto& d : a.cfg.allow_write) av.insert(av.end(), {"--allow-write", d});
     for (const auto& d : a.cfg.allow_exec) av.insert(av.end(), {"--allow-exec", d});
+    for (const auto& d : a.cfg.allow_env) av.insert(av.end(), {"--allow-env", d});
     if (!a.cfg.stdlib_dir.empty()) av.insert(av.end(), {"--stdlib-dir", a.cfg.stdlib_dir});
     if (a.cfg.timeout_s > 0) av.insert(av.end(), {"--timeout", std::to_string(a.cfg.timeout_s)});
     if (a.cfg.max_memory_mb > 0) av.insert(av.end(), {"--max-memory", std::to_string(a.cfg.max_memory_mb)});

@@ -63,7 +63,7 @@ void call(lua_State* L, int nargs, int nresults) {
 }
 
 void register_type_raw(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods,
-                       lua_CFunction gc, FieldGetter getter) {
+                       lua_CFunction gc, lua_CFunction close, FieldGetter getter) {
   luaL_newmetatable(L, type);  // sets __name, used by luaL_typeerror and tostring
   lua_newtable(L);
   if (methods) luaL_setfuncs(L, methods, 0);
@@ -73,12 +73,54 @@ void register_type_raw(lua_State* L, const char* type, const luaL_Reg* methods, 
     lua_pushnil(L);
   lua_pushcclosure(L, index_dispatch, 2);
   lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, gc);
+  lua_pushstring(L, type);
+  lua_pushcclosure(L, gc, 1);
   lua_setfield(L, -2, "__gc");
-  lua_pushcfunction(L, gc);
+  lua_pushstring(L, type);
+  lua_pushcclosure(L, close, 1);
   lua_setfield(L, -2, "__close");
   if (metamethods) luaL_setfuncs(L, metamethods, 0);
+  protect_metatable(L, -1, type);
   lua_pop(L, 1);
+}
+
+void protect_metatable(lua_State* L, int idx, const char* type) {
+  // getmetatable(x) returns a copy without __gc and __close: scripts keep reading __name (type
+  // checks such as getmetatable(v).__name == "smi.vec") and the other metamethods, but cannot
+  // call a finalizer, and changing the copy changes nothing.
+  (void)type;
+  idx = lua_absindex(L, idx);
+  lua_newtable(L);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    const bool hidden = lua_type(L, -2) == LUA_TSTRING &&
+                        (std::strcmp(lua_tostring(L, -2), "__gc") == 0 || std::strcmp(lua_tostring(L, -2), "__close") == 0);
+    if (hidden) {
+      lua_pop(L, 1);
+      continue;
+    }
+    lua_pushvalue(L, -2);
+    lua_insert(L, -2);
+    lua_rawset(L, -4);
+  }
+  lua_setfield(L, idx, "__metatable");
+}
+
+bool close_must_defer(lua_State* L) {
+  // A coroutine: the function that resumed it may be a bound function using the object.
+  if (!lua_pushthread(L)) {
+    lua_pop(L, 1);
+    return true;
+  }
+  lua_pop(L, 1);
+  // Level 0 is this __close itself; any C function above it (a bound function that called
+  // back into Lua, pcall, a metamethod caller) may hold a pointer into the object.
+  lua_Debug ar;
+  for (int level = 1; lua_getstack(L, level, &ar); ++level) {
+    if (!lua_getinfo(L, "S", &ar)) continue;
+    if (ar.what && std::strcmp(ar.what, "C") == 0) return true;
+  }
+  return false;
 }
 
 std::vector<std::string> to_strings(lua_State* L, int idx, const char* what) {

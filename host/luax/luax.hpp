@@ -12,6 +12,7 @@
 //  * Calling Lua from C++ (objectives, user models) goes through call() below, which uses
 //    lua_pcall and turns a Lua error into smi::Error carrying the Lua message.
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdio>
 #include <exception>
 #include <initializer_list>
@@ -54,19 +55,71 @@ void call(lua_State* L, int nargs, int nresults);
 
 // ---------------------------------------------------------------------------------------------
 // Boxes: userdata holding a pointer to a heap object owned by Lua's GC.
+//
+// A script must not be able to free what C++ is still using (issue 13):
+//  * every smi metatable has __metatable (a copy without __gc/__close), so getmetatable() never
+//    hands out a finalizer or the metatable itself;
+//  * __gc and __close check the type of their argument (luaL_checkudata on their own type), so
+//    one type's finalizer cannot delete another type's object;
+//  * __close (a `<close>` variable) deletes at once only when no C function is running below it
+//    on the main thread's stack; otherwise (inside a callback of a bound function: a vec:map
+//    function, an option table's __index, a model parser, an objective, or in a coroutine) it
+//    only marks the box closed, and the collector deletes the object once nothing reaches it.
+//    A bound function keeps the boxes it uses on its own Lua stack (its arguments), so it
+//    cannot lose them while it runs; methods on a closed box raise "<type> is closed".
 
 template <class T>
 struct Box {
   T* p;
+  std::size_t bytes;  // heap bytes counted against --max-memory (memory.hpp), returned on delete
+  bool closed;        // closed by __close while in use: p stays valid until __gc
 };
 
+/// Counts `bytes` of C++ heap held by a new box (vec, mat, Kriging) against --max-memory and
+/// reports them to Lua's collector; raises "memory limit exceeded: <what> ..." beyond the limit.
+/// Implemented in memory.cpp. release_bytes returns them when the object is deleted.
+void account_bytes(lua_State* L, std::size_t bytes, const char* what);
+void release_bytes(lua_State* L, std::size_t bytes);
+
+/// Heap bytes owned by an object (0 when not worth counting). Overloads live beside the types.
+template <class T>
+std::size_t heap_bytes(const T&) {
+  return 0;
+}
+inline std::size_t heap_bytes(const Eigen::VectorXd& v) { return static_cast<std::size_t>(v.size()) * sizeof(double); }
+inline std::size_t heap_bytes(const Eigen::MatrixXd& m) { return static_cast<std::size_t>(m.size()) * sizeof(double); }
+
+/// True when a C function is active below the running __close on this thread, or the thread is
+/// a coroutine (whose resumer may be one): then deleting now could free what C++ still uses.
+bool close_must_defer(lua_State* L);
+
+template <class T>
+void box_delete(lua_State* L, Box<T>* b) {
+  T* p = b->p;
+  const std::size_t bytes = b->bytes;
+  b->p = nullptr;
+  b->bytes = 0;
+  delete p;
+  if (bytes) release_bytes(L, bytes);
+}
+
+/// __gc: upvalue 1 is the type name. Called by the collector, the object is unreachable.
 template <class T>
 int box_gc(lua_State* L) {
-  auto* b = static_cast<Box<T>*>(lua_touserdata(L, 1));
-  if (b && b->p) {
-    delete b->p;
-    b->p = nullptr;
-  }
+  auto* b = static_cast<Box<T>*>(luaL_checkudata(L, 1, lua_tostring(L, lua_upvalueindex(1))));
+  if (b->p) box_delete(L, b);
+  return 0;
+}
+
+/// __close: upvalue 1 is the type name.
+template <class T>
+int box_close(lua_State* L) {
+  auto* b = static_cast<Box<T>*>(luaL_checkudata(L, 1, lua_tostring(L, lua_upvalueindex(1))));
+  if (!b->p) return 0;
+  if (close_must_defer(L))
+    b->closed = true;  // __gc deletes it
+  else
+    box_delete(L, b);
   return 0;
 }
 
@@ -76,22 +129,33 @@ template <class T>
 T*& new_box(lua_State* L, const char* type) {
   auto* b = static_cast<Box<T>*>(lua_newuserdatauv(L, sizeof(Box<T>), 1));
   b->p = nullptr;
+  b->bytes = 0;
+  b->closed = false;
   luaL_setmetatable(L, type);
   return b->p;
 }
 
-/// Pushes a box owning `value` (moved in).
+/// Pushes a box owning `value` (moved in). Its heap bytes count against --max-memory.
 template <class T>
 T& push_box(lua_State* L, const char* type, T&& value) {
-  T*& slot = new_box<std::decay_t<T>>(L, type);
-  slot = new std::decay_t<T>(std::move(value));
+  using V = std::decay_t<T>;
+  const std::size_t bytes = heap_bytes(static_cast<const V&>(value));
+  if (bytes) account_bytes(L, bytes, type);  // may raise: nothing allocated by us yet
+  T*& slot = new_box<V>(L, type);
+  auto* b = static_cast<Box<V>*>(lua_touserdata(L, -1));
+  b->bytes = bytes;  // returned by __gc even if the copy below fails
+  slot = new V(std::move(value));
   return *slot;
 }
 
+/// The object in the box at idx if it has metatable `type`, else nullptr. A box of that type
+/// that was closed raises "<type> is closed".
 template <class T>
 T* test_box(lua_State* L, int idx, const char* type) {
   auto* b = static_cast<Box<T>*>(luaL_testudata(L, idx, type));
-  return b ? b->p : nullptr;
+  if (!b) return nullptr;
+  if (!b->p || b->closed) luaL_error(L, "%s is closed", type);
+  return b->p;
 }
 
 /// The object in the box at idx; raises "bad argument" for another type and "<type> is closed"
@@ -99,7 +163,7 @@ T* test_box(lua_State* L, int idx, const char* type) {
 template <class T>
 T& check_box(lua_State* L, int idx, const char* type) {
   auto* b = static_cast<Box<T>*>(luaL_checkudata(L, idx, type));
-  if (!b->p) luaL_error(L, "%s is closed", type);
+  if (!b->p || b->closed) luaL_error(L, "%s is closed", type);
   return *b->p;
 }
 
@@ -107,15 +171,21 @@ T& check_box(lua_State* L, int idx, const char* type) {
 using FieldGetter = int (*)(lua_State* L);  // stack: [self, key]
 
 /// Creates the metatable `type`: __name, __index (methods, then `getter`), __gc and __close
-/// (delete the object), plus `metamethods` (__tostring, __len, arithmetic, ...).
+/// (type-checked closures with the type name as upvalue), __metatable (scripts see a copy
+/// without __gc/__close, never the metatable itself), plus `metamethods` (__tostring, __len, arithmetic, ...).
 void register_type_raw(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods,
-                       lua_CFunction gc, FieldGetter getter);
+                       lua_CFunction gc, lua_CFunction close, FieldGetter getter);
 
 template <class T>
 void register_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods = nullptr,
                    FieldGetter getter = nullptr) {
-  register_type_raw(L, type, methods, metamethods, &box_gc<T>, getter);
+  register_type_raw(L, type, methods, metamethods, &box_gc<T>, &box_close<T>, getter);
 }
+
+/// Sets __metatable on the metatable at idx (call it when the metatable is complete): getmetatable()
+/// then returns a copy without __gc and __close, so a script can read __name and friends but can
+/// neither call a finalizer nor change the metatable the host uses.
+void protect_metatable(lua_State* L, int idx, const char* type);
 
 // ---------------------------------------------------------------------------------------------
 // smi.vec and smi.mat: float64 vectors and column-major matrices, owned by Lua.

@@ -52,6 +52,9 @@ struct Policy {
   std::string store_path;                          // --store PATH: evaluation store to use (issue 5)
   bool dry_run = false;                            // --dry-run: count solver runs, launch none
   std::string script_path;                         // the study being run ("" for -e / REPL)
+  std::string executor;                            // --executor: where solver runs go ("" = local)
+  std::vector<std::string> slurm_opts;             // --slurm-opt KEY=VALUE
+  bool detach = false;                             // --detach: leave Slurm jobs running when stopped
   /// Set by the runtime: "" while the run may go on, else why it must stop ("timeout: ...",
   /// "interrupted"). C++ code that waits without running Lua (solver runs) polls it, because
   /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.

@@ -11,6 +11,8 @@
 //   package.searchpath string.dump debug.* (but traceback)                  gone
 //   os.exit                  raises an uncatchable request; the host closes the state and exits
 //   math.random              seeded with --seed; math.randomseed() without argument reseeds it
+#include <string>
+#include <vector>
 #include <lua.hpp>
 
 namespace smi::sandbox {
@@ -18,6 +20,14 @@ namespace smi::sandbox {
 /// Restricts the globals of a state whose standard libraries are open. Uses lua::policy(L)
 /// (paths, seed) and vm::limits(L) (os.exit). Stack: unchanged.
 void install(lua_State* L);
+
+/// The last step of making a state (after the host added smi, searchers and libraries):
+/// replaces the global table by a new one built from an allow-list of names (fresh library
+/// tables holding only the listed functions, copied from the wrapped ones), so anything not
+/// named (a function a new Lua version adds, one a removal forgot) is unreachable. os.getenv
+/// answers only for the names in `allowed_env` (--allow-env) and raises for any other.
+/// coroutine.close refuses nesting deeper than the C stack allows (Lua 5.4.4 bug).
+void restrict_globals(lua_State* L, const std::vector<std::string>& allowed_env);
 
 /// Checked file functions (files.cpp): io.open, io.lines, io.input, io.output, dofile, loadfile,
 /// os.remove, os.rename. Stack: unchanged.

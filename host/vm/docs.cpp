@@ -1,7 +1,8 @@
 // smi._docs(): hands the compiled-in reference texts of the C++ side to stdlib/smi/doc.lua,
 // with the methods table of every smi userdata type (found in the registry), so that the doc
 // module can walk the public API at run time. The texts of the host functions registered in
-// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.libraries, smi.provenance) are here.
+// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.write_file, smi.lock_out, smi.libraries,
+// smi.provenance) are here.
 #include <cstring>
 #include <exception>
 #include <string>
@@ -46,6 +47,28 @@ returns: a list of {name =, version =, path =, description =, commit =} (commit 
 errors: none (a bad library stops the run before the script starts)
 example:
   print(#smi.libraries() >= 0)
+
+@ smi.write_file(path, text) -> path
+Writes a whole file atomically: a temporary file in the same folder (created O_EXCL, never
+through a symlink), every write checked, fsync, then renamed over the target. A full disk or a
+kill leaves the old file as it was. smi.study writes results.json and report.html this way.
+returns: the path as given
+errors: the sandbox refuses the folder (write only under --out and --allow-write); the target is
+  a symlink; a write fails (the message names the file and the reason, e.g. no space left)
+example:
+  local p = smi.write_file(smi.out("note.txt"), "done\n")
+  print(p:match("note%.txt$") ~= nil)
+
+@ smi.lock_out([folder]) -> nothing
+Takes this process's lock on an output folder (default --out), so that two studies never share
+work folders or results; smi.study calls it before its first step. The lock is released when the
+process ends.
+returns: nothing
+errors: another process holds the lock (the message names its pid, host, start time and command,
+  and the fix: wait for it or give another --out); the sandbox refuses the folder
+example:
+  smi.lock_out()
+  print("locked")
 
 @ smi.provenance([opts]) -> table
 What produced this run's numbers: smi-lua version, seed, the script's SHA-256, and every

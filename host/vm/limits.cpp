@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "core/cancel.hpp"
+
 namespace smi::vm {
 namespace {
 
@@ -32,7 +34,7 @@ void arm_sticky(lua_State* L, const Limits& lim) {
 void hook(lua_State* L, lua_Debug*) {
   Limits& lim = limits(L);
   if (lim.abort == Abort::none) {
-    if (lim.interrupted)
+    if (lim.interrupted || cancel::interrupt_requested())  // Ctrl-C, or a signal handler elsewhere
       lim.abort = Abort::interrupt;
     else if (lim.timeout_s > 0 && Clock::now() >= lim.deadline)
       lim.abort = Abort::timeout;
@@ -61,6 +63,7 @@ extern "C" void on_sigint(int sig) {
   std::signal(sig, SIG_DFL);  // a second signal before the hook runs kills the process
   if (Limits* lim = g_sigint_limits) {
     lim->interrupted = sig;
+    cancel::request_interrupt();  // kernels running in C++ see it too
     lua_sethook(lim->main, hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
   }
 }
@@ -77,7 +80,8 @@ void* limited_alloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
   }
   if (lim->mem_limit && nsize > old) {
     const std::size_t ceiling = lim->mem_limit + (lim->abort == Abort::memory ? kMemorySlack : 0);
-    if (lim->mem_used - old + nsize > ceiling) {
+    const std::size_t external = lim->external ? *lim->external : 0;
+    if (lim->mem_used + external - old + nsize > ceiling) {
       if (lim->abort == Abort::none) {
         lim->abort = Abort::memory;
         if (lim->main) lua_sethook(lim->main, hook, LUA_MASKCOUNT, 1);
@@ -110,11 +114,16 @@ void begin_chunk(lua_State* L) {
   Limits& lim = limits(L);
   if (lim.abort != Abort::exit) lim.abort = Abort::none;
   lim.interrupted = 0;
-  if (lim.timeout_s > 0)
+  cancel::reset();
+  if (lim.timeout_s > 0) {
     lim.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>(lim.timeout_s));
+    cancel::set_deadline(lim.deadline, lim.timeout_s);
+  }
   arm_normal(lim.main, lim);
 }
+
+void end_chunk(lua_State*) { cancel::reset(); }
 
 void trip(lua_State* L, Abort why) {
   Limits& lim = limits(L);

@@ -23,6 +23,7 @@ struct Limits {
   // --max-memory (0 = none): bytes of Lua heap in use and the ceiling
   std::size_t mem_limit = 0;
   std::size_t mem_used = 0;
+  const std::size_t* external = nullptr;  // C++ heap held by boxes (luax/memory.hpp), same ceiling
   std::size_t refused = 0;  // size of a request refused once (Lua collects garbage and retries)
   // set asynchronously by SIGINT, SIGTERM or SIGHUP: the signal's number (0 = none)
   volatile std::sig_atomic_t interrupted = 0;
@@ -40,8 +41,11 @@ void* limited_alloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize);
 void install_limits(lua_State* L, Limits* lim);
 Limits& limits(lua_State* L);
 
-/// Starts a chunk: clears a previous abort (unless it was os.exit), sets the deadline, re-arms.
+/// Starts a chunk: clears a previous abort (unless it was os.exit), sets the deadline, re-arms,
+/// and arms smi::cancel (core/cancel.hpp) with the same deadline for kernels.
 void begin_chunk(lua_State* L);
+/// Ends a chunk: clears smi::cancel so kernels called later (REPL, next chunk) run.
+void end_chunk(lua_State* L);
 /// Trips an abort from C++ (os.exit): the hook raises from the next instruction on.
 void trip(lua_State* L, Abort why);
 /// The message an abort raises ("interrupted!", "timeout: ..."); nullptr for none and exit.

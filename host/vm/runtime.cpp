@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
+#include "core/cancel.hpp"
 #include "eval/folder_lock.hpp"
 #include "modules.hpp"
 #include "luax/luax.hpp"
@@ -124,7 +125,10 @@ int smi_lock_out(lua_State* L) {
   const char* folder = luaL_optstring(L, 1, nullptr);
   lua::protect(L, "smi.lock_out", [&] {
     const Policy& pol = lua::policy(L);
-    smi::eval::lock_output_folder(folder ? pol.checked_write_dir(folder) : pol.ensure_out_dir().string());
+    // The output folder is a write root itself (made and checked by ensure_out_dir); any other
+    // folder must lie below a write root.
+    const std::string out = pol.ensure_out_dir().string();
+    smi::eval::lock_output_folder(!folder || resolve_path(folder) == out ? out : pol.checked_write_dir(folder));
     return 0;
   });
   return 0;
@@ -237,6 +241,9 @@ void Runtime::build_policy() {
   policy_.unrestricted = !cfg_.sandbox;
   policy_.store_path = cfg_.store_path;
   policy_.dry_run = cfg_.dry_run;
+  policy_.executor = cfg_.executor;
+  policy_.slurm_opts = cfg_.slurm_opts;
+  policy_.detach = cfg_.detach;
   policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
 }
 
@@ -247,8 +254,12 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   libs_.check();
   limits_.timeout_s = cfg_.timeout_s;
   limits_.mem_limit = cfg_.max_memory_mb << 20;
+  memory_.limit = limits_.mem_limit;
+  memory_.lua_used = &limits_.mem_used;
+  limits_.external = &memory_.external;
   L_ = lua_newstate(limited_alloc, &limits_);
   if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  lua::set_memory_budget(L_, &memory_);
   lua_atpanic(L_, panic);
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
@@ -276,9 +287,30 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   }
   install_searchers(L_, &modules_);
   install_libraries(L_, &libs_);
+  if (cfg_.sandbox) {
+    // Last: the globals become a table built from the allow-list (sandbox/environment.cpp).
+    lua_pushcfunction(L_, [](lua_State* L) -> int {
+      sandbox::restrict_globals(L, *static_cast<const std::vector<std::string>*>(lua_touserdata(L, 1)));
+      return 0;
+    });
+    lua_pushlightuserdata(L_, &cfg_.allow_env);
+    if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
+      std::string msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : "unknown error";
+      lua_close(L_);
+      throw std::runtime_error("cannot set up the Lua state: " + msg);
+    }
+  }
 }
 
-Runtime::~Runtime() { lua_close(L_); }
+Runtime::~Runtime() {
+  // Finalizers run here, with Lua's hooks off: a __gc that never returns is ended by the
+  // watchdog once a fresh --timeout has passed (or after Ctrl-C).
+  if (limits_.timeout_s > 0) cancel::set_deadline(limits_.timeout_s);
+  watchdog_.arm();
+  lua_close(L_);
+  watchdog_.disarm();
+  cancel::reset();
+}
 
 void Runtime::set_arg(int argc, char** argv, int script_index) {
   if (script_index >= argc) script_index = 0;  // no script: the interpreter is arg[0]
@@ -296,8 +328,11 @@ int Runtime::docall(int nargs, int nresults) {
   lua_insert(L_, base);
   begin_chunk(L_);
   catch_sigint(L_);
+  watchdog_.arm();
   const int status = lua_pcall(L_, nargs, nresults, base);
+  watchdog_.disarm();
   release_sigint();
+  end_chunk(L_);
   lua_remove(L_, base);
   return status;
 }
@@ -310,6 +345,16 @@ int Runtime::report(int status) {
   }
   char buf[256];
   const char* msg = lua_tostring(L_, -1);
+  if (status < 0) {
+    // Lua's C++ build turns a foreign C++ exception that left a bound function into status -1
+    // with whatever value was on top of the stack as the "message" (it printed a bare number).
+    std::fprintf(stderr,
+                 "smi-lua: a smi function failed with a C++ exception that carried no message (most often an "
+                 "allocation that could not be made: a size too large for this machine)\n");
+    std::fflush(stderr);
+    lua_pop(L_, 1);
+    return 1;
+  }
   if (limits_.abort == Abort::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
     // "not enough memory" comes from the allocator refusing: say which limit and how to raise it
     std::fprintf(stderr, "smi-lua: %s\n", abort_message(limits_, buf, sizeof buf));

@@ -7,10 +7,12 @@
 #include <vector>
 #include <lua.hpp>
 
+#include "luax/memory.hpp"
 #include "luax/policy.hpp"
 #include "vm/libraries.hpp"
 #include "vm/limits.hpp"
 #include "vm/searchers.hpp"
+#include "vm/watchdog.hpp"
 
 namespace smi::vm {
 
@@ -22,10 +24,14 @@ struct Config {
   std::string stdlib_dir;             // --stdlib-dir / SMI_STDLIB_DIR; empty = embedded
   std::string script;                 // script path, "-" for stdin, "" for none (-e, REPL)
   std::vector<std::string> allow_read, allow_write, allow_exec;
+  std::vector<std::string> allow_env;  // --allow-env: names os.getenv may read
   std::vector<std::string> lib_dirs;  // --lib, then SMI_PATH entries
   std::string out_dir;                // --out; empty = smi-out/<script name>/
   std::string store_path;             // --store
   bool dry_run = false;               // --dry-run
+  std::string executor;               // --executor ("" = local)
+  std::vector<std::string> slurm_opts;  // --slurm-opt KEY=VALUE, in order
+  bool detach = false;                // --detach
   double timeout_s = 0;               // --timeout; 0 = none
   std::size_t max_memory_mb = 0;      // --max-memory; 0 = none
   bool sandbox = true;                // false only in tests of the runtime itself
@@ -70,6 +76,8 @@ class Runtime {
   Config cfg_;
   Policy policy_;
   Limits limits_;
+  lua::MemoryBudget memory_;  // vec/mat/Kriging bytes under --max-memory
+  Watchdog watchdog_;         // ends a run stuck in C code past --timeout or Ctrl-C
   ModuleSearch modules_;
   lua_State* L_;
   LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)

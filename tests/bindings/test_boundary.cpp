@@ -175,7 +175,25 @@ TEST_CASE("a boxed C++ object is destroyed by __gc and by __close, exactly once"
     CHECK(g_alive == 1);  // tmp collected, keep alive
     CHECK(rt.run_string("do local c <close> = new_counted() end", "=t") == 0);
     CHECK(g_alive == 1);  // closed at the end of the block
-    CHECK(rt.run_string("local c = new_counted(); getmetatable(c).__close(c); getmetatable(c).__gc(c)", "=t") == 0);
+    // Scripts never see the metatable (issue 13): getmetatable gives a copy without finalizers.
+    CHECK(rt.run_string("local mt = getmetatable(new_counted()) assert(mt.__name == 'test.Counted' and not mt.__gc "
+                        "and not mt.__close) collectgarbage() collectgarbage()",
+                        "=t") == 0);
+    CHECK(g_alive == 1);
+    // Through the C API: __close then __gc deletes once; either on another type raises.
+    REQUIRE(luaL_dostring(L, "return new_counted(), smi.vec{1}") == LUA_OK);  // [c, v]
+    for (const char* mm : {"__close", "__gc"}) {
+      luaL_getmetatable(L, "test.Counted");
+      lua_getfield(L, -1, mm);
+      lua_pushvalue(L, -4);  // c
+      CHECK(lua_pcall(L, 1, 0, 0) == LUA_OK);
+      lua_getfield(L, -1, mm);
+      lua_pushvalue(L, -3);  // v: another type
+      REQUIRE(lua_pcall(L, 1, 0, 0) != LUA_OK);
+      CHECK(std::string(lua_tostring(L, -1)).find("test.Counted expected, got smi.vec") != std::string::npos);
+      lua_pop(L, 2);  // message, metatable
+    }
+    lua_pop(L, 2);
     CHECK(g_alive == 1);  // closing twice deletes once
     // a wrong userdata names both types
     REQUIRE(luaL_dostring(L, "local v = smi.vec{1}; v.sum(keep)") != LUA_OK);

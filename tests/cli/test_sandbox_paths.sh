@@ -223,7 +223,7 @@ out_is "placeholder"
 echo "stdlib-private" > stdlib/notes.txt
 printf 'return {origin = "disk"}\n' > stdlib/smi/testing.lua
 printf 'print(require("smi.testing").origin, pcall(io.open, os.getenv("SMI_STDLIB_DIR") .. "/notes.txt"))\n' > study/stdlib_read.lua
-run "SMI_STDLIB_DIR is not a read root" 0 env SMI_STDLIB_DIR="$WORK/stdlib" "$SMI" study/stdlib_read.lua
+run "SMI_STDLIB_DIR is not a read root" 0 env SMI_STDLIB_DIR="$WORK/stdlib" "$SMI" --allow-env SMI_STDLIB_DIR study/stdlib_read.lua
 has_out "disk"
 has_out "is not allowed"
 lacks_out "stdlib-private"

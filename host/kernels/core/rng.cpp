@@ -55,13 +55,15 @@ double Rng::normal() { return normal_quantile(uniform01()); }
 
 std::int64_t Rng::integer(std::int64_t lo, std::int64_t hi) {
   if (hi < lo) throw InvalidArgument("integer range is empty: lo > hi");
-  const std::uint64_t span = static_cast<std::uint64_t>(hi - lo) + 1;
+  // In unsigned arithmetic: hi - lo overflows int64 for ranges wider than 2^63 (the full range
+  // gave a division by zero once the compiler had assumed no signed overflow).
+  const std::uint64_t span = static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo) + 1;
   if (span == 0) return static_cast<std::int64_t>(next_u64());  // full 64-bit range
   // Rejection sampling (Lemire's threshold) removes the modulo bias.
   const std::uint64_t limit = (0 - span) % span;
   for (;;) {
     const std::uint64_t r = next_u64();
-    if (r >= limit) return lo + static_cast<std::int64_t>(r % span);
+    if (r >= limit) return static_cast<std::int64_t>(static_cast<std::uint64_t>(lo) + r % span);
   }
 }
 

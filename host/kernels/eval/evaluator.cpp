@@ -7,6 +7,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "eval/pending.hpp"
 #include "eval/process.hpp"
 #include "eval/scheduler.hpp"
 #include "core/sha256.hpp"
@@ -246,6 +247,12 @@ Plan Evaluator::plan(const Eigen::MatrixXd& X) {
   return pl;
 }
 
+std::string Evaluator::executor_plan(const Plan& pl) {
+  if (cfg_.executor.kind == "local" || pl.runs == 0) return "";
+  return slurm_dry_run(cfg_.executor, pl.runs, cfg_.timeout, pl.timing.count > 0 ? pl.timing.mean : -1, cfg_.runs_dir,
+                       cfg_.name);
+}
+
 EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, const ParseBatchFn& parse_batch,
                                const ProgressFn& progress, bool launch) {
   const Eigen::Index n = X.rows(), m = static_cast<Eigen::Index>(cfg_.outputs.size());
@@ -266,7 +273,7 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
   }
   if (!launch) tasks.clear();
   std::vector<int> attempts(tasks.size(), 0);
-  std::vector<std::string> dirs(tasks.size());
+  std::vector<std::string> dirs(tasks.size()), task_keys(tasks.size());
   for (std::size_t t = 0; t < tasks.size(); ++t) {
     std::string id = pts[tasks[t][0]].key;
     if (cfg_.batch) {
@@ -275,6 +282,7 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
       id = "batch-" + h.hex();
     }
     dirs[t] = (fs::path(cfg_.runs_dir) / id.substr(0, 16 + (cfg_.batch ? 6 : 0))).string();
+    task_keys[t] = id;
   }
 
   EvalResult res;
@@ -284,10 +292,17 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
   const Timing stored = tasks.empty() ? Timing{} : store().timing(cfg_.program_name, cfg_.version);
   prog.mean_seconds = stored.count ? stored.mean : 0;
 
-  Scheduler sched(cfg_.concurrency);
+  // Slurm jobs outlive smi-lua: they are recorded in the store's pending table (written here,
+  // by the evaluator's process only) so that a rerun reattaches to them.
+  std::unique_ptr<PendingTable> pending_runs;
+  if (cfg_.executor.kind != "local" && !tasks.empty()) pending_runs = std::make_unique<PendingTable>(store().handle());
+  std::unique_ptr<Executor> exec = make_executor(cfg_.executor, cfg_.concurrency, pending_runs.get(), cfg_.runs_dir, cfg_.name);
+  Executor& sched = *exec;
   auto make_job = [&](std::size_t t) {
     Job job;
     job.id = t;
+    job.key = task_keys[t];
+    job.attempt = attempts[t] + 1;
     job.timeout = cfg_.timeout;
     job.spec.program = cfg_.program;
     job.spec.workdir = dirs[t];

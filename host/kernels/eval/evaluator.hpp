@@ -12,6 +12,7 @@
 
 #include "core/path_walk.hpp"
 #include "eval/deck_template.hpp"
+#include "eval/executor.hpp"
 #include "eval/store.hpp"
 
 namespace smi::eval {
@@ -44,6 +45,7 @@ struct CommandConfig {
   // Batch mode: one run takes `batch_size` points (0 = all pending) written as CSV to deck_file.
   bool batch = false;
   int batch_size = 0;
+  ExecutorConfig executor;                    // where runs execute: local (default) or slurm
 };
 
 enum class Status { Ok, Failed, NotRun };
@@ -96,6 +98,9 @@ class Evaluator {
                       const ProgressFn& progress, bool launch = true);
   /// What evaluate(X) would run, without running anything (--dry-run).
   Plan plan(const Eigen::MatrixXd& X);
+  /// --dry-run with a Slurm executor: the job script, the sbatch lines and the cost plan for
+  /// `plan` ("" for the local executor).
+  std::string executor_plan(const Plan& plan);
 
   /// A check polled while runs go on (every tick and after each run): "" to go on, else why the
   /// run must stop ("interrupted", "timeout: ..."). Then evaluate() kills the running process

@@ -1,5 +1,7 @@
 #include "eval/scheduler.hpp"
 
+#include "core/machine.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cerrno>
@@ -43,6 +45,8 @@ int open_pidfd(pid_t pid) {
 
 Scheduler::Scheduler(int concurrency, double kill_grace) : concurrency_(concurrency), grace_(kill_grace) {
   if (concurrency < 1) throw InvalidArgument(fmt::format("concurrency must be >= 1, got {}", concurrency));
+  // Local solver processes at once: no more than the machine has cores (200 ran at once).
+  concurrency_ = machine::cap_threads(concurrency);
 }
 
 Scheduler::~Scheduler() { kill_all(); }

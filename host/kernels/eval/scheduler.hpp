@@ -16,6 +16,8 @@ namespace smi::eval {
 
 struct Job {
   std::size_t id = 0;   // the caller's handle (a row index)
+  std::string key;      // the run's store key (an executor that outlives smi-lua records it)
+  int attempt = 1;      // 1 for the first attempt, 2 for the first retry, ...
   SpawnSpec spec;
   double timeout = 0;   // seconds; 0 = none
   /// Called just before the launch (prepares the work directory); an exception makes the job

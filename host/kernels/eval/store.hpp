@@ -66,6 +66,8 @@ class Store {
 
   const std::string& path() const { return path_; }
   bool read_only() const { return read_only_; }
+  /// The open database, for tables kept beside the records (eval/pending.hpp).
+  sqlite3* handle() const { return db_; }
 
  private:
   void exec(const char* sql);

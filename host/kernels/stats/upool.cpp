@@ -8,8 +8,10 @@
 #include <thread>
 #include <tuple>
 
+#include "core/cancel.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "stats/parallel.hpp"
 #include "stats/quadrature.hpp"
 #include "stats/upool_asymptotic.hpp"
 
@@ -85,6 +87,7 @@ void simulate_chunk_network(int n, Rng& rng, double* out, std::int64_t count) {
 void simulate_chunk_sort(int n, Rng& rng, double* out, std::int64_t count) {
   std::vector<double> u(static_cast<std::size_t>(n));
   for (std::int64_t r = 0; r < count; ++r) {
+    if ((r & 63) == 0) cancel::poll();  // one replicate sorts n values: 64 take milliseconds
     for (int i = 0; i < n; ++i) u[static_cast<std::size_t>(i)] = rng.uniform01();
     std::sort(u.begin(), u.end());
     out[r] = statistic_sorted(u.data(), n);
@@ -97,6 +100,7 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
   const std::int64_t chunks = (reps + kChunk - 1) / kChunk;
   auto work = [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c) {
+      cancel::poll();  // --timeout and Ctrl-C reach the Monte Carlo (it ran 49 s past --timeout 3)
       Rng rng(s.seed, static_cast<std::uint64_t>(c) + 1);
       const std::int64_t b = c * kChunk, e = std::min(reps, b + kChunk);
       if (n <= kNetMax)
@@ -105,12 +109,11 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
         simulate_chunk_sort(n, rng, out.data() + b, e - b);
     }
   };
+  // Chunks are seeded by their index, so the split over threads never changes the numbers;
+  // parallel_blocks caps the threads and carries a worker's exception (Interrupted) back here.
   const int nt = std::max(1, std::min<int>(s.threads, static_cast<int>(chunks)));
-  std::vector<std::thread> pool;
-  const std::int64_t per = (chunks + nt - 1) / nt;
-  for (int t = 1; t < nt; ++t) pool.emplace_back(work, t * per, std::min(chunks, (t + 1) * per));
-  work(0, std::min(chunks, per));
-  for (auto& th : pool) th.join();
+  detail::parallel_blocks(static_cast<Eigen::Index>(chunks), nt, 1e12,
+                          [&](Eigen::Index c0, Eigen::Index c1) { work(c0, c1); });
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cancel.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "surrogate/doe.hpp"
@@ -124,6 +125,7 @@ Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const Lh
     const double phi_old_best = best_phi;
     int accepted = 0, improved = 0;
     for (int step = 0; step < M; ++step) {
+      cancel::poll();  // a step updates J x n distances: well under a millisecond
       const Eigen::Index k = step % d;
       double best_ds = std::numeric_limits<double>::infinity();
       Eigen::Index ba = 0, bb = 1;

@@ -1,4 +1,5 @@
 // Multistart L-BFGS on ln psi in log-parameters.
+#include "core/cancel.hpp"
 #include "surrogate/ml_search.hpp"
 
 #include <algorithm>
@@ -28,6 +29,8 @@ struct Local {
   double best = std::numeric_limits<double>::infinity();
 
   double eval(const std::vector<double>& z, std::vector<double>& grad) {
+    // NLopt turns an exception here into a stop; local() below then polls to raise the reason.
+    if (cancel::stop_requested()) throw nlopt::forced_stop();
     ++evals;
     Eigen::VectorXd theta(n);
     for (Eigen::Index j = 0; j < n; ++j) theta[j] = std::exp(z[j]);
@@ -121,6 +124,7 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
     } catch (const std::exception&) {
       // roundoff_limited and friends: the best point seen so far stands
     }
+    cancel::poll();  // a forced stop for --timeout / Ctrl-C: raise it, do not keep the point
   };
   int done = 0;
   while (done < starts) {

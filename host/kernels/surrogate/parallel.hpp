@@ -8,13 +8,20 @@
 #include <thread>
 #include <vector>
 
+#include "core/cancel.hpp"
+#include "core/machine.hpp"
+
 namespace smi::detail {
 
 template <class F>
 void parallel_for(long n, int threads, F&& task) {
-  threads = static_cast<int>(std::max(1L, std::min<long>(threads, n)));
+  threads = static_cast<int>(std::max(1L, std::min<long>(machine::cap_threads(threads), n)));
+  // cancel::poll() before each task: --timeout and Ctrl-C stop a long loop between tasks.
   if (threads <= 1) {
-    for (long i = 0; i < n; ++i) task(i);
+    for (long i = 0; i < n; ++i) {
+      cancel::poll();
+      task(i);
+    }
     return;
   }
   std::vector<std::exception_ptr> errors(threads);
@@ -23,7 +30,10 @@ void parallel_for(long n, int threads, F&& task) {
   std::atomic<long> next{0};
   auto worker = [&](int w) {
     try {
-      for (long i = next++; i < n; i = next++) task(i);
+      for (long i = next++; i < n; i = next++) {
+        cancel::poll();
+        task(i);
+      }
     } catch (...) {  // plain C++ only (no Lua here): carried to the caller and rethrown
       errors[w] = std::current_exception();
     }

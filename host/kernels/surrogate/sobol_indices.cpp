@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cancel.hpp"
 #include "core/descriptive.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
@@ -62,6 +63,7 @@ void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const E
   Eigen::MatrixXd bs1(bootstrap, k), bst(bootstrap, k);
   std::vector<Eigen::Index> idx(n);
   for (int b = 0; b < bootstrap; ++b) {
+    cancel::poll();
     for (auto& i : idx) i = rng.integer(0, n - 1);
     const Est eb = estimate(fA, fB, fAB, &idx);
     bs1.row(b) = eb.s1.transpose(), bst.row(b) = eb.st.transpose();

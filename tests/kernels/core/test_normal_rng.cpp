@@ -2,6 +2,8 @@
 // generator's distributional properties and reproducibility.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -74,4 +76,20 @@ TEST_CASE("type-7 quantile and sd of the spec data (algorithms.md §8.1)") {
   Eigen::VectorXd bad = x;
   bad[3] = std::nan("");
   CHECK_THROWS_WITH(smi::require_finite(bad, "data"), Catch::Contains("data[4] is NaN"));
+}
+
+TEST_CASE("integers over the full 64-bit range and ranges wider than 2^63 stay in range") {
+  smi::Rng g(7);
+  const std::int64_t lo = std::numeric_limits<std::int64_t>::min(), hi = std::numeric_limits<std::int64_t>::max();
+  int negative = 0;
+  for (int i = 0; i < 1000; ++i) negative += g.integer(lo, hi) < 0;
+  CHECK(negative > 400);  // half of the full range is negative: 500 expected, sd 16
+  CHECK(negative < 600);
+  for (int i = 0; i < 1000; ++i) {
+    const std::int64_t v = g.integer(lo, hi / 2);  // span 3 * 2^62: wider than int64
+    CHECK(v >= lo);
+    CHECK(v <= hi / 2);
+  }
+  CHECK(g.integer(lo, lo) == lo);
+  CHECK(g.integer(hi, hi) == hi);
 }
