@@ -197,9 +197,6 @@ CheckedFile Policy::open_write(const std::string& path, int oflags) const {
 }
 
 std::string Policy::checked_write_dir(const std::string& path) const {
-  // The output folder itself (a study's lock, a batch's work folder there): walk_write allows
-  // entries under a write root, not the root, so --out is made and checked by ensure_out_dir.
-  if (!out_dir.empty() && resolve_path(path) == resolve_path(out_dir.string())) return ensure_out_dir().string();
   for (int attempt = 0; attempt < 4; ++attempt) {
     pathwalk::Walk w;
     try {
