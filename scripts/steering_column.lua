@@ -12,7 +12,7 @@
 --   --quick           CI form: a 40-point screening sample, no bootstrap, a smaller solver check;
 --                     surrogates, calibration and verdicts as in the full run.
 --   --metric pr|loglik  calibration metric per mode: the paper's probability residual (default)
---                     or minus the mean log-likelihood of the data under the predicted KDE.
+--                     or minus the log-likelihood of the data under the predicted KDE.
 --   --multistart N    the PR stage from its start plus N-1 seeded points in the bounds (default 1).
 --   --prior FILE.lua  the analyst's prior knowledge: a Lua file returning smi.calibrate `prior`
 --                     entries ({param=, mean=, std=} or {name=, fn=, mean=, std=}); listed in the
@@ -56,7 +56,7 @@ local opt = options.parse(arg, {
   { name = "quick", type = "flag", default = false,
     meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },
   { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
-    meaning = "calibration metric per mode: the paper's probability residual, or minus the mean log-likelihood" },
+    meaning = "calibration metric per mode: the paper's probability residual, or minus the log-likelihood" },
   { name = "multistart", type = "integer", default = 1, min = 1,
     meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
   { name = "prior", type = "path",
@@ -298,10 +298,10 @@ local function calibration_step(k)
     r:section(L .. ": calibration")
     r:text(("Means and standard deviations of the %d unknowns (types, bounds and start values as the model declares them: Table 4/8 for the initial unknowns, the candidate's declaration for new ones) minimize %s over the KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt). PR saturates when the PDFs do not overlap, so a first stage (%d evaluations) matches the means and stds of modes 1 and 4 from the start values; the PR stage starts from there, in smi.calibrate's model form (the Krigings as the model: analytic gradients, the kernel's overlapping start when PR saturates). %s Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d evaluations from %d start(s), %s (converged: %s)."):format(
       #T.unknowns, res.metric == "pr" and "PR(mode 1) + PR(mode 4) between the KDE-ebd PDFs of the data and"
-        or "minus the mean log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
+        or "minus the log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
       #PRIOR.labels > 0 and ("Prior knowledge declared by the analyst (" .. opt.prior .. "): " .. table.concat(PRIOR.labels, "; ") .. ".")
         or "No prior knowledge: the objective is the data's alone (no --prior given).",
-      res.objective, res.metric == "pr" and "PR" or "-logL/n", res.metrics.mode1, res.metrics.mode4, res.evaluations, res.starts and #res.starts or 1, res.status, tostring(res.converged)))
+      res.objective, res.metric == "pr" and "PR" or "-logL", res.metrics.mode1, res.metrics.mode4, res.evaluations, res.starts and #res.starts or 1, res.status, tostring(res.converged)))
     r:figure(figs.history(res, L), L .. ": calibration history.")
     local rows = {}
     for _, p in ipairs(res.params) do

@@ -14,8 +14,9 @@ M.validation_modes = { "mode2" }           -- kept for validation only
 -- The objective increase that still counts as fitting the data as well as the optimum is derived
 -- from the data (M.tolerance): for "pr" the standard deviation of PR(mode 1) + PR(mode 4) at the
 -- optimum over bootstrap resamples of the data rows (two calibrations whose objectives differ by
--- less than that are not told apart by nine measurements); for "loglik" (minus the mean
--- log-likelihood per datum) the likelihood-ratio bound ½ χ²₁(0.95) / n.
+-- less than that are not told apart by nine measurements); for "loglik" (minus the
+-- log-likelihood of the data, summed as smi.calibrate's model form does) the likelihood-ratio
+-- bound ½ χ²₁(0.95).
 local BOOT = 200 -- resamples for the PR tolerance
 
 --- The tolerance and its basis: t {metric, data = {mode = vec}, predicted, theta, grids, seed,
@@ -25,7 +26,7 @@ local BOOT = 200 -- resamples for the PR tolerance
 function M.tolerance(t)
   local n = #t.data[t.calibration_modes[1]]
   if t.metric ~= "pr" then
-    return { value = 1.920729 / n, basis = ("likelihood-ratio bound: ½ χ²₁(0.95) = 1.921 over %d data per response"):format(n) }
+    return { value = 1.920729, basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows"):format(n) }
   end
   local Y = t.predicted(t.theta, t.calibration_modes)
   local pred = {}
@@ -190,11 +191,12 @@ function M.calibrate(t)
     grids[m] = { lower = t.data[m]:min() - 25, upper = t.data[m]:max() + 25, nodes = 6001 }
   end
   -- The metric per mode: "pr" (the paper's, against the experimental PDF f_exp) or "loglik"
-  -- (minus the mean log-likelihood of the data points under the predicted KDE).
+  -- (minus the log-likelihood of the data points under the predicted KDE, summed: the model
+  -- form's scale).
   local metric = t.metric or "pr"
   local function part(m, f_exp, data, Y)
     if metric == "pr" then return smi.metric.pr(f_exp[m], smi.kde(Y[m]), { grid = grids[m] }) end
-    return -smi.metric.loglik(data[m], smi.kde(Y[m])) / #data[m]
+    return -smi.metric.loglik(data[m], smi.kde(Y[m]))
   end
   local function objective(f_exp, data)
     return function(th)
