@@ -46,8 +46,9 @@ class Session {
     REQUIRE(write(fd_, keys.data(), keys.size()) == static_cast<ssize_t>(keys.size()));
   }
 
-  /// Reads until `text` appears after the previous match; false after `seconds`.
-  bool expect(const std::string& text, double seconds = 5) {
+  /// Reads until `text` appears after the previous match; false after `seconds` (generous: a
+  /// sanitizer build on a loaded 2-core machine parses the help texts in several seconds).
+  bool expect(const std::string& text, double seconds = 30) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     for (;;) {
       const std::size_t at = out_.find(text, mark_);
@@ -67,7 +68,7 @@ class Session {
   }
 
   /// Waits for the program to end; returns its exit status (or -1).
-  int wait_exit(double seconds = 5) {
+  int wait_exit(double seconds = 30) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (std::chrono::steady_clock::now() < end) {
       char buf[4096];

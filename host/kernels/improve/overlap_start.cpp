@@ -13,14 +13,7 @@ double moment_mismatch(const StatisticalObjective& obj, const Eigen::VectorXd& t
   double s = 0.0;
   for (Eigen::Index j = 0; j < Y.cols(); ++j) {
     const ResponseSpec& r = obj.responses()[static_cast<std::size_t>(j)];
-    double m = 0.0, sd = 0.0;
-    if (r.data.size() >= 2) {
-      m = r.data.mean();
-      sd = stddev(r.data);
-    } else if (r.f_exp) {
-      m = r.f_exp->mean();
-      sd = r.f_exp->stddev();
-    }
+    auto [m, sd] = r.moments();
     if (!(sd > 0.0) || !std::isfinite(sd) || !std::isfinite(m)) continue;
     const double pm = Y.col(j).mean(), ps = std::max(stddev(Y.col(j)), 1e-12 * sd);
     s += std::pow((pm - m) / sd, 2) + std::pow(std::log(ps / sd), 2);

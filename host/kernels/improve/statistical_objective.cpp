@@ -183,19 +183,18 @@ Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const 
   return e;
 }
 
+std::pair<double, double> ResponseSpec::moments() const {
+  if (data.size() >= 2) return {data.mean(), stddev(data)};
+  if (f_exp) return {f_exp->mean(), f_exp->stddev()};
+  return {0.0, 0.0};
+}
+
 Eigen::VectorXd StatisticalObjective::summaries(const Eigen::VectorXd& theta) const {
   const Eigen::MatrixXd Y = run_model(theta);
   Eigen::VectorXd out(4 * Y.cols());
   for (Eigen::Index j = 0; j < Y.cols(); ++j) {
     const ResponseSpec& r = responses_[static_cast<std::size_t>(j)];
-    double m = 0.0, sd = 0.0;
-    if (r.data.size() >= 2) {
-      m = r.data.mean();
-      sd = stddev(r.data);
-    } else if (r.f_exp) {
-      m = r.f_exp->mean();
-      sd = r.f_exp->stddev();
-    }
+    auto [m, sd] = r.moments();
     if (!(sd > 0.0) || !std::isfinite(sd) || !std::isfinite(m)) {
       m = Y.col(j).mean();
       sd = std::max(1e-300, stddev(Y.col(j)));

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "improve/bounded_optimizer.hpp"
@@ -38,6 +39,10 @@ struct ResponseSpec {
   DistributionPtr f_exp;    ///< experimental PDF; null = Gaussian KDE of data, normal-reference h
   std::optional<Grid> grid; ///< PR grid; null = fixed at construction (see StatisticalObjective)
   bool f_exp_from_data = false;  ///< set when f_exp is built from data (then rebuilt by with_data)
+
+  /// The measured mean and standard deviation: of the data when there are two or more points,
+  /// else of the experimental PDF; {0, 0} when neither is given. Callers check sd > 0.
+  std::pair<double, double> moments() const;
 };
 
 enum class MetricKind { pr, loglik, custom };
