@@ -1,5 +1,7 @@
 #include "vm/manifest.hpp"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -85,7 +87,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
   State st;
   lua_State* L = st.L;
   if (!L) throw Error("cannot create a Lua state to read " + where(file));
-  const std::string chunk = "@" + file.string();
+  const std::string chunk = fmt::format("@{}", file.string());
   if (luaL_loadbufferx(L, text.data(), text.size(), chunk.c_str(), "t") != LUA_OK)
     throw Error(where(file) + " does not load: " + std::string(lua_tostring(L, -1)));
   lua_newtable(L);  // the environment: empty, so the manifest sees no function at all

@@ -119,6 +119,30 @@ void become_subreaper() { ::prctl(PR_SET_CHILD_SUBREAPER, 1); }
 
 namespace {
 
+/// The whole of a small /proc file, or "" when it cannot be read. A process can exit between
+/// readdir and read: read(2) then fails (ESRCH), and std::ifstream read through an
+/// istreambuf_iterator turns that into an exception that nothing catches (it aborted a study
+/// in CI). Plain read(2), every error meaning "nothing there".
+std::string read_proc_file(const std::string& path) {
+  std::string out;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return out;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) {
+      out.append(buf, static_cast<std::size_t>(n));
+      if (out.size() > (1u << 20)) break;  // /proc files of interest are far smaller
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) out.clear();
+    break;
+  }
+  ::close(fd);
+  return out;
+}
+
 /// Children of this process (parent pid field of /proc/<pid>/stat).
 std::vector<pid_t> own_children() {
   std::vector<pid_t> out;
@@ -129,8 +153,7 @@ std::vector<pid_t> own_children() {
     char* end = nullptr;
     const long pid = std::strtol(e->d_name, &end, 10);
     if (pid <= 0 || *end) continue;
-    std::ifstream st(fmt::format("/proc/{}/stat", pid));
-    std::string text((std::istreambuf_iterator<char>(st)), std::istreambuf_iterator<char>());
+    const std::string text = read_proc_file(fmt::format("/proc/{}/stat", pid));
     const auto rp = text.rfind(')');  // the command name may hold spaces and parentheses
     if (rp == std::string::npos) continue;
     char state = 0;
@@ -145,9 +168,8 @@ std::vector<pid_t> own_children() {
 /// True if `pid`'s environment holds kSolverMarkVar=<our pid>. A zombie's environ reads empty:
 /// it is ours to reap either way if it is not one we track (the caller passes those in keep).
 bool marked_as_ours(pid_t pid, bool& zombie) {
-  std::ifstream env(fmt::format("/proc/{}/environ", pid), std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(env)), std::istreambuf_iterator<char>());
-  zombie = text.empty();
+  const std::string text = read_proc_file(fmt::format("/proc/{}/environ", pid));
+  zombie = text.empty();  // also a process that exited while we looked: waitpid(WNOHANG) is harmless
   const std::string mark = std::string(kSolverMarkVar) + "=" + std::to_string(::getpid());
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t nul = text.find('\0', at);

@@ -597,7 +597,10 @@ std::string slurm_dry_run(const ExecutorConfig& cfg, std::size_t runs, double ti
     argv.push_back(slurm_dir + "/job.sh");
     argv.push_back(slurm_dir + "/" + name + "/manifest");
     std::string line;
-    for (const auto& a : argv) line += (line.empty() ? "" : " ") + quoted(a);
+    for (const auto& a : argv) {
+      if (!line.empty()) line += ' ';
+      line += quoted(a);
+    }
     s += "  " + line + "\n";
   }
   const double minutes = SlurmExecutor::time_limit_minutes(cfg, timeout);

@@ -1,5 +1,7 @@
 #include "stats/upool.hpp"
 
+#include <atomic>
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -98,6 +100,7 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
   const std::int64_t reps = s.replications;
   std::vector<double> out(static_cast<std::size_t>(reps));
   const std::int64_t chunks = (reps + kChunk - 1) / kChunk;
+  std::atomic<std::int64_t> done{0};
   auto work = [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c) {
       cancel::poll();  // --timeout and Ctrl-C reach the Monte Carlo (it ran 49 s past --timeout 3)
@@ -107,6 +110,7 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
         simulate_chunk_network(n, rng, out.data() + b, e - b);
       else
         simulate_chunk_sort(n, rng, out.data() + b, e - b);
+      if (s.progress) s.progress(static_cast<double>(++done) / static_cast<double>(chunks));
     }
   };
   // Chunks are seeded by their index, so the split over threads never changes the numbers;

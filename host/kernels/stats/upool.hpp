@@ -4,6 +4,7 @@
 // (cached per n, replications and seed), the threshold U_crit(n, confidence) and the p-value.
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,10 @@ struct UpoolMcSettings {
   std::int64_t replications = 1'000'000;
   std::uint64_t seed = 20200101;
   int threads = 2;  ///< results are identical for any thread count (fixed chunking)
+  /// Called with the fraction of sets simulated after each chunk, from the worker threads (so it
+  /// must be thread-safe), only while a sample is being made (a cached one calls nothing). Not
+  /// part of the cached state: it changes no number.
+  std::function<void(double done)> progress;
 };
 
 /// The H0 sample of U for n u-values, in generation order (computed once per (n, replications,
