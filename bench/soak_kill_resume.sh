@@ -5,12 +5,15 @@
 # launched and the runs reused by the resume (from the store), PRAGMA integrity_check, whether
 # a solver outlived smi-lua, and whether the final results.json holds the same numbers as the
 # reference (timings and run counts excluded). Writes bench/results/soak_kill_resume.md.
-# usage: bench/soak_kill_resume.sh [KILLS=20] [MAX_SECONDS=40]   (from the source folder, after a build)
+# usage: bench/soak_kill_resume.sh [KILLS=20] [MAX_SECONDS]   (from the source folder, after a build)
+# MAX_SECONDS defaults to a third of the reference run, so that the kills land while solver runs
+# are still being made (a kill after the last solver run only tests the resume of a finished store).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-KILLS=${1:-20} MAX=${2:-40}
+KILLS=${1:-20} MAX=${2:-}
 SMI=${SMI_LUA:-build/smi-lua} FE=${COLUMN_FE:-build/column-fe}
 W=${SOAK_DIR:-$(mktemp -d)}
+mkdir -p "$W"
 OUT=bench/results/soak_kill_resume.md
 py=/usr/bin/python3
 study() { "$SMI" --quiet --allow-exec "$PWD/$FE" --out "$1" scripts/steering_column.lua --quick --solver "$PWD/$FE"; }
@@ -24,6 +27,7 @@ t0=$(date +%s)
 study "$W/ref" > "$W/ref.log" 2>&1
 ref_s=$(( $(date +%s) - t0 ))
 echo "reference: ${ref_s} s, $(records "$W/ref/evaluations.sqlite") records"
+[ -n "$MAX" ] || MAX=$(( ref_s / 3 > 2 ? ref_s / 3 : 2 ))
 
 {
   echo "# Soak: kill -9 the quick study at random moments and resume"
