@@ -8,14 +8,7 @@
 set -u
 SMI_LUA=$1
 WORK=$2
-CHROMIUM=${CHROMIUM:-/usr/bin/chromium}
-
-if [ ! -x "$CHROMIUM" ]; then
-  echo "SKIPPED: $CHROMIUM not found; install Debian's chromium (apt-get install -y chromium) to run this test"
-  exit 77
-fi
-
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/../chromium.sh"  # CHROMIUM, the skip, fail, chrome, console_lines, check_console_detector
 
 rm -rf "$WORK"
 mkdir -p "$WORK"
@@ -36,22 +29,7 @@ for target in $(grep -oh 'href="[^"#]*' "$REF"/*.html | sed 's/href="//' | sort 
   [ -z "$target" ] || [ -f "$REF/$target" ] || fail "a link points at $target, which was not written"
 done
 
-chrome() {
-  profile=$(mktemp -d)
-  "$CHROMIUM" --headless --no-sandbox --disable-gpu --disable-background-networking \
-    --disable-component-update --disable-sync --no-first-run --hide-scrollbars \
-    --user-data-dir="$profile" --enable-logging=stderr --v=0 "$@"
-  rc=$?
-  rm -rf "$profile"
-  return $rc
-}
-console_lines() { grep -E ':CONSOLE[:(]|Page load failed|Uncaught' "$1"; }
-
-# The detector must see a console error on a page that has one, or its silence means nothing.
-CANARY="$WORK/canary.html"
-printf '<!DOCTYPE html><html><body><script>console.error("smi-canary")</script></body></html>\n' > "$CANARY"
-chrome --dump-dom "file://$CANARY" > "$WORK/canary.dom" 2> "$WORK/canary.log"
-console_lines "$WORK/canary.log" | grep -q smi-canary || fail "this Chromium does not log console messages as expected (see $WORK/canary.log)"
+check_console_detector
 
 # The search runs on load with ?q=: its results are in the DOM only if the script ran.
 chrome --dump-dom "file://$REF/index.html?q=bandwidth" > "$WORK/search.dom" 2> "$WORK/search.log" || fail "chromium --dump-dom failed"

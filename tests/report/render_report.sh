@@ -11,14 +11,7 @@ SMI_LUA=$1
 DEMO=$2
 WORK=$3
 TITLE=${4:-Demonstration study}
-CHROMIUM=${CHROMIUM:-/usr/bin/chromium}
-
-if [ ! -x "$CHROMIUM" ]; then
-  echo "SKIPPED: $CHROMIUM not found; install Debian's chromium (apt-get install -y chromium) to run this test"
-  exit 77
-fi
-
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/../chromium.sh"  # CHROMIUM, the skip, fail, chrome, console_lines, check_console_detector
 
 rm -rf "$WORK"
 mkdir -p "$WORK"
@@ -42,25 +35,7 @@ if grep -Eiq '<script|<link|<iframe|<img|(src|href)="[a-z]+://|url\(["'"'"']?[a-
   fail "the report refers to scripts or outside resources"
 fi
 
-# One throw-away profile per run; no network services, no first-run UI.
-chrome() {
-  profile=$(mktemp -d)
-  "$CHROMIUM" --headless --no-sandbox --disable-gpu --disable-background-networking \
-    --disable-component-update --disable-sync --no-first-run --hide-scrollbars \
-    --user-data-dir="$profile" --enable-logging=stderr --v=0 "$@"
-  rc=$?
-  rm -rf "$profile"
-  return $rc
-}
-
-# Console messages look like "[...:INFO:CONSOLE:1] "text", source: ..." (older builds: CONSOLE(1)).
-console_lines() { grep -E ':CONSOLE[:(]|Page load failed|Uncaught' "$1"; }
-
-# The detector must see a console error on a page that has one, or its silence means nothing.
-CANARY="$WORK/canary.html"
-printf '<!DOCTYPE html><html><body><script>console.error("smi-canary")</script></body></html>\n' > "$CANARY"
-chrome --dump-dom "file://$CANARY" > "$WORK/canary.dom" 2> "$WORK/canary.log"
-console_lines "$WORK/canary.log" | grep -q smi-canary || fail "this Chromium does not log console messages as expected (see $WORK/canary.log); the check below would prove nothing"
+check_console_detector
 
 chrome --dump-dom "file://$REPORT" > "$WORK/report.dom" 2> "$WORK/dom.log" || fail "chromium --dump-dom failed (see $WORK/dom.log)"
 if console_lines "$WORK/dom.log"; then fail "console messages while loading the report (above)"; fi
