@@ -152,15 +152,14 @@ int set_default(lua_State* L, const char* mode, const char* fname) {
 int io_input(lua_State* L) { return set_default(L, "r", "io.input"); }
 int io_output(lua_State* L) { return set_default(L, "w", "io.output"); }
 
-/// Runs a checked write of an entry in its folder (unlinkat / renameat); returns as os.remove.
-int os_remove(lua_State* L) {
-  const char* path = luaL_checkstring(L, 1);
+/// Runs `call` (unlinkat / renameat on folders the sandbox walked) inside protect(); a FileError
+/// of the walk counts as the call failing with its errno. Returns as os.remove/os.rename do.
+template <class F>
+int checked_entry_result(lua_State* L, const char* fname, const char* shown, F&& call) {
   int rc = 0, err = 0;
-  lua::protect(L, "os.remove", [&] {
+  lua::protect(L, fname, [&] {
     try {
-      const pathwalk::Walk w = lua::policy(L).walk_write(path);
-      rc = ::unlinkat(w.dir.get(), w.leaf.c_str(), 0);
-      if (rc != 0 && (errno == EISDIR || errno == EPERM)) rc = ::unlinkat(w.dir.get(), w.leaf.c_str(), AT_REMOVEDIR);
+      rc = call();
       err = errno;
     } catch (const FileError& e) {
       rc = -1;
@@ -169,28 +168,28 @@ int os_remove(lua_State* L) {
     return 0;
   });
   errno = err;
-  return luaL_fileresult(L, rc == 0, path);
+  return luaL_fileresult(L, rc == 0, shown);
+}
+
+int os_remove(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  return checked_entry_result(L, "os.remove", path, [&] {
+    const pathwalk::Walk w = lua::policy(L).walk_write(path);
+    int rc = ::unlinkat(w.dir.get(), w.leaf.c_str(), 0);
+    if (rc != 0 && (errno == EISDIR || errno == EPERM)) rc = ::unlinkat(w.dir.get(), w.leaf.c_str(), AT_REMOVEDIR);
+    return rc;
+  });
 }
 
 int os_rename(lua_State* L) {
   const char* from = luaL_checkstring(L, 1);
   const char* to = luaL_checkstring(L, 2);
-  int rc = 0, err = 0;
-  lua::protect(L, "os.rename", [&] {
-    try {
-      const Policy& p = lua::policy(L);
-      const pathwalk::Walk a = p.walk_write(from);
-      const pathwalk::Walk b = p.walk_write(to);
-      rc = ::renameat(a.dir.get(), a.leaf.c_str(), b.dir.get(), b.leaf.c_str());
-      err = errno;
-    } catch (const FileError& e) {
-      rc = -1;
-      err = e.err;
-    }
-    return 0;
+  return checked_entry_result(L, "os.rename", from, [&] {
+    const Policy& p = lua::policy(L);
+    const pathwalk::Walk a = p.walk_write(from);
+    const pathwalk::Walk b = p.walk_write(to);
+    return ::renameat(a.dir.get(), a.leaf.c_str(), b.dir.get(), b.leaf.c_str());
   });
-  errno = err;
-  return luaL_fileresult(L, rc == 0, from);
 }
 
 /// Loads the checked file `path` as a text chunk named "@path" (a first "#" line and a UTF-8
