@@ -20,7 +20,7 @@ namespace {
 
 }  // namespace
 
-void write_file_atomic(const std::string& path, std::string_view data) {
+void write_file_atomic(const std::string& path, std::string_view data, unsigned mode) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   fs::path dir = target.parent_path();
@@ -30,7 +30,7 @@ void write_file_atomic(const std::string& path, std::string_view data) {
   // A leftover of a crashed run with the same pid is removed; O_EXCL | O_NOFOLLOW then refuses a
   // symlink planted under the temporary name (the write must land in the checked folder).
   ::unlink(tmp.c_str());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, static_cast<mode_t>(mode));
   if (fd < 0) {
     const int e = errno;
     throw Error(fmt::format("cannot write '{}': {} (does the folder exist and may smi-lua write there?)", path,

@@ -10,6 +10,7 @@
 
 namespace smi {
 
-void write_file_atomic(const std::string& path, std::string_view data);
+/// `mode` is the new file's permission bits (before the umask), e.g. 0755 for a job script.
+void write_file_atomic(const std::string& path, std::string_view data, unsigned mode = 0644);
 
 }  // namespace smi

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "core/atomic_file.hpp"
 #include "eval/pending.hpp"
 #include "eval/process.hpp"
 #include "eval/work_dir.hpp"
@@ -278,12 +279,7 @@ void SlurmExecutor::submit_chunk(std::vector<Task> chunk) {
   const fs::path dir = fs::path(slurm_dir_) / name;
   fs::create_directories(dir);
   const std::string script = (fs::path(slurm_dir_) / "job.sh").string();
-  if (!fs::exists(script)) {
-    write_text_file(script + ".tmp", job_script());
-    fs::permissions(script + ".tmp", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                                         fs::perms::others_read | fs::perms::others_exec);
-    fs::rename(script + ".tmp", script);
-  }
+  if (!fs::exists(script)) write_file_atomic(script, job_script(), 0755);
   std::string manifest;
   double timeout = 0;
   std::vector<PendingRun> rows;
