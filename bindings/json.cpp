@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/json.hpp"
+#include "core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "modules.hpp"
@@ -156,7 +157,7 @@ class ToJson {
         keys.push_back({lua_tostring(L_, -1), true, 0});
       } else if (lua_type(L_, -1) == LUA_TNUMBER) {
         const lua_Number v = lua_tonumber(L_, -1);
-        keys.push_back({lua_isinteger(L_, -1) ? std::to_string(lua_tointeger(L_, -1)) : json::number_text(v), false, v});
+        keys.push_back({lua_isinteger(L_, -1) ? std::to_string(lua_tointeger(L_, -1)) : number_text(v), false, v});
       } else {
         throw Error(fmt::format("value at {} has a key of type {}; JSON object keys are strings", where,
                                 luaL_typename(L_, -1)));

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 
 namespace smi::json {
 
@@ -39,12 +40,6 @@ const Value* Value::find(std::string_view key) const {
   for (const auto& [k, val] : object())
     if (k == key) found = &val;
   return found;
-}
-
-std::string number_text(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 // ---- writing

@@ -77,7 +77,4 @@ Value read(std::string_view text, const std::string& source = "json");
 /// The nesting the reader and writer accept (deeper input is refused, not a stack overflow).
 constexpr int kMaxDepth = 200;
 
-/// Shortest text of a finite double that reads back to the same bits ("0.1", "1e+300").
-std::string number_text(double v);
-
 }  // namespace smi::json
