@@ -22,7 +22,7 @@
 #include "stats/kde.hpp"
 #include "stats/metrics.hpp"
 #include "surrogate/fast_exp.hpp"
-#include "surrogate/parallel.hpp"
+#include "core/thread_pool.hpp"
 
 namespace smi::improve {
 
@@ -46,7 +46,7 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
   const long nb = static_cast<long>((N + kBlock - 1) / kBlock);
   std::vector<double> ghs(static_cast<std::size_t>(nb), 0.0);
   const double lo = G > 0 ? x[0] : 0.0, step = G > 1 ? (x[G - 1] - x[0]) / static_cast<double>(G - 1) : 1.0;
-  smi::detail::parallel_for(nb, threads, [&](long b) {
+  pool::parallel_for(nb, threads, [&](long b) {
     double acc_h = 0.0;
     Eigen::ArrayXd t, e;  // per sample: the window's standardised distances and kernels
     for (Eigen::Index i = b * kBlock; i < std::min(N, (b + 1) * kBlock); ++i) {
