@@ -14,6 +14,21 @@ namespace smi::json {
 
 namespace {
 const std::string kEmptyString;
+
+/// The two-character escapes of RFC 8259 (besides \/ and \u), both ways.
+constexpr std::pair<char, char> kEscapes[] = {{'"', '"'},  {'\\', '\\'}, {'\n', 'n'}, {'\r', 'r'},
+                                              {'\t', 't'}, {'\b', 'b'},   {'\f', 'f'}};
+char escape_letter(char c) {
+  for (const auto& [raw, letter] : kEscapes)
+    if (raw == c) return letter;
+  return 0;
+}
+char escaped_char(char letter) {
+  if (letter == '/') return '/';
+  for (const auto& [raw, l] : kEscapes)
+    if (l == letter) return raw;
+  return 0;
+}
 const Array kEmptyArray;
 const Object kEmptyObject;
 }  // namespace
@@ -89,17 +104,13 @@ class Writer {
     out += '"';
     for (const char ch : s) {
       const unsigned char c = static_cast<unsigned char>(ch);
-      switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
-        case '\b': out += "\\b"; break;
-        case '\f': out += "\\f"; break;
-        default:
-          if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-          else out += ch;
+      if (const char e = escape_letter(ch)) {
+        out += '\\';
+        out += e;
+      } else if (c < 0x20) {
+        out += fmt::format("\\u{:04x}", c);
+      } else {
+        out += ch;
       }
     }
     out += '"';
@@ -193,58 +204,45 @@ class Reader {
     fail("expected a value (object, array, string, number, true, false or null)");
   }
 
-  Value object(int depth) {
+  /// Consumes c when it is next.
+  bool eat(char c) {
+    if (pos_ >= s_.size() || s_[pos_] != c) return false;
     ++pos_;
-    Object o;
+    return true;
+  }
+
+  /// The items of an object or array up to `close`, separated by commas (the opening bracket
+  /// is at pos_).
+  template <class Item>
+  void sequence(char close, const char* what, Item&& item) {
+    ++pos_;
     skip_ws();
-    if (pos_ < s_.size() && s_[pos_] == '}') {
-      ++pos_;
-      return o;
-    }
-    for (;;) {
+    if (eat(close)) return;
+    do {
       skip_ws();
+      item();
+      skip_ws();
+    } while (eat(','));
+    if (!eat(close)) fail(fmt::format("expected ',' or '{}' in the {}", close, what));
+  }
+
+  Value object(int depth) {
+    Object o;
+    sequence('}', "object", [&] {
       if (pos_ >= s_.size() || s_[pos_] != '"') fail("expected a string key in the object");
       std::string key = string();
       skip_ws();
-      if (pos_ >= s_.size() || s_[pos_] != ':') fail("expected ':' after the object key");
-      ++pos_;
+      if (!eat(':')) fail("expected ':' after the object key");
       skip_ws();
       o.emplace_back(std::move(key), value(depth + 1));
-      skip_ws();
-      if (pos_ < s_.size() && s_[pos_] == ',') {
-        ++pos_;
-        continue;
-      }
-      if (pos_ < s_.size() && s_[pos_] == '}') {
-        ++pos_;
-        return o;
-      }
-      fail("expected ',' or '}' in the object");
-    }
+    });
+    return o;
   }
 
   Value array(int depth) {
-    ++pos_;
     Array a;
-    skip_ws();
-    if (pos_ < s_.size() && s_[pos_] == ']') {
-      ++pos_;
-      return a;
-    }
-    for (;;) {
-      skip_ws();
-      a.push_back(value(depth + 1));
-      skip_ws();
-      if (pos_ < s_.size() && s_[pos_] == ',') {
-        ++pos_;
-        continue;
-      }
-      if (pos_ < s_.size() && s_[pos_] == ']') {
-        ++pos_;
-        return a;
-      }
-      fail("expected ',' or ']' in the array");
-    }
+    sequence(']', "array", [&] { a.push_back(value(depth + 1)); });
+    return a;
   }
 
   unsigned hex4() {
@@ -296,15 +294,11 @@ class Reader {
       }
       if (pos_ >= s_.size()) fail("unterminated string");
       const char e = s_[pos_++];
+      if (const char c2 = escaped_char(e)) {
+        out += c2;
+        continue;
+      }
       switch (e) {
-        case '"': out += '"'; break;
-        case '\\': out += '\\'; break;
-        case '/': out += '/'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case 'n': out += '\n'; break;
-        case 'r': out += '\r'; break;
-        case 't': out += '\t'; break;
         case 'u': {
           unsigned cp = hex4();
           if (cp >= 0xD800 && cp < 0xDC00 && s_.substr(pos_, 2) == "\\u") {
