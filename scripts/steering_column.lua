@@ -37,6 +37,8 @@ local figs = require "steering_column.figures"
 local models = require "steering_column.models"
 local candidates = require "steering_column.refinement.candidates"
 local criteria = require "steering_column.refinement.criteria"
+local verdict = require "steering_column.verdict"
+local text = require "steering_column.report_text"
 
 local MODES = { "mode1", "mode2", "mode4" }
 
@@ -332,19 +334,6 @@ local function calibration_step(k)
   end)
 end
 
--- The largest moves of the means along the strongest near-optimal push, in words (what a
--- measurement would have to pin down).
-local function weak_inputs(no)
-  local d = no.directions and no.directions[1]
-  if not d then return nil end
-  local l = {}
-  for name, w in pairs(d.loadings) do if name:match("%.mean$") then l[#l + 1] = { name:gsub("%.mean$", ""), w } end end
-  table.sort(l, function(a, b) return math.abs(a[2]) > math.abs(b[2]) end)
-  local parts = {}
-  for i = 1, math.min(3, #l) do parts[i] = ("%s %+.2f"):format(l[i][1], l[i][2]) end
-  return table.concat(parts, ", ")
-end
-
 local function validation_step(k)
   return timed(function(ctx)
     local sur = ctx.results["trial" .. k .. "_surrogate"]
@@ -369,17 +358,7 @@ local function validation_step(k)
       local range = v.range and ("[%.4f, %.4f] over %d"):format(v.range.lower, v.range.upper, v.range.points) or "—"
       rows[#rows + 1] = { figs.title[m], v.used_in_calibration and "calibration" or "validation only", v.predicted_mean, v.predicted_std, v.metric, range, v.threshold,
                           { status = badge[v.verdict], text = v.verdict }, v.solver.metric, { status = v.solver.pass and "pass" or "fail", text = v.solver.pass and "valid" or "invalid" } }
-      local detail
-      if v.range then
-        detail = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f; not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
-        if v.verdict == "inconclusive" then
-          local w = weak_inputs(cal.near_optimal)
-          detail = detail .. (". Modes 1 and 4 fit equally well across calibrations that predict mode 2 on both sides of the threshold%s. What would settle it: calibrate on mode 2 as well, or measure one of the inputs that move (e.g. weigh the wheel cover, gauge the bracket) and give it as --prior"):format(
-            w and (" (the means move most along: " .. w .. ")") or "")
-        end
-      else
-        detail = ("U = %.4f %s %.4f (p = %.3f); used by the calibration"):format(v.metric, v.pass and "≤" or ">", v.threshold, v.p)
-      end
+      local detail = v.range and text.range_detail(v, cal) or text.decisive_detail(v)
       v.detail = detail
       r:verdict{ name = ("%s, %s"):format(L, figs.title[m]), status = badge[v.verdict], value = v.metric, threshold = v.threshold, detail = detail }
       if v.pass ~= v.solver.pass then
@@ -389,7 +368,7 @@ local function validation_step(k)
     r:figures(pdfs)
     r:figures(cdfs)
     r:table{ caption = "Validity check (frequencies in Hz). U range: over the near-optimal calibrations.", columns = { "Mode", "Role", "Pred. mean", "Pred. std", "U", "U range", "Threshold", "Verdict", "U (solver check)", "Solver check" }, rows = rows }
-    r:text(("%s is %s."):format(L, res.verdict))
+    r:text(text.trial_verdict(L, res))
     return res
   end)
 end
@@ -499,30 +478,9 @@ end
 -- ---------------------------------------------------------------------------------------------
 -- Summary: the conclusion, solver runs, provenance
 -- ---------------------------------------------------------------------------------------------
-local function conclusion_of(R)
-  local c = { trials = {}, refinements = {} }
-  for k = 1, MAX_TRIALS do
-    local sur = R["trial" .. k .. "_surrogate"]
-    if sur.skipped then break end
-    local cal, val = R["trial" .. k .. "_calibration"], R["trial" .. k .. "_validation"]
-    local means, stds = {}, {}
-    for _, p in ipairs(cal.params) do means[p.input], stds[p.input] = p.mean, p.std end
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[m] = val.modes[m].verdict end
-    c.trials[#c.trials + 1] = { candidate = sur.model.candidate, airbag = sur.model.airbag, unknowns = sur.model.unknowns, modes = modes,
-                                calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds } }
-    c.verdict = val.verdict
-    if k < MAX_TRIALS then
-      local ref = R["refinement" .. k]
-      if not ref.skipped then c.refinements[#c.refinements + 1] = ref.chosen else c.ended = ref.reason end
-    end
-  end
-  return c
-end
-
 s:step("summary", timed(function(ctx)
   local R = ctx.results
-  local c = conclusion_of(R)
+  local c = verdict.conclusion(R, MAX_TRIALS)
   local out = { conclusion = c, solver_runs = solver.counts, solver_totals = solver.totals(), quick = opt.quick, config = cfg, seed = seed,
                 data_file = opt.data, solver_path = opt.solver, prior_file = opt.prior, priors = PRIOR.labels, lua = _VERSION }
   local r = ctx.report
@@ -537,13 +495,9 @@ s:step("summary", timed(function(ctx)
   if c.ended then story[#story + 1] = "The study ended: " .. c.ended .. "." end
   story[#story + 1] = ("Priors: %s."):format(#PRIOR.labels > 0 and table.concat(PRIOR.labels, "; ") or "none (the data file alone)")
   r:text(table.concat(story, " "))
-  local last = c.trials[#c.trials]
+  out.words = text.conclusion(c, R)
   r:verdict{ name = "Conclusion: the model is " .. c.verdict, status = ({ valid = "pass", invalid = "fail", inconclusive = "warn" })[c.verdict],
-             detail = ("last trial %d (%s, %s airbag): %s"):format(#c.trials, last.candidate, last.airbag, (function()
-               local t = {}
-               for _, m in ipairs(MODES) do t[#t + 1] = m .. " " .. last.modes[m] end
-               return table.concat(t, ", ")
-             end)()) }
+             detail = out.words }
   local rows = {}
   for name, cnt in pairs(solver.counts) do rows[#rows + 1] = { name, cnt.points, cnt.launched, cnt.reused } end
   table.sort(rows, function(a, b) return a[1] < b[1] end)
@@ -570,16 +524,7 @@ local results = s:run(opt)
 local ok, summary = pcall(function() return results.summary end)
 if ok and summary and summary.conclusion then
   local c = summary.conclusion
-  local saved = s:load()
-  if saved then
-    saved.conclusion = { verdict = c.verdict, refinements = c.refinements, trials = c.trials }
-    s:_save(saved)
-  end
-  for i, t in ipairs(c.trials) do
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
-    io.stdout:write(("Trial %d: %s, %s airbag, unknowns %s: %s%s\n"):format(i, t.candidate, t.airbag, table.concat(t.unknowns, ", "), table.concat(modes, ", "),
-      c.refinements[i] and ("; refined by " .. c.refinements[i]) or ""))
-  end
-  io.stdout:write(("Conclusion: the model is %s%s.\n"):format(c.verdict, #c.refinements > 0 and (" after refinement by " .. table.concat(c.refinements, ", then ")) or ", no refinement"))
+  s:annotate("conclusion", verdict.top_level(c))
+  for i, t in ipairs(c.trials) do io.stdout:write(text.trial_line(i, t, c.refinements[i]), "\n") end
+  io.stdout:write(summary.words or ("Conclusion: the model is " .. c.verdict), "\n")
 end

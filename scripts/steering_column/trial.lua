@@ -2,7 +2,7 @@
 -- §4.2): Kriging surrogates on a Latin hypercube of the unknowns (solver runs through
 -- smi.model.command and the evaluation store), calibration of the unknowns' means and stds by
 -- PR(mode 1) + PR(mode 4) with SLSQP on common random numbers, and validation by u-pooling on
--- modes 1, 4 and 2. The report blocks are in trial_report.lua; this file computes.
+-- modes 1, 4 and 2. This file computes; the report's words are in report_text.lua.
 local inputs = require "steering_column.inputs"
 local solver = require "steering_column.solver"
 
@@ -457,12 +457,10 @@ function M.validate(t)
     o.pdf = M.pdf_curve(pred, t.data[m])
     out.modes[m] = o
   end
-  -- the trial's verdict: invalid if any mode is, else inconclusive if any mode is, else valid
-  out.verdict = "valid"
-  for _, m in ipairs(M.modes) do
-    local vm = out.modes[m].verdict
-    if vm == "invalid" then out.verdict = "invalid" elseif vm == "inconclusive" and out.verdict == "valid" then out.verdict = "inconclusive" end
-  end
+  -- the trial's verdict (verdict.lua): invalid if any mode is; valid when every calibrated mode
+  -- is and the calibration converged, the undecided validation-only modes listed apart
+  out.verdict, out.undetermined, out.why = require("steering_column.verdict").trial{
+    modes = out.modes, converged = t.calibration.converged == true, status = t.calibration.status }
   return out
 end
 
