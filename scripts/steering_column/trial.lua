@@ -141,6 +141,20 @@ local function prior_terms(entries, th)
   return sum
 end
 
+--- {input = {lower, upper}} of each unknown's mean over a list of parameter points.
+function M.mean_ranges(unknowns, points)
+  local r = {}
+  for _, n in ipairs(unknowns) do
+    local lo, hi = math.huge, -math.huge
+    for _, p in ipairs(points) do
+      local v = p[n .. ".mean"]
+      if v then lo, hi = math.min(lo, v), math.max(hi, v) end
+    end
+    if lo <= hi then r[n] = { lo, hi } end
+  end
+  return r
+end
+
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
 -- data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist}, kriging, design_bounds, n,
 -- seed, maxeval, bootstrap, boot_maxeval, metric = "pr"|"loglik", multistart, prior (the
@@ -307,6 +321,9 @@ function M.calibrate(t)
     from_pushes = #points - from_calib,
     source = from_calib > 0 and ("%d from smi.calibrate's r.near_optimal, %d from the study's pushes of mode 2"):format(from_calib, #points - from_calib)
       or ("%d from the study's pushes of mode 2 (smi.calibrate gave no r.near_optimal)"):format(#points) }
+  -- How far each mean moves over that set (what modes 1 and 4 leave open of it: a mean whose
+  -- range is wide is not determined by the data, however close its optimum lands to the truth)
+  out.near_optimal.mean_ranges = M.mean_ranges(t.unknowns, points)
   -- Bootstrap CIs (beyond the paper): the 9 data rows resampled with replacement (paired across
   -- modes), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum.
   if (t.bootstrap or 0) > 0 then

@@ -84,9 +84,17 @@ for _, r in ipairs(rows) do
     local cv = {}
     for i, t in ipairs(c.trials) do cv[i] = t.calibration.converged and "yes" or "no" end
     conv = table.concat(cv, "/")
+    local cal = R.steps["trial" .. #c.trials .. "_calibration"].result
+    local ranges = cal.near_optimal and cal.near_optimal.mean_ranges or {}
     for _, n in ipairs(UNKNOWNS) do
       local m, t = last.calibration.means[n], tonumber(r[n])
-      if m and t then errs[#errs + 1] = ("%s %+.0f%%"):format(n:gsub("wheel_cover_", "cover_"):gsub("_thickness", "_t"), 100 * (m / t - 1)) end
+      if m and t then
+        local e = ("%s %+.0f%%"):format(n:gsub("wheel_cover_", "cover_"):gsub("_thickness", "_t"), 100 * (m / t - 1))
+        -- the airbag stiffness's range over the near-optimal set: how well the data fix it
+        local rg = n == "airbag_stiffness" and ranges[n]
+        if rg then e = e .. (" [%+.0f, %+.0f]"):format(100 * (rg[1] / t - 1), 100 * (rg[2] / t - 1)) end
+        errs[#errs + 1] = e
+      end
     end
     local s = R.steps.summary and R.steps.summary.result.solver_totals
     if s then for k in pairs(totals) do totals[k] = totals[k] + (s[k] or 0) end end
