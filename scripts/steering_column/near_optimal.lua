@@ -18,7 +18,7 @@ local M = {}
 --- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
 -- optimum, with the analyst's prior terms if any), objective(th) -> value (the same), predicted(th, modes) -> {mode = vec},
 -- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
--- prior(th) -> the analyst's prior terms (nil: none), held by the pushes like the summaries.
+-- prior: the analyst's smi.calibrate prior list (nil: none), held by the pushes like the summaries.
 -- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
 function M.by_prediction_extremes(t)
   local all = {}
@@ -74,11 +74,12 @@ function M.by_prediction_extremes(t)
         for _, q in ipairs(t.params) do params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
         local res = smi.calibrate{
           parameters = params, method = "slsqp", maxeval = t.maxeval or 1000, identifiability = false,
+          -- the analyst's prior holds too, weighted as the summaries are (smi.calibrate adds it)
+          prior = t.prior, prior_weight = t.prior and weight or nil,
           objective = function(th)
             local s = summaries(th)
             local pen = 0
             for a = 1, nc do pen = pen + (s[a] - s0[a]) ^ 2 end
-            if t.prior then pen = pen + t.prior(th) end -- the analyst's prior holds too
             if sign == 0 then
               local miss = 0
               for q = nc + 1, #s do miss = miss + (s[q] - target[q]) ^ 2 end

@@ -31,7 +31,8 @@ function M.trial(t)
     return "inconclusive", undetermined, "its calibration did not converge (" .. tostring(t.status) .. ")"
   end
   if #undecided_calibrated > 0 then
-    return "inconclusive", undetermined, "no decisive verdict on calibrated " .. table.concat(undecided_calibrated, ", ")
+    return "inconclusive", undetermined,
+      "no decisive verdict on calibrated " .. table.concat(undecided_calibrated, ", ")
   end
   return "valid", undetermined, nil
 end
@@ -54,10 +55,12 @@ function M.conclusion(R, max_trials)
     for _, p in ipairs(cal.params) do means[p.input], stds[p.input] = p.mean, p.std end
     local modes = {}
     for _, m in ipairs(M.modes) do modes[m] = val.modes[m].verdict end
-    c.trials[#c.trials + 1] = { candidate = sur.model.candidate, airbag = sur.model.airbag, unknowns = sur.model.unknowns,
+    c.trials[#c.trials + 1] = { candidate = sur.model.candidate, airbag = sur.model.airbag,
+                                unknowns = sur.model.unknowns,
                                 modes = modes, calibration = { converged = cal.converged == true, status = cal.status,
                                                                means = means, stds = stds } }
-    c.verdict, c.undetermined, c.why = M.trial{ modes = val.modes, converged = cal.converged == true, status = cal.status }
+    c.verdict, c.undetermined, c.why = M.trial{ modes = val.modes, converged = cal.converged == true,
+                                                status = cal.status }
     if k < max_trials then
       local ref = R["refinement" .. k]
       if ref and not ref.skipped then c.refinements[#c.refinements + 1] = ref.chosen
