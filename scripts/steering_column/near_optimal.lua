@@ -7,7 +7,8 @@
 -- std) and each way (up, down), and once towards the data's mean and std of the validation
 -- response, a calibration from the optimum (smi.calibrate, SLSQP) pushes the summaries while a
 -- quadratic penalty holds the calibration responses' summaries (means and stds of modes 1 and 4)
--- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end point, and the points at 1/3 and 2/3 of the way
+-- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end
+-- point, and the points at 1/3 and 2/3 of the way
 -- to it, are kept when the calibration objective (the study's PR or log-likelihood) there is
 -- within `tolerance` of the optimum's. These are calibrations from several starts' worth of
 -- directions, each checked against the real objective: the range of the validation metric over
@@ -16,7 +17,8 @@
 local M = {}
 
 --- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
--- optimum, with the analyst's prior terms if any), objective(th) -> value (the same), predicted(th, modes) -> {mode = vec},
+-- optimum, with the analyst's prior terms if any), objective(th) -> value (the same),
+-- predicted(th, modes) -> {mode = vec},
 -- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
 -- prior: the analyst's smi.calibrate prior list (nil: none), held by the pushes like the summaries.
 -- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
@@ -71,7 +73,9 @@ function M.by_prediction_extremes(t)
       local start, reached, kept, status, evals = t.optimum, nil, false, nil, 0
       for _, weight in ipairs{ 100, 1000 } do
         local params = {}
-        for _, q in ipairs(t.params) do params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
+        for _, q in ipairs(t.params) do
+          params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] }
+        end
         local res = smi.calibrate{
           parameters = params, method = "slsqp", maxeval = t.maxeval or 1000, identifiability = false,
           -- the analyst's prior holds too, weighted as the summaries are (smi.calibrate adds it)
@@ -103,14 +107,17 @@ function M.by_prediction_extremes(t)
       end
       norm = math.sqrt(norm)
       if norm > 0 then for k, v in pairs(loadings) do loadings[k] = v / norm end end
-      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ") or all[math.floor((r - 1) / 2) + 1],
+      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ")
+                                           or all[math.floor((r - 1) / 2) + 1],
                               summary = sign == 0 and "mean and std" or ((r - nc) % 2 == 1 and "mean" or "std"),
-                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept, status = status, evaluations = evals, loadings = loadings, length = norm }
+                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept,
+                              status = status, evaluations = evals, loadings = loadings, length = norm }
     end
   end
   -- strongest first: the push that moved the parameters furthest while still fitting
   table.sort(pushes, function(a, b) return (a.kept and a.length or -1) > (b.kept and b.length or -1) end)
-  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4 held, checked against the objective",
+  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4"
+             .. " held, checked against the objective",
            tolerance = t.tolerance, points = points, objectives = objectives, directions = pushes }
 end
 

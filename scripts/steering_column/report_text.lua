@@ -98,6 +98,16 @@ function M.conclusion(c, R)
   return ("Conclusion: the model is %s %s."):format(c.verdict, M.conclusion_detail(c, R))
 end
 
+--- A trial's verdict in one sentence (the end of its validity-check section).
+function M.trial_verdict(label, res)
+  local s = ("%s is %s"):format(label, res.verdict)
+  if res.why then s = s .. ": " .. res.why end
+  if res.undetermined and #res.undetermined > 0 then
+    s = s .. ("; %s not determined by the calibration data"):format(mode_list(res.undetermined))
+  end
+  return s .. "."
+end
+
 --- One line per trial for the console (what the conclusion says, in words).
 function M.trial_line(i, t, refinement)
   local modes = {}

@@ -152,7 +152,8 @@ function M.metric_range(t, mode)
   local lo, hi, threshold, metrics = math.huge, -math.huge, nil, {}
   for i, th in ipairs(cal.near_optimal.points) do
     local Y = predicted(th, { mode })
-    local v = smi.metric.upool{ data = { t.data[mode] }, predicted = { smi.kde(Y[mode]) }, confidence = 0.95, seed = t.seed + 3 }
+    local v = smi.metric.upool{ data = { t.data[mode] }, predicted = { smi.kde(Y[mode]) }, confidence = 0.95,
+                                seed = t.seed + 3 }
     metrics[i], threshold = v.metric, v.threshold
     lo, hi = math.min(lo, v.metric), math.max(hi, v.metric)
   end

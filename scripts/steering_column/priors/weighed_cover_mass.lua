@@ -6,5 +6,7 @@
 local inputs = require "steering_column.inputs"
 return {
   { name = "wheel cover mass / nominal (weighed)", mean = 1, std = 0.05,
-    fn = function(th) return inputs.cover_mass_ratio(th["wheel_cover_rho.mean"], th["wheel_cover_thickness.mean"]) end },
+    fn = function(th)
+      return inputs.cover_mass_ratio(th["wheel_cover_rho.mean"], th["wheel_cover_thickness.mean"])
+    end },
 }
