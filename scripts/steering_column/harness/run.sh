@@ -7,7 +7,7 @@
 # STUDY_ARGS: more options for every study run (CI caps the refinements to bound its time).
 # ROWS="1 2 3": only these experiment ids (of the chosen set; use "all" to pick from every row).
 # EXPERIMENTS=FILE: another table of the same columns (fresh.csv: the hold-out set, set "fresh",
-# drawn after the fixes of 2026-11-24 to check them on truths and seeds nobody tuned to).
+# drawn after the fixes of 2026-11-23 to check them on truths and seeds nobody tuned to).
 # ci: the two experiments CI runs; full: the other twelve; all: both. Exit 1 when a study does not
 # finish or writes no conclusion; with --check also unless every
 # experiment meets the criteria (summarize.lua says which). The experiments run one after
