@@ -165,6 +165,7 @@ function Study:annotate(key, value)
   if type(key) ~= "string" or RESERVED[key] then
     error(("study '%s': annotate: '%s' is not a free top-level key of results.json (reserved: study, seed, order, steps, provenance)"):format(self.name, tostring(key)), 2)
   end
+  if type(smi) == "table" and smi.dry_run then return end -- a dry run writes no results (as _save)
   local saved, why = self:load()
   if not saved then error(("study '%s': annotate('%s'): %s; run the study first"):format(self.name, key, why), 2) end
   saved[key] = value

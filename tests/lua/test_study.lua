@@ -143,6 +143,7 @@ T.case("a study with a report writes report.html with its steps", function()
 end)
 
 T.case("annotate adds a top-level entry beside the steps, and refuses the file's own fields", function()
+  os.remove(results_path("study_annotate")) -- a previous run's file
   local s = make("study_annotate", {})
   T.raises(function() s:annotate("conclusion", { verdict = "valid" }) end, "run the study first", "before the run")
   s:run()
