@@ -63,7 +63,7 @@ local opt = options.parse(arg, {
   { name = "multistart", type = "integer", default = 1, min = 1,
     meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
   { name = "prior", type = "path",
-    meaning = "a Lua file returning smi.calibrate prior entries (e.g. a weighed mass); none by default" },
+    meaning = "a Lua file returning smi.calibrate prior entries (the analyst's knowledge, e.g. a weighed mass); none by default" },
   { name = "max-refinements", type = "integer", default = 2, min = 0,
     meaning = "how many refinements (revised trials) to try after an invalid trial" },
   options.study_steps,
