@@ -1,7 +1,8 @@
---- The study's stand-in for smi.calibrate's r.near_optimal (CONTRACT.md, calibration issue 11
--- item 3): calibrations that fit the calibration responses as well as the optimum, within a
--- tolerance, chosen to show how far a validation response's prediction can move among them.
--- trial.lua uses it only when smi.calibrate does not return r.near_optimal itself.
+--- The study's pushes beside smi.calibrate's r.near_optimal (`smi-lua doc smi.calibrate`):
+-- calibrations that fit the calibration responses as well as the optimum, within a tolerance,
+-- chosen to show how far a validation response's prediction can move among them. calibration.lua
+-- takes the union of both: the kernel's points follow the objective's weak directions and cannot
+-- know which prediction matters.
 --
 -- How: for each summary of each validation response (mean, std of mode 2, in units of the data's
 -- std) and each way (up, down), and once towards the data's mean and std of the validation
