@@ -33,10 +33,13 @@ local study = require "smi.study"
 local inputs = require "steering_column.inputs"
 local solver = require "steering_column.solver"
 local trial = require "steering_column.trial"
+local calibration = require "steering_column.calibration"
 local figs = require "steering_column.figures"
 local models = require "steering_column.models"
 local candidates = require "steering_column.refinement.candidates"
 local criteria = require "steering_column.refinement.criteria"
+local verdict = require "steering_column.verdict"
+local text = require "steering_column.report_text"
 
 local MODES = { "mode1", "mode2", "mode4" }
 
@@ -67,25 +70,8 @@ local opt = options.parse(arg, {
   epilog = "smi-lua's own --out DIR (default smi-out/steering_column/), --seed N and --quiet apply.",
 })
 
--- The analyst's prior knowledge (--prior FILE.lua): smi.calibrate `prior` entries, checked here
--- so that a mistake names the file and the entry; none by default.
-local PRIOR = { labels = {} }
-if opt.prior then
-  local chunk, err = loadfile(opt.prior)
-  if not chunk then error(("steering_column: --prior %s: %s"):format(opt.prior, tostring(err)), 0) end
-  local ok, list = pcall(chunk)
-  if not ok or type(list) ~= "table" then
-    error(("steering_column: --prior %s must return a list of prior entries ({param = \"input.mean\", mean = m, std = s} or {name = \"label\", fn = function(theta) ... end, mean = m, std = s}); %s"):format(opt.prior, ok and ("it returned a " .. type(list)) or tostring(list)), 0)
-  end
-  for i, e in ipairs(list) do
-    local what = type(e) == "table" and (e.param or e.name)
-    if type(e) ~= "table" or type(what) ~= "string" or (e.name and type(e.fn) ~= "function") or type(e.mean) ~= "number" or type(e.std) ~= "number" or not (e.std > 0) then
-      error(("steering_column: --prior %s, entry %d: needs param = \"<parameter>\" (or name = \"<label>\" with fn = function(theta)), a number mean and a std > 0"):format(opt.prior, i), 0)
-    end
-    PRIOR.labels[i] = ("%s ~ N(%.6g, %.6g)"):format(what, e.mean, e.std)
-  end
-  PRIOR.entries = list
-end
+-- The analyst's prior knowledge (--prior FILE.lua), checked; none by default.
+local PRIOR = require("steering_column.prior_file").load(opt.prior)
 
 -- Sample sizes. Full: the paper's choices where stated; quick: CI.
 -- Quick differs only where the verdicts do not depend on it: the screening sample, the
@@ -118,7 +104,9 @@ end
 -- deterministically from the data so that any step can run alone.
 local function f_exp(data)
   local d = {}
-  for k, m in ipairs(MODES) do d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k }) end
+  for k, m in ipairs(MODES) do
+    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
+  end
   return d
 end
 
@@ -135,24 +123,33 @@ s:step("data", timed(function(ctx)
   local d, header, notes = smi.csv.read(opt.data)
   local out = { file = opt.data, n = 0 }
   for _, m in ipairs(MODES) do
-    local col = d[m .. "_hz"]
+    local col, name = d[m .. "_hz"], m .. "_hz"
     if col == nil then
-      error(("%s: no column '%s_hz' (columns: %s); the file needs mode1_hz, mode2_hz and mode4_hz"):format(opt.data, m, table.concat(header, ", ")), 0)
+      error(("%s: no column '%s' (columns: %s); the file needs mode1_hz, mode2_hz and mode4_hz"):format(
+        opt.data, name, table.concat(header, ", ")), 0)
     end
-    if type(col) ~= "userdata" then error(("%s: column '%s_hz' holds text; every value must be a frequency in Hz"):format(opt.data, m), 0) end
-    if #col < 3 then error(("%s: %d rows; the study needs at least 3 measurements per mode"):format(opt.data, #col), 0) end
+    if type(col) ~= "userdata" then
+      error(("%s: column '%s' holds text; every value must be a frequency in Hz"):format(opt.data, name), 0)
+    end
+    if #col < 3 then
+      error(("%s: %d rows; the study needs at least 3 measurements per mode"):format(opt.data, #col), 0)
+    end
     for i = 1, #col do
-      if not (col[i] > 0 and col[i] < math.huge) then error(("%s: row %d, %s_hz = %s is not a positive frequency"):format(opt.data, i, m, tostring(col[i])), 0) end
+      if not (col[i] > 0 and col[i] < math.huge) then
+        error(("%s: row %d, %s = %s is not a positive frequency"):format(opt.data, i, name, tostring(col[i])), 0)
+      end
     end
     out[m] = col:totable()
     out.n = #col
   end
   local r = ctx.report
   r:section("Experimental data")
-  r:text(("%d measured combinations from %s (for the committed file: 3 steering wheels × 3 column assemblies, each the mean of 5 impact tests). Modes 1 and 4 calibrate the model; mode 2 is kept for validation."):format(out.n, opt.data))
+  r:text(text.data_intro(out.n, opt.data))
   local rows = {}
   for i = 1, out.n do rows[i] = { i, out.mode1[i], out.mode2[i], out.mode4[i] } end
-  r:table{ caption = "Measured natural frequencies (Hz).", columns = { "Specimen", { title = "Mode 1", digits = 6 }, { title = "Mode 2", digits = 6 }, { title = "Mode 4", digits = 6 } }, rows = rows }
+  r:table{ caption = "Measured natural frequencies (Hz).", rows = rows,
+           columns = { "Specimen", { title = "Mode 1", digits = 6 }, { title = "Mode 2", digits = 6 },
+                       { title = "Mode 4", digits = 6 } } }
   -- data sanity (duplicated rows) in the report, not only on stderr
   local warnings = notes and notes.warnings or {}
   for _, w in ipairs(warnings) do r:callout("Data: " .. w, "warn") end
@@ -180,9 +177,10 @@ s:step("characterize", timed(function(ctx)
   end
   local r = ctx.report
   r:section("Uncertainty characterization (KDE vs KDE-ebd)")
-  r:text("With nine data the plain KDE is bumpy; KDE-ebd (Kang et al. 2018) adds points drawn uniformly in bounds estimated from the data (significance 0.1) until the PDF changes by less than a critical intersection area of 0.95, smoothing it. The KDE-ebd PDFs are the experimental PDFs of the calibration.")
+  r:text(text.characterize_intro(#data.mode1))
   r:figures(figures)
-  r:table{ caption = "Data summary and bandwidths (Hz).", columns = { "Mode", "Mean", "Std", "h KDE", "h KDE-ebd", "ebd lower", "ebd upper", { title = "Points added", format = "%d" } }, rows = rows }
+  r:table{ caption = "Data summary and bandwidths (Hz).", rows = rows,
+           columns = { "Mode", "Mean", "Std", "h KDE", "h KDE-ebd", "ebd lower", "ebd upper", { title = "Points added", format = "%d" } } }
   return out
 end))
 
@@ -282,67 +280,83 @@ local function surrogate_step(k)
   end)
 end
 
+-- The calibrated parameters' table (means and stds against their bounds, starts and stage 1).
+local function parameter_rows(res)
+  local rows = {}
+  for _, p in ipairs(res.params) do
+    rows[#rows + 1] = { p.input, p.dist, p.unit, ("[%.4g, %.4g]"):format(p.mean_bounds[1], p.mean_bounds[2]),
+                        ("[%.4g, %.4g]"):format(p.std_bounds[1], p.std_bounds[2]), p.mean_start, p.std_start,
+                        p.stage1_mean, p.stage1_std, p.mean, p.std, text.bootstrap_cell(res, p.input) }
+  end
+  return rows
+end
+
+local function calibration_report(r, L, T, res)
+  r:section(L .. ": calibration")
+  r:text(text.calibration_intro(T, res, cfg, opt.prior, PRIOR.labels))
+  r:figure(figs.history(res, L), L .. ": calibration history.")
+  r:table{ caption = text.parameters_caption(res), rows = parameter_rows(res),
+           columns = { "Input", "Type", "Unit", "Mean bounds", "Std bounds", "Initial mean", "Initial std",
+                       "Stage-1 mean", "Stage-1 std", "Calibrated mean", "Calibrated std", "Bootstrap CI" } }
+  if res.cover_mass_ratio then r:text(text.cover_mass(res.cover_mass_ratio)) end
+  for _, w in ipairs(res.warnings) do r:callout(L .. ": " .. w, "warn") end
+  local sv = res.sensitivity
+  local srows = {}
+  local sens = sv.sensitivity
+  for _, n in ipairs(sv.inputs) do srows[#srows + 1] = { n, sens.mode1[n], sens.mode2[n], sens.mode4[n] } end
+  r:table{ caption = "Relative sensitivities d ln f / d ln x of the Kriging modes at the calibrated means.",
+           rows = srows, columns = { "Input", "Mode 1", "Mode 2", "Mode 4" } }
+  r:callout(text.identifiability(res), sv.mode2_unconstrained_share > 0.2 and "warn" or "info")
+  if #res.weak > 0 then r:callout(text.weak_parameters(res.weak), "warn") end
+end
+
 local function calibration_step(k)
   return timed(function(ctx)
     local sur = ctx.results["trial" .. k .. "_surrogate"]
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
-    local kr = trial.krigings(sur)
     ctx:log("SLSQP on %d CRN samples, %d parameters, at most %d evaluations", cfg.cal_n, 2 * #T.unknowns, cfg.maxeval)
-    local res = trial.calibrate{ unknowns = T.unknowns, specs = T.specs, data = vecs(ctx.results.data), f_exp = f_exp(ctx.results.data), kriging = kr,
-                                 design_bounds = sur.design_bounds, n = cfg.cal_n, seed = seed + 100 * k + 10, maxeval = cfg.maxeval,
-                                 bootstrap = cfg.bootstrap, boot_maxeval = 80, metric = opt.metric, multistart = opt.multistart,
-                                 prior = PRIOR.entries, prior_labels = PRIOR.labels }
-    local L = label(T, k)
-    local r = ctx.report
-    r:section(L .. ": calibration")
-    r:text(("Means and standard deviations of the %d unknowns (types, bounds and start values as the model declares them: Table 4/8 for the initial unknowns, the candidate's declaration for new ones) minimize %s over the KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt). PR saturates when the PDFs do not overlap, so a first stage (%d evaluations) matches the means and stds of modes 1 and 4 from the start values; the PR stage starts from there, in smi.calibrate's model form (the Krigings as the model: analytic gradients, the kernel's overlapping start when PR saturates). %s Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d evaluations from %d start(s), %s (converged: %s)."):format(
-      #T.unknowns, res.metric == "pr" and "PR(mode 1) + PR(mode 4) between the KDE-ebd PDFs of the data and"
-        or "minus the log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
-      #PRIOR.labels > 0 and ("Prior knowledge declared by the analyst (" .. opt.prior .. "): " .. table.concat(PRIOR.labels, "; ") .. ".")
-        or "No prior knowledge: the objective is the data's alone (no --prior given).",
-      res.objective, res.metric == "pr" and "PR" or "-logL", res.metrics.mode1, res.metrics.mode4, res.evaluations, res.starts and #res.starts or 1, res.status, tostring(res.converged)))
-    r:figure(figs.history(res, L), L .. ": calibration history.")
-    local rows = {}
-    for _, p in ipairs(res.params) do
-      local ci = res.bootstrap and res.bootstrap.replicates > 0 and ("[%.4g, %.4g] / [%.4g, %.4g]"):format(res.bootstrap.lower[p.input .. ".mean"], res.bootstrap.upper[p.input .. ".mean"],
-        res.bootstrap.lower[p.input .. ".std"], res.bootstrap.upper[p.input .. ".std"])
-        or (res.bootstrap and ("all %d replicates failed"):format(res.bootstrap.failed) or "not computed (--quick)")
-      rows[#rows + 1] = { p.input, p.dist, p.unit, ("[%.4g, %.4g]"):format(p.mean_bounds[1], p.mean_bounds[2]), ("[%.4g, %.4g]"):format(p.std_bounds[1], p.std_bounds[2]),
-                          p.mean_start, p.std_start, p.stage1_mean, p.stage1_std, p.mean, p.std, ci }
-    end
-    r:table{ caption = ("Calibrated statistical parameters. CI: %s."):format(
-               res.bootstrap and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart SLSQP at the optimum with %d evaluations each: the local pull of the data, which understates the spread along the directions modes 1 and 4 leave undetermined"):format(res.bootstrap.replicates, res.bootstrap.maxeval) or "none (--quick)"),
-             columns = { "Input", "Type", "Unit", "Mean bounds", "Std bounds", "Initial mean", "Initial std", "Stage-1 mean", "Stage-1 std", "Calibrated mean", "Calibrated std", "Bootstrap CI" }, rows = rows }
-    if res.cover_mass_ratio then
-      r:text(("Wheel cover mass relative to nominal (density × cover tube area) at the optimum: %.3f."):format(res.cover_mass_ratio))
-    end
-    for _, w in ipairs(res.warnings) do r:callout(L .. ": " .. w, "warn") end
-    local sv = res.sensitivity
-    local srows = {}
-    for _, n in ipairs(sv.inputs) do srows[#srows + 1] = { n, sv.sensitivity.mode1[n], sv.sensitivity.mode2[n], sv.sensitivity.mode4[n] } end
-    r:table{ caption = "Relative sensitivities d ln f / d ln x of the Kriging modes at the calibrated means.", columns = { "Input", "Mode 1", "Mode 2", "Mode 4" }, rows = srows }
-    local no = res.near_optimal
-    r:callout(("Identifiability (beyond the paper): modes 1 and 4 fix 2 combinations of the %d means and leave %d undetermined; %.0f %% of mode 2's sensitivity lies outside what modes 1 and 4 constrain. Near-optimal calibrations (objective within %.3g of the optimum, the %s; %s): %d points."):format(
-      #sv.inputs, sv.undetermined, 100 * sv.mode2_unconstrained_share, no.tolerance, no.tolerance_basis and no.tolerance_basis.basis or "tolerance", no.source, #no.points), sv.mode2_unconstrained_share > 0.2 and "warn" or "info")
-    if #res.weak > 0 then
-      r:callout(("Identifiability: the objective hardly changes with %s over its whole range; these parameters are not determined by modes 1 and 4."):format(table.concat(res.weak, ", ")), "warn")
-    end
+    local res = calibration.calibrate{
+      unknowns = T.unknowns, specs = T.specs, data = vecs(ctx.results.data), f_exp = f_exp(ctx.results.data),
+      kriging = trial.krigings(sur), design_bounds = sur.design_bounds, n = cfg.cal_n, seed = seed + 100 * k + 10,
+      maxeval = cfg.maxeval, bootstrap = cfg.bootstrap, boot_maxeval = 80, metric = opt.metric,
+      multistart = opt.multistart, prior = PRIOR.entries, prior_labels = PRIOR.labels }
+    calibration_report(ctx.report, label(T, k), T, res)
     return res
   end)
 end
 
--- The largest moves of the means along the strongest near-optimal push, in words (what a
--- measurement would have to pin down).
-local function weak_inputs(no)
-  local d = no.directions and no.directions[1]
-  if not d then return nil end
-  local l = {}
-  for name, w in pairs(d.loadings) do if name:match("%.mean$") then l[#l + 1] = { name:gsub("%.mean$", ""), w } end end
-  table.sort(l, function(a, b) return math.abs(a[2]) > math.abs(b[2]) end)
-  local parts = {}
-  for i = 1, math.min(3, #l) do parts[i] = ("%s %+.2f"):format(l[i][1], l[i][2]) end
-  return table.concat(parts, ", ")
+local BADGE = { valid = "pass", invalid = "fail", inconclusive = "warn" }
+
+-- The validity check's figures, table and verdict list (one verdict per mode).
+local function validation_report(ctx, L, res, cal)
+  local r = ctx.report
+  local ebd = f_exp(ctx.results.data)
+  r:section(L .. ": validity check")
+  r:text(text.validation_intro(res, #ctx.results.data.mode1, cfg))
+  local pdfs, cdfs, rows = {}, {}, {}
+  for _, m in ipairs(MODES) do
+    local v = res.modes[m]
+    local data = ctx.results.data[m]
+    local exp_curve = trial.pdf_curve(ebd[m], smi.vec(data), v.pdf.x[1], v.pdf.x[#v.pdf.x])
+    pdfs[#pdfs + 1] = { figs.pdf_over_data(m, v, data, exp_curve), figs.title[m] .. ": calibrated PDF over the data." }
+    cdfs[#cdfs + 1] = { figs.upool(m, v), figs.title[m] .. ": ECDF of the u-values against the uniform CDF." }
+    local range = v.range and ("[%.4f, %.4f] over %d"):format(v.range.lower, v.range.upper, v.range.points) or "—"
+    rows[#rows + 1] = { figs.title[m], v.used_in_calibration and "calibration" or "validation only", v.predicted_mean,
+                        v.predicted_std, v.metric, range, v.threshold, { status = BADGE[v.verdict], text = v.verdict },
+                        v.solver.metric, { status = v.solver.pass and "pass" or "fail",
+                                           text = v.solver.pass and "valid" or "invalid" } }
+    v.detail = v.range and text.range_detail(v, cal) or text.decisive_detail(v)
+    r:verdict{ name = ("%s, %s"):format(L, figs.title[m]), status = BADGE[v.verdict], value = v.metric,
+               threshold = v.threshold, detail = v.detail }
+    if v.pass ~= v.solver.pass then r:callout(text.solver_disagrees(L, figs.title[m], v.solver.metric), "warn") end
+  end
+  r:figures(pdfs)
+  r:figures(cdfs)
+  r:table{ caption = "Validity check (frequencies in Hz). U range: over the near-optimal calibrations.", rows = rows,
+           columns = { "Mode", "Role", "Pred. mean", "Pred. std", "U", "U range", "Threshold", "Verdict",
+                       "U (solver check)", "Solver check" } }
+  r:text(text.trial_verdict(L, res))
 end
 
 local function validation_step(k)
@@ -352,44 +366,9 @@ local function validation_step(k)
     local T = sur.model
     local cal = ctx.results["trial" .. k .. "_calibration"]
     local res = trial.validate{ name = "trial" .. k, model = T, kriging = trial.krigings(sur), calibration = cal,
-                                data = vecs(ctx.results.data), n = cfg.val_n, n_solver = cfg.solver_check, n_near = cfg.near_n,
-                                seed = seed + 100 * k + 30, solver = opt.solver }
-    local ebd = f_exp(ctx.results.data)
-    local L = label(T, k)
-    local r = ctx.report
-    r:section(L .. ": validity check")
-    r:text(("u-pooling area metric (eq. 11 and 12) of the data of each mode against the KDE of %d samples of the calibrated model (Kriging), with the exact 95 %% threshold for the number of data (0.1927 for n = 9, shared/spec/algorithms.md §5). Modes 1 and 4 were used by the calibration: their verdict is the optimum's. Mode 2 was not: the calibration data leave combinations of the means undetermined, so its metric is computed over every near-optimal calibration (%d samples each) and it is valid or invalid only when that whole range lies on one side of the threshold, else inconclusive. As a check of the surrogate, %d samples were also run through column-fe itself."):format(cfg.val_n, cfg.near_n, cfg.solver_check))
-    local pdfs, cdfs, rows = {}, {}, {}
-    local badge = { valid = "pass", invalid = "fail", inconclusive = "warn" }
-    for _, m in ipairs(MODES) do
-      local v = res.modes[m]
-      local c = ebd[m]
-      pdfs[#pdfs + 1] = { figs.pdf_over_data(m, v, ctx.results.data[m], trial.pdf_curve(c, smi.vec(ctx.results.data[m]), v.pdf.x[1], v.pdf.x[#v.pdf.x])), figs.title[m] .. ": calibrated PDF over the data." }
-      cdfs[#cdfs + 1] = { figs.upool(m, v), figs.title[m] .. ": ECDF of the u-values against the uniform CDF." }
-      local range = v.range and ("[%.4f, %.4f] over %d"):format(v.range.lower, v.range.upper, v.range.points) or "—"
-      rows[#rows + 1] = { figs.title[m], v.used_in_calibration and "calibration" or "validation only", v.predicted_mean, v.predicted_std, v.metric, range, v.threshold,
-                          { status = badge[v.verdict], text = v.verdict }, v.solver.metric, { status = v.solver.pass and "pass" or "fail", text = v.solver.pass and "valid" or "invalid" } }
-      local detail
-      if v.range then
-        detail = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f; not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
-        if v.verdict == "inconclusive" then
-          local w = weak_inputs(cal.near_optimal)
-          detail = detail .. (". Modes 1 and 4 fit equally well across calibrations that predict mode 2 on both sides of the threshold%s. What would settle it: calibrate on mode 2 as well, or measure one of the inputs that move (e.g. weigh the wheel cover, gauge the bracket) and give it as --prior"):format(
-            w and (" (the means move most along: " .. w .. ")") or "")
-        end
-      else
-        detail = ("U = %.4f %s %.4f (p = %.3f); used by the calibration"):format(v.metric, v.pass and "≤" or ">", v.threshold, v.p)
-      end
-      v.detail = detail
-      r:verdict{ name = ("%s, %s"):format(L, figs.title[m]), status = badge[v.verdict], value = v.metric, threshold = v.threshold, detail = detail }
-      if v.pass ~= v.solver.pass then
-        r:callout(("%s, %s: the solver check (U = %.4f) disagrees with the Kriging verdict at the optimum: the surrogate's error matters here."):format(L, figs.title[m], v.solver.metric), "warn")
-      end
-    end
-    r:figures(pdfs)
-    r:figures(cdfs)
-    r:table{ caption = "Validity check (frequencies in Hz). U range: over the near-optimal calibrations.", columns = { "Mode", "Role", "Pred. mean", "Pred. std", "U", "U range", "Threshold", "Verdict", "U (solver check)", "Solver check" }, rows = rows }
-    r:text(("%s is %s."):format(L, res.verdict))
+                                data = vecs(ctx.results.data), n = cfg.val_n, n_solver = cfg.solver_check,
+                                n_near = cfg.near_n, seed = seed + 100 * k + 30, solver = opt.solver }
+    validation_report(ctx, label(T, k), res, cal)
     return res
   end)
 end
@@ -400,27 +379,27 @@ end
 -- Ranks the candidates once (after the first invalid trial): each revised model runs at the
 -- initial means; correctness is eq. (13) averaged over every response used in calibration.
 local function rank_candidates(ctx)
-  local data = ctx.results.data
   local observed = {}
-  for _, m in ipairs(MODES) do observed[m] = smi.vec(data[m]):mean() end
+  for _, m in ipairs(MODES) do observed[m] = smi.vec(ctx.results.data[m]):mean() end
   local runs = {}
   local crit = criteria.build{ observed = observed, responses = trial.calibration_modes, run = function(c)
     local rev = models.revised(c)
-    local names = { "column_frame_E" }
-    local m = solver.command{ solver = opt.solver, airbag = rev.airbag, vary = names, fixed = models.at_initial(rev), name = "refine-" .. c.short:gsub("%s", "-") }
+    local m = solver.command{ solver = opt.solver, airbag = rev.airbag, vary = { "column_frame_E" },
+                              fixed = models.at_initial(rev), name = "refine-" .. c.short:gsub("%s", "-") }
     local Y, info = m:evaluate(smi.mat{ { inputs.nominal.column_frame_E } })
-    local y = { mode1 = Y.mode1[1], mode2 = Y.mode2[1], mode4 = Y.mode4[1] }
-    runs[c.name] = { y = y, seconds = info.duration[1] }
-    return y, info.duration[1]
+    runs[c.name] = { y = { mode1 = Y.mode1[1], mode2 = Y.mode2[1], mode4 = Y.mode4[1] }, seconds = info.duration[1] }
+    return runs[c.name].y, info.duration[1]
   end }
   local dm = smi.refine.decision_matrix{ candidates = candidates, criteria = crit }
-  local out = { responses = trial.calibration_modes, observed = observed, weights = criteria.weights, candidates = {}, overall = {} }
+  local out = { responses = trial.calibration_modes, observed = observed, weights = criteria.weights,
+                candidates = {}, overall = {} }
   for j, c in ipairs(candidates) do
     out.overall[j] = dm.overall[j]
     local mag, std = {}, {}
     for i = 1, 4 do mag[i], std[i] = dm.M:get(j, i), dm.S:get(j, i) end
-    out.candidates[j] = { name = c.name, magnitudes = mag, standardized = std, prediction = runs[c.name].y, new_inputs = c.new_inputs,
-                          implement_minutes = c.implement_minutes, run_seconds = runs[c.name].seconds }
+    out.candidates[j] = { name = c.name, magnitudes = mag, standardized = std, prediction = runs[c.name].y,
+                          new_inputs = c.new_inputs, implement_minutes = c.implement_minutes,
+                          run_seconds = runs[c.name].seconds }
   end
   local order = {}
   for j = 1, #candidates do order[j] = j end
@@ -430,61 +409,65 @@ local function rank_candidates(ctx)
   return out
 end
 
-local CRITERIA = { "correctness", "robustness", "computational cost", "implementation cost" }
+-- The best-ranked candidate not tried yet (its index in the matrix), the runner-up among the
+-- untried, and the set of tried ones; nil when every candidate has been tried.
+local function choose(dm, R, k)
+  local tried = {}
+  for i = 1, k do tried[R["trial" .. i .. "_surrogate"].model.candidate] = true end
+  local chosen
+  for _, name in ipairs(dm.ranking) do if not tried[name] then chosen = name; break end end
+  if not chosen then return nil end
+  local jc, jr
+  for j, c in ipairs(dm.candidates) do
+    if c.name == chosen then jc = j end
+    if c.name ~= chosen and not tried[c.name] and (not jr or dm.overall[j] > dm.overall[jr]) then jr = j end
+  end
+  return chosen, jc, jr
+end
+
+local function refinement_report(r, k, out)
+  local dm = out.matrix
+  r:section(("Model refinement after trial %d"):format(k))
+  local M_rows, pred = {}, {}
+  for j, c in ipairs(dm.candidates) do
+    local mg, st = c.magnitudes, c.standardized
+    M_rows[j] = { c.name, mg[1], mg[2], mg[3], mg[4], st[1], st[2], st[3], st[4], dm.overall[j] }
+    pred[j] = { c.name, c.prediction.mode1, c.prediction.mode2, c.prediction.mode4 }
+  end
+  pred[#pred + 1] = { "data mean", dm.observed.mode1, dm.observed.mode2, dm.observed.mode4 }
+  r:text(text.refinement_intro(k, out))
+  r:table{ caption = "Weighted decision matrix (Table 6 analog): magnitudes M, standardized S, overall rating.",
+           rows = M_rows, columns = { "Candidate", "M correctness", "M robustness", "M comp. (min)", "M impl. (min)",
+                                      "S corr.", "S rob.", "S comp.", "S impl.", "Rating" } }
+  r:table{ caption = "Revised models at the initial means (Hz).", rows = pred,
+           columns = { "Model", "Mode 1", "Mode 2", "Mode 4" } }
+  local names = {}
+  for j, c in ipairs(dm.candidates) do names[j] = c.name end
+  r:figure(figs.decision{ candidates = names, overall = dm.overall, best_name = out.chosen },
+           "Overall rating of the candidates.")
+  r:callout(("Refinement after trial %d: %s (%s)."):format(k, out.chosen, out.why), "info")
+end
 
 local function refinement_step(k)
   return timed(function(ctx)
     local v = ctx.results["trial" .. k .. "_validation"]
     if v.skipped then return skipped(v.reason) end
-    if v.verdict ~= "invalid" then return skipped(("trial %d is %s: nothing to refine"):format(k, v.verdict)) end
-    if k > opt.max_refinements then return skipped(("trial %d is invalid and the analyst's limit of %d refinement(s) is reached"):format(k, opt.max_refinements)) end
+    if v.verdict ~= "invalid" then return skipped(text.nothing_to_refine(k, v)) end
+    if k > opt.max_refinements then
+      return skipped(("trial %d is invalid and the analyst's limit of %d refinement(s) is reached"):format(
+        k, opt.max_refinements))
+    end
     local failed = {}
     for _, m in ipairs(MODES) do if v.modes[m].verdict == "invalid" then failed[#failed + 1] = m end end
     local dm = k == 1 and rank_candidates(ctx) or ctx.results.refinement1.matrix
-    local tried = {}
-    for i = 1, k do
-      local sur = ctx.results["trial" .. i .. "_surrogate"]
-      tried[sur.model.candidate] = true
-    end
-    local chosen
-    for _, name in ipairs(dm.ranking) do if not tried[name] then chosen = name; break end end
+    local chosen, jc, jr = choose(dm, ctx.results, k)
     if not chosen then return skipped(("trial %d is invalid and every candidate has been tried"):format(k)) end
     local cand
     for _, c in ipairs(candidates) do if c.name == chosen then cand = c end end
-    local model = models.revised(cand)
-    -- why it won: its weighted standardized criteria against the runner-up's
-    local jc, jr
-    for j, c in ipairs(dm.candidates) do
-      if c.name == chosen then jc = j end
-      if c.name ~= chosen and not tried[c.name] and (not jr or dm.overall[j] > dm.overall[jr]) then jr = j end
-    end
-    local why = {}
-    local w = { dm.weights.correctness, dm.weights.robustness, dm.weights.computational, dm.weights.implementation }
-    for i = 1, 4 do
-      local d = w[i] * (dm.candidates[jc].standardized[i] - (jr and dm.candidates[jr].standardized[i] or 0))
-      why[#why + 1] = ("%s %+.3f"):format(CRITERIA[i], d)
-    end
-    local out = { failed_responses = failed, matrix = dm, chosen = chosen, model = model, rank = nil,
-                  why = ("rating %.3f%s; weighted difference by criterion: %s"):format(dm.overall[jc],
-                    jr and (" against %.3f for %s"):format(dm.overall[jr], dm.candidates[jr].name) or "", table.concat(why, ", ")) }
+    local out = { failed_responses = failed, matrix = dm, chosen = chosen, model = models.revised(cand),
+                  why = text.why_chosen(dm, jc, jr) }
     for i, name in ipairs(dm.ranking) do if name == chosen then out.rank = i end end
-    local r = ctx.report
-    r:section(("Model refinement after trial %d"):format(k))
-    local names, M_rows, pred = {}, {}, {}
-    for j, c in ipairs(dm.candidates) do
-      names[j] = c.name
-      local mg, st = c.magnitudes, c.standardized
-      M_rows[j] = { c.name, mg[1], mg[2], mg[3], mg[4], st[1], st[2], st[3], st[4], dm.overall[j] }
-      pred[j] = { c.name, c.prediction.mode1, c.prediction.mode2, c.prediction.mode4 }
-    end
-    pred[#pred + 1] = { "data mean", dm.observed.mode1, dm.observed.mode2, dm.observed.mode4 }
-    r:text(("Trial %d is invalid on %s. Candidates (the paper's §4.1.5, each declaring its revision in refinement/candidates.lua): %s. Each revised model is run at the initial means; correctness is eq. (13) averaged over every response used in calibration (%s), whichever of them the calibration gave up; robustness the number of new unknowns, computational cost the measured run time (minutes, in whole seconds: shorter differences are timing noise), implementation cost the analyst's estimate (minutes). Weights: correctness 0.4, the others 0.2 (criteria.lua explains why). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s (rank %d; candidates already tried are passed over): %s. Trial %d is its declared revision: %s airbag, unknowns %s."):format(
-      k, table.concat(failed, ", "), table.concat(names, "; "), table.concat(dm.responses, ", "), table.concat(dm.ranking, " > "), chosen, out.rank, out.why, k + 1, model.airbag, table.concat(model.unknowns, ", ")))
-    r:table{ caption = "Weighted decision matrix (Table 6 analog): magnitudes M, standardized S, overall rating.",
-             columns = { "Candidate", "M correctness", "M robustness", "M comp. (min)", "M impl. (min)", "S corr.", "S rob.", "S comp.", "S impl.", "Rating" }, rows = M_rows }
-    r:table{ caption = "Revised models at the initial means (Hz).", columns = { "Model", "Mode 1", "Mode 2", "Mode 4" }, rows = pred }
-    r:figure(figs.decision{ candidates = names, overall = dm.overall, best_name = chosen }, "Overall rating of the candidates.")
-    r:callout(("Refinement after trial %d: %s (%s)."):format(k, chosen, out.why), "info")
+    refinement_report(ctx.report, k, out)
     return out
   end)
 end
@@ -499,57 +482,15 @@ end
 -- ---------------------------------------------------------------------------------------------
 -- Summary: the conclusion, solver runs, provenance
 -- ---------------------------------------------------------------------------------------------
-local function conclusion_of(R)
-  local c = { trials = {}, refinements = {} }
-  for k = 1, MAX_TRIALS do
-    local sur = R["trial" .. k .. "_surrogate"]
-    if sur.skipped then break end
-    local cal, val = R["trial" .. k .. "_calibration"], R["trial" .. k .. "_validation"]
-    local means, stds = {}, {}
-    for _, p in ipairs(cal.params) do means[p.input], stds[p.input] = p.mean, p.std end
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[m] = val.modes[m].verdict end
-    c.trials[#c.trials + 1] = { candidate = sur.model.candidate, airbag = sur.model.airbag, unknowns = sur.model.unknowns, modes = modes,
-                                calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds } }
-    c.verdict = val.verdict
-    if k < MAX_TRIALS then
-      local ref = R["refinement" .. k]
-      if not ref.skipped then c.refinements[#c.refinements + 1] = ref.chosen else c.ended = ref.reason end
-    end
-  end
-  return c
-end
-
-s:step("summary", timed(function(ctx)
-  local R = ctx.results
-  local c = conclusion_of(R)
-  local out = { conclusion = c, solver_runs = solver.counts, solver_totals = solver.totals(), quick = opt.quick, config = cfg, seed = seed,
-                data_file = opt.data, solver_path = opt.solver, prior_file = opt.prior, priors = PRIOR.labels, lua = _VERSION }
-  local r = ctx.report
-  r:section("Summary")
-  local story = {}
-  for i, t in ipairs(c.trials) do
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
-    story[#story + 1] = ("Trial %d (%s, %s airbag, calibration %s): %s."):format(i, t.candidate, t.airbag, t.calibration.converged and "converged" or ("stopped: " .. tostring(t.calibration.status)), table.concat(modes, ", "))
-    if c.refinements[i] then story[#story + 1] = ("The decision matrix chose %s (%s)."):format(c.refinements[i], R["refinement" .. i].why) end
-  end
-  if c.ended then story[#story + 1] = "The study ended: " .. c.ended .. "." end
-  story[#story + 1] = ("Priors: %s."):format(#PRIOR.labels > 0 and table.concat(PRIOR.labels, "; ") or "none (the data file alone)")
-  r:text(table.concat(story, " "))
-  local last = c.trials[#c.trials]
-  r:verdict{ name = "Conclusion: the model is " .. c.verdict, status = ({ valid = "pass", invalid = "fail", inconclusive = "warn" })[c.verdict],
-             detail = ("last trial %d (%s, %s airbag): %s"):format(#c.trials, last.candidate, last.airbag, (function()
-               local t = {}
-               for _, m in ipairs(MODES) do t[#t + 1] = m .. " " .. last.modes[m] end
-               return table.concat(t, ", ")
-             end)()) }
+-- The summary's tables: solver use and the wall-clock time per step.
+local function summary_tables(r, R)
   local rows = {}
   for name, cnt in pairs(solver.counts) do rows[#rows + 1] = { name, cnt.points, cnt.launched, cnt.reused } end
   table.sort(rows, function(a, b) return a[1] < b[1] end)
   if #rows > 0 then
-    r:table{ caption = "column-fe use in this run (steps run alone count only their own runs): points evaluated, processes launched, points reused from the store.",
-             columns = { "Model", { title = "Points", format = "%d" }, { title = "Launched", format = "%d" }, { title = "Reused", format = "%d" } }, rows = rows }
+    r:table{ caption = text.solver_use_caption, rows = rows,
+             columns = { "Model", { title = "Points", format = "%d" }, { title = "Launched", format = "%d" },
+                         { title = "Reused", format = "%d" } } }
   end
   local steps = {}
   for _, st in ipairs(s.steps) do
@@ -558,9 +499,24 @@ s:step("summary", timed(function(ctx)
       if ok and res and not res.skipped then steps[#steps + 1] = { st.name, res.wall_seconds or 0 } end
     end
   end
-  r:table{ caption = "Wall-clock time per step (s, 1 s resolution).", columns = { "Step", { title = "Wall (s)", format = "%d" } }, rows = steps }
-  r:provenance{ seed = seed, quick = opt.quick, data = opt.data, solver = opt.solver, lua = _VERSION, prior = opt.prior or "none",
-                solver_runs = out.solver_totals, sample_sizes = cfg }
+  r:table{ caption = "Wall-clock time per step (s, 1 s resolution).", rows = steps,
+           columns = { "Step", { title = "Wall (s)", format = "%d" } } }
+end
+
+s:step("summary", timed(function(ctx)
+  local R = ctx.results
+  local c = verdict.conclusion(R, MAX_TRIALS)
+  local out = { conclusion = c, solver_runs = solver.counts, solver_totals = solver.totals(), quick = opt.quick,
+                config = cfg, seed = seed, data_file = opt.data, solver_path = opt.solver, prior_file = opt.prior,
+                priors = PRIOR.labels, lua = _VERSION, words = text.conclusion(c, R) }
+  local r = ctx.report
+  r:section("Summary")
+  r:text(text.story(c, R, PRIOR.labels))
+  r:verdict{ name = "Conclusion: the model is " .. c.verdict, status = BADGE[c.verdict],
+             detail = text.conclusion_detail(c, R) }
+  summary_tables(r, R)
+  r:provenance{ seed = seed, quick = opt.quick, data = opt.data, solver = opt.solver, lua = _VERSION,
+                prior = opt.prior or "none", solver_runs = out.solver_totals, sample_sizes = cfg }
   return out
 end))
 
@@ -570,16 +526,7 @@ local results = s:run(opt)
 local ok, summary = pcall(function() return results.summary end)
 if ok and summary and summary.conclusion then
   local c = summary.conclusion
-  local saved = s:load()
-  if saved then
-    saved.conclusion = { verdict = c.verdict, refinements = c.refinements, trials = c.trials }
-    s:_save(saved)
-  end
-  for i, t in ipairs(c.trials) do
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
-    io.stdout:write(("Trial %d: %s, %s airbag, unknowns %s: %s%s\n"):format(i, t.candidate, t.airbag, table.concat(t.unknowns, ", "), table.concat(modes, ", "),
-      c.refinements[i] and ("; refined by " .. c.refinements[i]) or ""))
-  end
-  io.stdout:write(("Conclusion: the model is %s%s.\n"):format(c.verdict, #c.refinements > 0 and (" after refinement by " .. table.concat(c.refinements, ", then ")) or ", no refinement"))
+  s:annotate("conclusion", verdict.top_level(c))
+  for i, t in ipairs(c.trials) do io.stdout:write(text.trial_line(i, t, c.refinements[i]), "\n") end
+  io.stdout:write(summary.words or ("Conclusion: the model is " .. c.verdict), "\n")
 end

@@ -2,25 +2,27 @@
 local svg = require "smi.report.svg"
 
 local M = {}
-local title = { mode1 = "Mode 1 (vertical bending)", mode2 = "Mode 2 (lateral bending)", mode4 = "Mode 4 (wheel pitch)" }
+local title = { mode1 = "Mode 1 (vertical bending)", mode2 = "Mode 2 (lateral bending)",
+                mode4 = "Mode 4 (wheel pitch)" }
 M.title = title
 
 function M.kde_vs_ebd(mode, c)
   local ch = svg.chart{ title = title[mode], xlabel = "Frequency (Hz)", ylabel = "Density", width = 420, height = 300 }
-  ch:line(c.kde.x, c.kde.y, { label = "KDE" }):line(c.ebd.x, c.ebd.y, { label = "KDE-ebd" }):rug(c.data, { label = "9 data" })
+  ch:line(c.kde.x, c.kde.y, { label = "KDE" }):line(c.ebd.x, c.ebd.y, { label = "KDE-ebd" })
+  ch:rug(c.data, { label = ("%d data"):format(#c.data) })
   return ch:render()
 end
 
 function M.screening(mode, rows, chosen)
   local labels, values = {}, {}
   for i = 1, math.min(10, #rows) do labels[i], values[i] = rows[i].input, rows[i].ne end
-  return svg.bars{ labels = labels, values = values, sort = true, highlight = chosen, title = "Normalized area metric, " .. title[mode],
-                   xlabel = "N_e (eq. 7)", width = 420 }
+  return svg.bars{ labels = labels, values = values, sort = true, highlight = chosen,
+                   title = "Normalized area metric, " .. title[mode], xlabel = "N_e (eq. 7)", width = 420 }
 end
 
 function M.loo(mode, d)
-  local ch = svg.chart{ title = "Leave-one-out, " .. title[mode], xlabel = "Solver (Hz)", ylabel = "Kriging LOO (Hz)", equal = true,
-                        width = 360, height = 330, legend = "top-left" }
+  local ch = svg.chart{ title = "Leave-one-out, " .. title[mode], xlabel = "Solver (Hz)", ylabel = "Kriging LOO (Hz)",
+                        equal = true, width = 360, height = 330, legend = "top-left" }
   ch:scatter(d.observed, d.loo_predicted, { label = "design points" }):diagonal{ label = "y = x" }
   ch:note(("Q² %.4f, LOO RMSE %.3g Hz, test RMSE %.3g Hz"):format(d.loo_q2, d.loo_rmse, d.test_rmse))
   return ch:render()
@@ -29,8 +31,9 @@ end
 function M.history(cal, name)
   local it, obj = {}, {}
   for i, h in ipairs(cal.history) do it[i], obj[i] = i, h[2] end
-  local ch = svg.chart{ title = name .. ": PR(mode 1) + PR(mode 4)", xlabel = "Optimizer step", ylabel = "Objective", width = 420, height = 300,
-                        legend = "none" }
+  local objective = cal.metric == "loglik" and "-logL(mode 1) - logL(mode 4)" or "PR(mode 1) + PR(mode 4)"
+  local ch = svg.chart{ title = name .. ": " .. objective, xlabel = "Optimizer step", ylabel = "Objective",
+                        width = 420, height = 300, legend = "none" }
   ch:line(it, obj, { label = "objective" })
   return ch:render()
 end
@@ -39,7 +42,7 @@ function M.pdf_over_data(mode, v, data, ebd)
   local ch = svg.chart{ title = title[mode], xlabel = "Frequency (Hz)", ylabel = "Density", width = 420, height = 300 }
   ch:line(v.pdf.x, v.pdf.y, { label = "calibrated model" })
   if ebd then ch:line(ebd.x, ebd.y, { label = "data, KDE-ebd" }) end
-  ch:rug(data, { label = "9 data" })
+  ch:rug(data, { label = ("%d data"):format(#data) })
   return ch:render()
 end
 
@@ -52,8 +55,8 @@ function M.upool(mode, v)
 end
 
 function M.decision(dm)
-  return svg.bars{ labels = dm.candidates, values = dm.overall, title = "Weighted decision matrix: overall rating", xlabel = "Σ w·S",
-                   highlight = { [dm.best_name] = true }, width = 520 }
+  return svg.bars{ labels = dm.candidates, values = dm.overall, title = "Weighted decision matrix: overall rating",
+                   xlabel = "Σ w·S", highlight = { [dm.best_name] = true }, width = 520 }
 end
 
 return M

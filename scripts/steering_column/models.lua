@@ -31,8 +31,12 @@ function M.revised(candidate)
   m.trend, m.n_design = r.trend or m.trend, r.n_design or m.n_design
   for _, u in ipairs(r.unknowns) do
     local name, spec = u[1], u[2]
-    if m.specs[name] then error(("candidate '%s' declares unknown '%s', which the model already has"):format(candidate.name, name), 0) end
-    if m.fixed[name] ~= nil then error(("candidate '%s' both fixes and calibrates '%s'"):format(candidate.name, name), 0) end
+    if m.specs[name] then
+      error(("candidate '%s' declares unknown '%s', which the model already has"):format(candidate.name, name), 0)
+    end
+    if m.fixed[name] ~= nil then
+      error(("candidate '%s' both fixes and calibrates '%s'"):format(candidate.name, name), 0)
+    end
     m.unknowns[#m.unknowns + 1] = name
     m.specs[name] = copy(spec)
     m.new_unknowns[#m.new_unknowns + 1] = name

@@ -1,13 +1,15 @@
---- The study's stand-in for smi.calibrate's r.near_optimal (CONTRACT.md, calibration issue 11
--- item 3): calibrations that fit the calibration responses as well as the optimum, within a
--- tolerance, chosen to show how far a validation response's prediction can move among them.
--- trial.lua uses it only when smi.calibrate does not return r.near_optimal itself.
+--- The study's pushes beside smi.calibrate's r.near_optimal (`smi-lua doc smi.calibrate`):
+-- calibrations that fit the calibration responses as well as the optimum, within a tolerance,
+-- chosen to show how far a validation response's prediction can move among them. calibration.lua
+-- takes the union of both: the kernel's points follow the objective's weak directions and cannot
+-- know which prediction matters.
 --
 -- How: for each summary of each validation response (mean, std of mode 2, in units of the data's
 -- std) and each way (up, down), and once towards the data's mean and std of the validation
 -- response, a calibration from the optimum (smi.calibrate, SLSQP) pushes the summaries while a
 -- quadratic penalty holds the calibration responses' summaries (means and stds of modes 1 and 4)
--- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end point, and the points at 1/3 and 2/3 of the way
+-- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end
+-- point, and the points at 1/3 and 2/3 of the way
 -- to it, are kept when the calibration objective (the study's PR or log-likelihood) there is
 -- within `tolerance` of the optimum's. These are calibrations from several starts' worth of
 -- directions, each checked against the real objective: the range of the validation metric over
@@ -16,9 +18,10 @@
 local M = {}
 
 --- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
--- optimum, with the analyst's prior terms if any), objective(th) -> value (the same), predicted(th, modes) -> {mode = vec},
+-- optimum, with the analyst's prior terms if any), objective(th) -> value (the same),
+-- predicted(th, modes) -> {mode = vec},
 -- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
--- prior(th) -> the analyst's prior terms (nil: none), held by the pushes like the summaries.
+-- prior: the analyst's smi.calibrate prior list (nil: none), held by the pushes like the summaries.
 -- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
 function M.by_prediction_extremes(t)
   local all = {}
@@ -71,14 +74,17 @@ function M.by_prediction_extremes(t)
       local start, reached, kept, status, evals = t.optimum, nil, false, nil, 0
       for _, weight in ipairs{ 100, 1000 } do
         local params = {}
-        for _, q in ipairs(t.params) do params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] } end
+        for _, q in ipairs(t.params) do
+          params[#params + 1] = { name = q.name, lower = q.lower, upper = q.upper, start = start[q.name] }
+        end
         local res = smi.calibrate{
           parameters = params, method = "slsqp", maxeval = t.maxeval or 1000, identifiability = false,
+          -- the analyst's prior holds too, weighted as the summaries are (smi.calibrate adds it)
+          prior = t.prior, prior_weight = t.prior and weight or nil,
           objective = function(th)
             local s = summaries(th)
             local pen = 0
             for a = 1, nc do pen = pen + (s[a] - s0[a]) ^ 2 end
-            if t.prior then pen = pen + t.prior(th) end -- the analyst's prior holds too
             if sign == 0 then
               local miss = 0
               for q = nc + 1, #s do miss = miss + (s[q] - target[q]) ^ 2 end
@@ -102,14 +108,17 @@ function M.by_prediction_extremes(t)
       end
       norm = math.sqrt(norm)
       if norm > 0 then for k, v in pairs(loadings) do loadings[k] = v / norm end end
-      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ") or all[math.floor((r - 1) / 2) + 1],
+      pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ")
+                                           or all[math.floor((r - 1) / 2) + 1],
                               summary = sign == 0 and "mean and std" or ((r - nc) % 2 == 1 and "mean" or "std"),
-                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept, status = status, evaluations = evals, loadings = loadings, length = norm }
+                              way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept,
+                              status = status, evaluations = evals, loadings = loadings, length = norm }
     end
   end
   -- strongest first: the push that moved the parameters furthest while still fitting
   table.sort(pushes, function(a, b) return (a.kept and a.length or -1) > (b.kept and b.length or -1) end)
-  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4 held, checked against the objective",
+  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4"
+             .. " held, checked against the objective",
            tolerance = t.tolerance, points = points, objectives = objectives, directions = pushes }
 end
 

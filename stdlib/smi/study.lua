@@ -145,6 +145,33 @@ function Study:load()
   return data
 end
 
+doc.add[==[
+@ smi.study:annotate(key, value)
+Adds a top-level entry to the saved results.json beside the steps (a study's conclusion, say, where
+outside checks read it), after s:run. The file is rewritten whole (as the steps' results are).
+key: a name other than the file's own fields (study, seed, order, steps, provenance)
+returns: nothing
+errors: no results.json yet (run the study first); a reserved key
+example:
+  local s = require("smi.study").new{name = "doc_annotate", out = smi.out(), results = smi.out("doc_annotate.json"), quiet = true}
+  s:step("a", function() return {x = 2} end)
+  s:run()
+  s:annotate("conclusion", {verdict = "valid"})
+  print(s:load().conclusion.verdict)
+]==]
+local RESERVED = { study = true, seed = true, order = true, steps = true, provenance = true }
+--- Adds a top-level entry to the saved results.json (see the doc above).
+function Study:annotate(key, value)
+  if type(key) ~= "string" or RESERVED[key] then
+    error(("study '%s': annotate: '%s' is not a free top-level key of results.json (reserved: study, seed, order, steps, provenance)"):format(self.name, tostring(key)), 2)
+  end
+  if type(smi) == "table" and smi.dry_run then return end -- a dry run writes no results (as _save)
+  local saved, why = self:load()
+  if not saved then error(("study '%s': annotate('%s'): %s; run the study first"):format(self.name, key, why), 2) end
+  saved[key] = value
+  self:_save(saved)
+end
+
 -- results.json is replaced whole or not at all (smi.file: temporary file, checked writes, fsync,
 -- rename): a full disk or a kill mid-write leaves the previous file, and the error says so.
 function Study:_save(saved)

@@ -142,4 +142,17 @@ T.case("a study with a report writes report.html with its steps", function()
   T.truthy(not html:find(">One<", 1, true), "a fresh report per run: step one's section is not repeated")
 end)
 
+T.case("annotate adds a top-level entry beside the steps, and refuses the file's own fields", function()
+  os.remove(results_path("study_annotate")) -- a previous run's file
+  local s = make("study_annotate", {})
+  T.raises(function() s:annotate("conclusion", { verdict = "valid" }) end, "run the study first", "before the run")
+  s:run()
+  s:annotate("conclusion", { verdict = "valid", undetermined = {} })
+  local d = read_json(results_path("study_annotate"))
+  T.eq(d.conclusion.verdict, "valid", "the entry")
+  T.eq(d.steps.scaled.result.value, 25.0, "the steps kept")
+  T.raises(function() s:annotate("steps", {}) end, "reserved", "a reserved key")
+  T.eq(read_json(results_path("study_annotate")).steps.data.result.n, 3, "the file untouched by the refused call")
+end)
+
 T.finish()

@@ -44,6 +44,11 @@ T.case("conclusion: the issue's schema", function()
   T.truthy(VERDICTS[C.verdict], "verdict " .. tostring(C.verdict))
   T.truthy(type(C.refinements) == "table" and type(C.trials) == "table" and #C.trials >= 1, "refinements and trials")
   T.eq(#C.trials, #C.refinements + 1, "one refinement between consecutive trials")
+  T.truthy(type(C.undetermined) == "table", "undetermined: the validation-only responses left undecided")
+  local keys = {}
+  for k in pairs(C) do keys[#keys + 1] = k end
+  table.sort(keys)
+  T.eq(table.concat(keys, ","), "refinements,trials,undetermined,verdict", "the top-level fields, no more")
   for i, t in ipairs(C.trials) do
     T.truthy(t.airbag == "rigid" or t.airbag == "spring", "trial " .. i .. " airbag")
     T.truthy(type(t.candidate) == "string" and type(t.unknowns) == "table" and #t.unknowns >= 4, "trial " .. i .. " candidate and unknowns")
@@ -75,7 +80,11 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(last.modes.mode1, "valid")
   T.eq(last.modes.mode4, "valid")
   T.truthy(last.modes.mode2 ~= "invalid", "mode 2 valid or inconclusive, never invalid: " .. last.modes.mode2)
-  T.truthy(C.verdict == "valid" or C.verdict == "inconclusive", "conclusion " .. C.verdict)
+  -- the lead's rule (verdict.lua): valid when every calibrated response is valid, none is
+  -- invalid and the calibration converged; an undecided mode 2 is listed, not hidden
+  T.eq(C.verdict, "valid", "conclusion")
+  T.eq(#C.undetermined, last.modes.mode2 == "inconclusive" and 1 or 0, "undetermined responses listed")
+  if last.modes.mode2 == "inconclusive" then T.eq(C.undetermined[1], "mode2", "mode 2 undetermined") end
   T.rel(last.calibration.means.airbag_stiffness, 850, 0.15, "airbag stiffness within 15 % of the truth")
 end)
 
@@ -139,6 +148,11 @@ T.case("report: one self-contained file with the study's figures and its conclus
   local n = select(2, html:gsub("<svg", ""))
   T.truthy(n >= 20, "figures: " .. n)
   T.truthy(html:find("Conclusion: the model is " .. C.verdict, 1, true) ~= nil, "conclusion verdict")
+  if C.undetermined[1] then
+    local th = S["trial" .. #C.trials .. "_validation"].result.modes.mode2.threshold
+    T.truthy(html:find(("mode 2 not determined by these data: U over %%d+ near%%-optimal calibrations in %%[[%%d.]+, [%%d.]+%%] against threshold %.4f"):format(th)) ~= nil,
+             "the report says why mode 2 is undetermined, with the run's threshold")
+  end
 end)
 
 T.finish()

@@ -6,6 +6,8 @@
 #   usage: [STUDY_ARGS="--max-refinements 1"] run.sh BUILD_DIR OUT_DIR [ci|full|all] [--check]
 # STUDY_ARGS: more options for every study run (CI caps the refinements to bound its time).
 # ROWS="1 2 3": only these experiment ids (of the chosen set; use "all" to pick from every row).
+# EXPERIMENTS=FILE: another table of the same columns (fresh.csv: the hold-out set, set "fresh",
+# drawn after the fixes of 2026-11-23 to check them on truths and seeds nobody tuned to).
 # ci: the two experiments CI runs; full: the other twelve; all: both. Exit 1 when a study does not
 # finish or writes no conclusion; with --check also unless every
 # experiment meets the issue's criteria (summarize.lua says which). The experiments run one after
@@ -18,7 +20,8 @@ src=$(cd "$here/../../.." && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 smi=$build/smi-lua fe=$build/column-fe gen=$build/make-steering-data
-names=$(head -1 "$here/experiments.csv" | cut -d, -f6-)
+table=${EXPERIMENTS:-$here/experiments.csv}
+names=$(head -1 "$table" | cut -d, -f6-)
 ran=() failed=0
 while IFS=, read -r id eset truth noise seed rest; do
   [ "$id" = id ] && continue
@@ -43,8 +46,8 @@ while IFS=, read -r id eset truth noise seed rest; do
   for f in results.json report.html; do [ -f "$out/run/$f" ] && mv "$out/run/$f" "$dir/study/"; done
   echo "experiment $id ($truth truth, noise $noise): $(tail -1 "$dir/study.log") [$(( $(date +%s) - start )) s]"
   ran+=("$id")
-done < "$here/experiments.csv"
-(cd "$src" && "$smi" --quiet --allow-read "$out" --allow-read "$here" --out "$out/summary" \
-   scripts/steering_column/harness/summarize.lua "$here/experiments.csv" "$out" "$(IFS=,; echo "${ran[*]}")" $check)
+done < "$table"
+(cd "$src" && "$smi" --quiet --allow-read "$out" --allow-read "$here" --allow-read "$table" --out "$out/summary" \
+   scripts/steering_column/harness/summarize.lua "$table" "$out" "$(IFS=,; echo "${ran[*]}")" $check)
 # a study that did not finish fails the harness even without --check
 exit $failed

@@ -22,7 +22,8 @@
 -- 3. airbag modelling type: the rigid airbag becomes a mass on spring elements (the spring variant,
 --    spec §6) with one new unknown, airbag_stiffness (Table 8).
 local function E(nominal, std)
-  return { dist = "normal", mean = { 0.5 * nominal, 1.5 * nominal, nominal }, std = { 0.5 * std, 1.5 * std, std }, unit = "MPa" }
+  return { dist = "normal", mean = { 0.5 * nominal, 1.5 * nominal, nominal }, std = { 0.5 * std, 1.5 * std, std },
+           unit = "MPa" }
 end
 
 local list = {
@@ -41,7 +42,8 @@ local list = {
     short = "location",
     implement_minutes = 30,
     why = "move the lumped mass to the measured CG; no new parameter",
-    revision = { airbag = "spring", fixed = { airbag_stiffness = 1e7 }, trend = "linear", n_design = 80, unknowns = {} },
+    revision = { airbag = "spring", fixed = { airbag_stiffness = 1e7 }, trend = "linear", n_design = 80,
+                 unknowns = {} },
   },
   {
     name = "airbag modelling type",
@@ -50,7 +52,8 @@ local list = {
     why = "replace the rigid tie by three spring mounts; one new parameter (airbag_stiffness)",
     revision = {
       airbag = "spring", fixed = {}, trend = "constant", n_design = 120,
-      unknowns = { { "airbag_stiffness", { dist = "normal", mean = { 500, 1500, 1000 }, std = { 15.5, 46.5, 31 }, unit = "N/mm" } } },
+      unknowns = { { "airbag_stiffness",
+                     { dist = "normal", mean = { 500, 1500, 1000 }, std = { 15.5, 46.5, 31 }, unit = "N/mm" } } },
     },
   },
 }

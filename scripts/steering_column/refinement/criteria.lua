@@ -47,8 +47,10 @@ function M.build(opts)
         return s / #opts.responses
       end },
     { name = "robustness", weight = M.weights.robustness, magnitude = function(c) return c.new_inputs end },
-    { name = "computational cost", weight = M.weights.computational, magnitude = function(c) return M.cost_minutes(run(c).seconds) end },
-    { name = "implementation cost", weight = M.weights.implementation, magnitude = function(c) return c.implement_minutes end },
+    { name = "computational cost", weight = M.weights.computational,
+      magnitude = function(c) return M.cost_minutes(run(c).seconds) end },
+    { name = "implementation cost", weight = M.weights.implementation,
+      magnitude = function(c) return c.implement_minutes end },
   }, function(c) return run(c) end
 end
 

@@ -1,0 +1,42 @@
+--- The analyst's prior knowledge (--prior FILE.lua): a Lua file returning smi.calibrate `prior`
+-- entries, checked here so that a mistake names the file and the entry. No file: no prior (the
+-- default study uses the data file alone; issue 12 item 3).
+local M = {}
+
+local SHAPE = '{param = "input.mean", mean = m, std = s} or'
+  .. ' {name = "label", fn = function(theta) ... end, mean = m, std = s}'
+
+local function fail(path, fmt, ...)
+  error(("steering_column: --prior %s%s"):format(path, fmt:format(...)), 0)
+end
+
+local function valid_entry(e)
+  local what = type(e) == "table" and (e.param or e.name)
+  return type(e) == "table" and type(what) == "string" and not (e.name and type(e.fn) ~= "function")
+    and type(e.mean) == "number" and type(e.std) == "number" and e.std > 0, what
+end
+
+--- {entries = the list or nil, labels = {"name ~ N(mean, std)", ...}} of the file at path (nil: none).
+function M.load(path)
+  local prior = { labels = {} }
+  if not path then return prior end
+  local chunk, err = loadfile(path)
+  if not chunk then fail(path, ": %s", tostring(err)) end
+  local ok, list = pcall(chunk)
+  if not ok or type(list) ~= "table" then
+    fail(path, " must return a list of prior entries (%s); %s", SHAPE,
+      ok and ("it returned a " .. type(list)) or tostring(list))
+  end
+  for i, e in ipairs(list) do
+    local good, what = valid_entry(e)
+    if not good then
+      fail(path, ", entry %d: needs param = \"<parameter>\" (or name = \"<label>\" with fn = function(theta)),"
+        .. " a number mean and a std > 0", i)
+    end
+    prior.labels[i] = ("%s ~ N(%.6g, %.6g)"):format(what, e.mean, e.std)
+  end
+  prior.entries = list
+  return prior
+end
+
+return M

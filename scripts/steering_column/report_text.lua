@@ -1,0 +1,301 @@
+--- The steering-column study's words: the report's paragraphs and the console's closing lines,
+-- each a function of the run's results (thresholds, sample sizes and ranges are the numbers the
+-- run computed, never retyped). steering_column.lua computes and places; this file says.
+local M = {}
+
+local MODES = { "mode1", "mode2", "mode4" }
+
+local function join(list, last)
+  if #list <= 1 then return list[1] or "" end
+  return table.concat(list, ", ", 1, #list - 1) .. (last or " and ") .. list[#list]
+end
+
+--- "mode 1" for "mode1" (the conclusion's keys in words).
+function M.mode_name(m) return (m:gsub("^mode", "mode ")) end
+
+local function mode_list(list)
+  local w = {}
+  for i, m in ipairs(list) do w[i] = M.mode_name(m) end
+  return join(w)
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Verdicts and conclusion
+-- ---------------------------------------------------------------------------------------------
+
+--- The largest moves of the means along the strongest near-optimal push, in words (what a
+-- measurement would have to pin down), or nil.
+function M.weak_inputs(no)
+  local d = no and no.directions and no.directions[1]
+  if not d then return nil end
+  local l = {}
+  for name, w in pairs(d.loadings) do if name:match("%.mean$") then l[#l + 1] = { name:gsub("%.mean$", ""), w } end end
+  table.sort(l, function(a, b) return math.abs(a[2]) > math.abs(b[2]) end)
+  local parts = {}
+  for i = 1, math.min(3, #l) do parts[i] = ("%s %+.2f"):format(l[i][1], l[i][2]) end
+  return table.concat(parts, ", ")
+end
+
+--- What would settle an undetermined validation response.
+function M.settle(mode, cal)
+  local w = M.weak_inputs(cal and cal.near_optimal)
+  return ("calibrate on %s as well, or measure an input that moves it%s and give it as --prior"):format(
+    M.mode_name(mode), w and (" (the means move most along: " .. w .. "; e.g. weigh the wheel cover)")
+      or " (e.g. weigh the wheel cover)")
+end
+
+--- One validation-only mode's verdict detail (the report's verdict list).
+function M.range_detail(v, cal)
+  local d = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f;"
+    .. " not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
+  if v.verdict ~= "inconclusive" then return d end
+  return d .. (". Modes 1 and 4 fit equally well across calibrations that predict it on both sides of the"
+    .. " threshold. What would settle it: %s"):format(M.settle("mode2", cal))
+end
+
+--- A calibrated mode's verdict detail.
+function M.decisive_detail(v)
+  return ("U = %.4f %s %.4f (p = %.3f); used by the calibration"):format(v.metric, v.pass and "≤" or ">",
+    v.threshold, v.p)
+end
+
+--- An undetermined mode of the last trial in words, with its evidence (the U range over the
+-- near-optimal set and the threshold the run computed) and what would settle it.
+function M.undetermined_words(m, val, cal)
+  local v = val.modes[m]
+  local r = v.range
+  local evidence = r and ("U over %d near-optimal calibrations in [%.4f, %.4f] against threshold %.4f"):format(
+    r.points, r.lower, r.upper, r.threshold) or "no near-optimal range"
+  return ("%s not determined by these data: %s; to settle it: %s"):format(M.mode_name(m), evidence, M.settle(m, cal))
+end
+
+--- The conclusion in words after "Conclusion: the model is <verdict>": the responses it rests on,
+-- the path, and each undetermined response with its evidence. c: verdict.conclusion's table;
+-- R: the step results.
+function M.conclusion_detail(c, R)
+  local k = #c.trials
+  local last = c.trials[k]
+  local refined = #c.refinements > 0
+  local path = refined and ("after refinement by " .. table.concat(c.refinements, ", then ") .. " ") or ""
+  local where = ("(trial %d, %s airbag%s)"):format(k, last.airbag, refined and "" or ", no refinement")
+  local val, cal = R["trial" .. k .. "_validation"], R["trial" .. k .. "_calibration"]
+  if c.verdict == "valid" then
+    local decided = {}
+    for _, m in ipairs(MODES) do if last.modes[m] == "valid" then decided[#decided + 1] = m end end
+    local s = ("on %s %s%s"):format(mode_list(decided), path, where)
+    for _, m in ipairs(c.undetermined) do s = s .. "; " .. M.undetermined_words(m, val, cal) end
+    return s
+  end
+  if c.verdict == "inconclusive" then return ("%s%s: %s"):format(path, where, c.why or "") end
+  local failed = {}
+  for _, m in ipairs(MODES) do if last.modes[m] == "invalid" then failed[#failed + 1] = m end end
+  return ("%s%s: invalid on %s%s"):format(path, where, mode_list(failed), c.ended and ("; " .. c.ended) or "")
+end
+
+--- The conclusion in one sentence starting "Conclusion: the model is <verdict>" (the console's
+-- last line; the report's verdict name and detail).
+function M.conclusion(c, R)
+  return ("Conclusion: the model is %s %s."):format(c.verdict, M.conclusion_detail(c, R))
+end
+
+--- A trial's verdict in one sentence (the end of its validity-check section).
+function M.trial_verdict(label, res)
+  local s = ("%s is %s"):format(label, res.verdict)
+  if res.why then s = s .. ": " .. res.why end
+  if res.undetermined and #res.undetermined > 0 then
+    s = s .. ("; %s not determined by the calibration data"):format(mode_list(res.undetermined))
+  end
+  return s .. "."
+end
+
+--- One line per trial for the console (what the conclusion says, in words).
+function M.trial_line(i, t, refinement)
+  local modes = {}
+  for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
+  return ("Trial %d: %s, %s airbag, unknowns %s: %s%s"):format(i, t.candidate, t.airbag, table.concat(t.unknowns, ", "),
+    table.concat(modes, ", "), refinement and ("; refined by " .. refinement) or "")
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Data and characterization
+-- ---------------------------------------------------------------------------------------------
+
+function M.data_intro(n, file)
+  return ("%d measured combinations from %s (for the committed file: 3 steering wheels × 3 column assemblies,"
+    .. " each the mean of 5 impact tests). Modes 1 and 4 calibrate the model; mode 2 is kept for validation."):format(
+    n, file)
+end
+
+function M.characterize_intro(n)
+  return ("With %d data the plain KDE is bumpy; KDE-ebd (Kang et al. 2018) adds points drawn uniformly in bounds"
+    .. " estimated from the data (significance 0.1) until the PDF changes by less than a critical intersection area"
+    .. " of 0.95, smoothing it. The KDE-ebd PDFs are the experimental PDFs of the calibration."):format(n)
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Calibration
+-- ---------------------------------------------------------------------------------------------
+
+local function priors_sentence(prior_file, labels)
+  if #labels == 0 then return "No prior knowledge: the objective is the data's alone (no --prior given)." end
+  return ("Prior knowledge declared by the analyst (%s): %s."):format(prior_file, table.concat(labels, "; "))
+end
+
+--- The calibration section's paragraph. T: the trial model; res: calibration.calibrate's result;
+-- cfg: the run's sample sizes.
+function M.calibration_intro(T, res, cfg, prior_file, labels)
+  local pr = res.metric == "pr"
+  return ("Means and standard deviations of the %d unknowns (types, bounds and start values as the model declares"
+    .. " them: Table 4/8 for the initial unknowns, the candidate's declaration for new ones) minimize %s over the"
+    .. " KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt). PR"
+    .. " saturates when the PDFs do not overlap, so a first stage (%d evaluations) matches the means and stds of"
+    .. " modes 1 and 4 from the start values; the PR stage starts from there, in smi.calibrate's model form (the"
+    .. " Krigings as the model: analytic gradients, the kernel's overlapping start when PR saturates). %s"
+    .. " Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d evaluations from %d start(s), %s"
+    .. " (converged: %s)."):format(
+    #T.unknowns, pr and "PR(mode 1) + PR(mode 4) between the KDE-ebd PDFs of the data and"
+      or "minus the log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
+    priors_sentence(prior_file, labels), res.objective, pr and "PR" or "-logL", res.metrics.mode1, res.metrics.mode4,
+    res.evaluations, res.starts and #res.starts or 1, res.status, tostring(res.converged))
+end
+
+--- The bootstrap interval of one input (mean / std), or why there is none.
+function M.bootstrap_cell(res, input)
+  local b = res.bootstrap
+  if not b then return "not computed (--quick)" end
+  if b.replicates == 0 then return ("all %d replicates failed"):format(b.failed) end
+  return ("[%.4g, %.4g] / [%.4g, %.4g]"):format(b.lower[input .. ".mean"], b.upper[input .. ".mean"],
+    b.lower[input .. ".std"], b.upper[input .. ".std"])
+end
+
+function M.parameters_caption(res)
+  local b = res.bootstrap
+  local ci = b and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart"
+    .. " SLSQP at the optimum with %d evaluations each%s: the local pull of the data, which understates the spread"
+    .. " along the directions modes 1 and 4 leave undetermined"):format(b.replicates, b.maxeval,
+      b.failed > 0 and ("; %d failed, see the warnings"):format(b.failed) or "") or "none (--quick)"
+  return ("Calibrated statistical parameters. CI: %s."):format(ci)
+end
+
+function M.cover_mass(ratio)
+  return ("Wheel cover mass relative to nominal (density × cover tube area) at the optimum: %.3f."):format(ratio)
+end
+
+--- Each mean's range over the near-optimal set, in words.
+local function mean_ranges(no)
+  local r = {}
+  for name, rg in pairs(no.mean_ranges or {}) do r[#r + 1] = ("%s [%.4g, %.4g]"):format(name, rg[1], rg[2]) end
+  table.sort(r)
+  return table.concat(r, ", ")
+end
+
+--- The identifiability callout: what modes 1 and 4 fix and the near-optimal set.
+function M.identifiability(res)
+  local sv, no = res.sensitivity, res.near_optimal
+  return ("Identifiability (beyond the paper): modes 1 and 4 fix 2 combinations of the %d means and leave %d"
+    .. " undetermined; %.0f %% of mode 2's sensitivity lies outside what modes 1 and 4 constrain. Near-optimal"
+    .. " calibrations (objective within %.3g of the optimum, the %s; %s): %d points; the means over them: %s."):format(
+    #sv.inputs, sv.undetermined, 100 * sv.mode2_unconstrained_share, no.tolerance,
+    no.tolerance_basis and no.tolerance_basis.basis or "tolerance", no.source, #no.points, mean_ranges(no))
+end
+
+function M.weak_parameters(weak)
+  return ("Identifiability: the objective hardly changes with %s over its whole range; these parameters are not"
+    .. " determined by modes 1 and 4."):format(table.concat(weak, ", "))
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Validity check
+-- ---------------------------------------------------------------------------------------------
+
+--- The validity check's paragraph; the threshold is the run's (res.modes.*.threshold).
+function M.validation_intro(res, n, cfg)
+  return ("u-pooling area metric (eq. 11 and 12) of the data of each mode against the KDE of %d samples of the"
+    .. " calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
+    .. " shared/spec/algorithms.md §5). Modes 1 and 4 were used by the calibration: their verdict is the optimum's."
+    .. " Mode 2 was not: the calibration data leave combinations of the means undetermined, so its metric is"
+    .. " computed over every near-optimal calibration (%d samples each) and it is valid or invalid only when that"
+    .. " whole range lies on one side of the threshold, else inconclusive. The trial is valid when every calibrated"
+    .. " mode is valid and its calibration converged; an undecided mode 2 is then listed as undetermined, not"
+    .. " hidden. As a check of the surrogate, %d samples were also run through column-fe itself."):format(
+    res.n, res.modes.mode1.threshold, n, cfg.near_n, res.n_solver)
+end
+
+function M.solver_disagrees(label, mode_title, metric)
+  return ("%s, %s: the solver check (U = %.4f) disagrees with the Kriging verdict at the optimum: the surrogate's"
+    .. " error matters here."):format(label, mode_title, metric)
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Refinement
+-- ---------------------------------------------------------------------------------------------
+
+local CRITERIA = { "correctness", "robustness", "computational cost", "implementation cost" }
+
+--- Why the chosen candidate (index jc) won against the runner-up (jr, or none): its rating and
+-- the weighted differences of its standardized criteria.
+function M.why_chosen(dm, jc, jr)
+  local w = { dm.weights.correctness, dm.weights.robustness, dm.weights.computational, dm.weights.implementation }
+  local why = {}
+  for i = 1, 4 do
+    local d = w[i] * (dm.candidates[jc].standardized[i] - (jr and dm.candidates[jr].standardized[i] or 0))
+    why[#why + 1] = ("%s %+.3f"):format(CRITERIA[i], d)
+  end
+  return ("rating %.3f%s; weighted difference by criterion: %s"):format(dm.overall[jc],
+    jr and (" against %.3f for %s"):format(dm.overall[jr], dm.candidates[jr].name) or "", table.concat(why, ", "))
+end
+
+--- Why a trial is not refined (its verdict is not invalid).
+function M.nothing_to_refine(k, v)
+  local und = v.undetermined and #v.undetermined > 0 and ("; %s undetermined"):format(mode_list(v.undetermined)) or ""
+  return ("trial %d is %s%s%s: nothing is refined without an invalid verdict"):format(k, v.verdict,
+    v.why and (" (" .. v.why .. ")") or "", und)
+end
+
+--- The refinement section's paragraph. out: the refinement step's result (matrix, chosen, rank,
+-- why, model, failed_responses).
+function M.refinement_intro(k, out)
+  local dm, model = out.matrix, out.model
+  local names = {}
+  for j, c in ipairs(dm.candidates) do names[j] = c.name end
+  local w = dm.weights
+  return ("Trial %d is invalid on %s. Candidates (the paper's §4.1.5, each declaring its revision in"
+    .. " refinement/candidates.lua): %s. Each revised model is run at the initial means; correctness is eq. (13)"
+    .. " averaged over every response used in calibration (%s), whichever of them the calibration gave up;"
+    .. " robustness the number of new unknowns, computational cost the measured run time (minutes, in whole"
+    .. " seconds: shorter differences are timing noise), implementation cost the analyst's estimate (minutes)."
+    .. " Weights: correctness %g, robustness %g, computational cost %g, implementation cost %g (criteria.lua"
+    .. " explains why). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s (rank %d; candidates"
+    .. " already tried are passed over): %s. Trial %d is its declared revision: %s airbag, unknowns %s."):format(
+    k, mode_list(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
+    w.correctness, w.robustness, w.computational, w.implementation, table.concat(dm.ranking, " > "), out.chosen,
+    out.rank, out.why, k + 1, model.airbag, table.concat(model.unknowns, ", "))
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Summary
+-- ---------------------------------------------------------------------------------------------
+
+M.solver_use_caption = "column-fe use in this run (steps run alone count only their own runs): points evaluated,"
+  .. " processes launched, points reused from the store."
+
+--- The loop as it ran, in words (the summary's paragraph).
+function M.story(c, R, prior_labels)
+  local story = {}
+  for i, t in ipairs(c.trials) do
+    local modes = {}
+    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
+    story[#story + 1] = ("Trial %d (%s, %s airbag, calibration %s): %s."):format(i, t.candidate, t.airbag,
+      t.calibration.converged and "converged" or ("stopped: " .. tostring(t.calibration.status)),
+      table.concat(modes, ", "))
+    if c.refinements[i] then
+      story[#story + 1] = ("The decision matrix chose %s (%s)."):format(c.refinements[i], R["refinement" .. i].why)
+    end
+  end
+  if c.ended then story[#story + 1] = "The study ended: " .. c.ended .. "." end
+  story[#story + 1] = ("Priors: %s."):format(#prior_labels > 0 and table.concat(prior_labels, "; ")
+    or "none (the data file alone)")
+  return table.concat(story, " ")
+end
+
+return M
