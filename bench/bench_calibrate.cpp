@@ -9,6 +9,7 @@
 //    responses predicted by Kriging surrogates (150-point LHS designs of smooth functions), PR
 //    on 4001-node grids, 4 starts: analytic gradient against differences.
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <fmt/format.h>
@@ -25,6 +26,12 @@ using namespace smi::improve;
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 void write(const std::string& path, const Eigen::MatrixXd& m) {
   std::ofstream f(path);
@@ -118,7 +125,7 @@ int main(int argc, char** argv) {
     write(dir + "/box.txt", box);
   }
   // ---- 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
-  if (!(argc > 2 && std::string(argv[2]) == "quick")) {
+  if (!(argc > 2 && std::string(argv[2]) == "quick")) {  // "profile": part 2's evaluation cost only
     const int k = 5;
     Eigen::MatrixXd lo(1, k), hi(1, k);
     lo << 0.5, 1.0, 2.0, 0.2, 3.0;
@@ -158,17 +165,45 @@ int main(int argc, char** argv) {
     so.n = 2000;
     so.grid_nodes = 4001;
     so.seed = 3;
-    so.threads = 2;
+    // profile: one thread, timed in the thread's CPU time (steadier than wall time on a shared machine)
+    const bool profile = argc > 2 && std::string(argv[2]) == "profile";
+    const int nt = profile ? 1 : 2;
+    so.threads = nt;
     auto model = [&](const Eigen::MatrixXd& X) {
       Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::kriging::predict_mean(k1, X, 2);
-      Y.col(1) = smi::kriging::predict_mean(k2, X, 2);
+      Y.col(0) = smi::kriging::predict_mean(k1, X, nt);
+      Y.col(1) = smi::kriging::predict_mean(k2, X, nt);
       return Y;
     };
     StatisticalObjective obj(in, {r1, r2}, p, model, so);
     obj.set_model_jacobian([&](const Eigen::MatrixXd& X) {
-      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, 2), smi::kriging::predict_gradient(k2, X, 2)};
+      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, nt), smi::kriging::predict_gradient(k2, X, nt)};
     });
+    if (profile) {
+      // Cost of one evaluation's parts at the start, CPU seconds of one thread (best of 30 each).
+      Eigen::VectorXd t0(static_cast<Eigen::Index>(p.size()));
+      for (std::size_t i = 0; i < p.size(); ++i) t0[static_cast<Eigen::Index>(i)] = p[i].start;
+      auto best = [](auto&& fn) {
+        double b = 1e300;
+        for (int r = 0; r < 30; ++r) {
+          const double a = cpu_now();
+          fn();
+          b = std::min(b, cpu_now() - a);
+        }
+        return b;
+      };
+      const Eigen::MatrixXd X = obj.inputs_at(t0);
+      std::printf("profile_inputs %.6f\n", best([&] { (void)obj.inputs_at(t0); }));
+      std::printf("profile_model %.6f\n", best([&] { (void)model(X); }));
+      std::printf("profile_jacobian %.6f\n", best([&] {
+        (void)smi::kriging::predict_gradient(k1, X, 1);
+        (void)smi::kriging::predict_gradient(k2, X, 1);
+      }));
+      std::printf("profile_value %.6f\n", best([&] { (void)obj(t0); }));
+      Eigen::VectorXd gr;
+      std::printf("profile_value_and_gradient %.6f\n", best([&] { (void)obj.value_and_gradient(t0, gr); }));
+      return 0;
+    }
     Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
     OptimizerOptions o;
     o.multistart = 4;

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/descriptive.hpp"
 #include "core/errors.hpp"
@@ -71,6 +72,75 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
   for (double v : ghs) gh += norm * v;
 }
 
+/// kernel_sums on a uniform grid with step dx <= h/64 (the PR grids), exactly the same sums
+/// (to rounding) at a fraction of the cost: inside a block of 64 nodes starting at z0 = (x_b − y)/h,
+///   e_j = φ(z0 + jδ)√(2π) = e^{−z0²/2} · g^j · H_j,  g = e^{−z0 δ},  H_j = e^{−δ²j²/2},
+/// so Σ_j a_j e_j z_j = P (z0 S0 + δ S1) and Σ_j a_j e_j (z_j² − 1) = P ((z0² − 1) S0 + 2 z0 δ S1
+/// + δ² S2) with S_p = Σ_j g^j (H_j j^p a_j): the bracketed weights are per block, shared by all
+/// samples, and g^j = (g⁸)^{j/8} g^{j mod 8} takes 16 multiplications. Two exponentials and
+/// about 4 flops per node instead of an exponential per node; whole blocks within kCut·h of y
+/// (up to 64 nodes more than the plain window, only more exact). Samples are independent, so the
+/// result does not depend on the thread count.
+void kernel_sums_uniform(const Eigen::VectorXd& y, double h, double lo, double dx, Eigen::Index G, const Eigen::VectorXd& a,
+                         Eigen::VectorXd& gy, double& gh, int threads) {
+  constexpr Eigen::Index B = 64;
+  const Eigen::Index N = y.size(), nblk = (G + B - 1) / B;
+  const double ih = 1.0 / h, d = dx * ih;
+  const double norm = kInvSqrt2Pi / (static_cast<double>(N) * h * h);
+  // Per block weights A_p[j] = H_j j^p a_{bB+j}, zero past the last node.
+  std::vector<double> A(static_cast<std::size_t>(3 * B * nblk), 0.0);
+  for (Eigen::Index b = 0; b < nblk; ++b)
+    for (Eigen::Index j = 0; j < B && b * B + j < G; ++j) {
+      const double hj = std::exp(-0.5 * d * d * static_cast<double>(j * j)) * a[b * B + j];
+      double* base = A.data() + 3 * B * b;
+      base[j] = hj;
+      base[B + j] = hj * static_cast<double>(j);
+      base[2 * B + j] = hj * static_cast<double>(j * j);
+    }
+  gy.resize(N);
+  constexpr Eigen::Index kSamples = 256;
+  const long nb = static_cast<long>((N + kSamples - 1) / kSamples);
+  std::vector<double> ghs(static_cast<std::size_t>(nb), 0.0);
+  smi::detail::parallel_for(nb, threads, [&](long sb) {
+    double acc_h = 0.0;
+    for (Eigen::Index i = sb * kSamples; i < std::min(N, (sb + 1) * kSamples); ++i) {
+      const double u0 = (y[i] - kCut * h - lo) / dx, u1 = (y[i] + kCut * h - lo) / dx;
+      const Eigen::Index b0 = std::max<Eigen::Index>(0, static_cast<Eigen::Index>(std::floor(u0 / B)));
+      const Eigen::Index b1 = std::min<Eigen::Index>(nblk, static_cast<Eigen::Index>(std::floor(u1 / B)) + 1);
+      double sy = 0.0;
+      for (Eigen::Index b = b0; b < b1; ++b) {
+        const double z0 = (lo + static_cast<double>(b * B) * dx - y[i]) * ih;
+        const double g = std::exp(-z0 * d), P = std::exp(-0.5 * z0 * z0);
+        double p1[8], p8[8];
+        p1[0] = 1.0;
+        for (int k = 1; k < 8; ++k) p1[k] = p1[k - 1] * g;
+        const double g8 = p1[7] * g;
+        p8[0] = 1.0;
+        for (int m = 1; m < 8; ++m) p8[m] = p8[m - 1] * g8;
+        const double* A0 = A.data() + 3 * B * b;
+        const double *A1 = A0 + B, *A2 = A0 + 2 * B;
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+        for (int m = 0; m < 8; ++m) {
+          double q0 = 0.0, q1 = 0.0, q2 = 0.0;
+          for (int k = 0; k < 8; ++k) {
+            q0 += p1[k] * A0[8 * m + k];
+            q1 += p1[k] * A1[8 * m + k];
+            q2 += p1[k] * A2[8 * m + k];
+          }
+          s0 += p8[m] * q0;
+          s1 += p8[m] * q1;
+          s2 += p8[m] * q2;
+        }
+        sy += P * (z0 * s0 + d * s1);
+        acc_h += P * ((z0 * z0 - 1.0) * s0 + 2.0 * z0 * d * s1 + d * d * s2);
+      }
+      gy[i] = norm * sy;
+    }
+    ghs[static_cast<std::size_t>(sb)] = acc_h;
+  });
+  for (double v : ghs) gh += norm * v;
+}
+
 }  // namespace
 
 bool StatisticalObjective::has_gradient() const {
@@ -121,7 +191,10 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
         const double d = fe[k] - fp[k];
         a[k] = -(d > 0.0 ? 1.0 : d < 0.0 ? -1.0 : 0.0) * g.step() * (k == 0 || k == g.n - 1 ? 0.5 : 1.0);
       }
-      kernel_sums(y, h, g.nodes(), a, true, gy, gh, opt_.threads);
+      if (g.step() <= h / 64.0)
+        kernel_sums_uniform(y, h, g.lo, g.step(), g.n, a, gy, gh, opt_.threads);
+      else
+        kernel_sums(y, h, g.nodes(), a, true, gy, gh, opt_.threads);
       // Outside mass: F(x) = 1/N Σ Φ((x − y_i)/h); ∂F/∂y_i = −φ(t)/(N h), ∂F/∂h = −Σ φ(t) t/(N h).
       const double n = static_cast<double>(N);
       for (Eigen::Index i = 0; i < N; ++i) {
