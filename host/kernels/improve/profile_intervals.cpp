@@ -19,7 +19,7 @@ double likelihood_ratio_delta(double level) {
 }
 
 double likelihood_ratio_delta(double level, int observations, int parameters) {
-  const double base = likelihood_ratio_delta(level);
+  (void)likelihood_ratio_delta(level);  // checks the level
   if (observations <= parameters)
     throw InvalidArgument(fmt::format("intervals: {} observations for {} parameters: the small-sample delta needs more observations than "
                                       "parameters (leave observations out for the plain likelihood-ratio interval)", observations, parameters));

@@ -7,6 +7,7 @@
 //   "loglik" −Σ_r Σ_i log f_pre,r(y_exp,r,i)            (densities floored at 1e-300)
 //   custom   any function of the predicted outputs (supplied by the caller).
 #include <Eigen/Core>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -109,9 +110,9 @@ class StatisticalObjective {
   const Eigen::MatrixXd& crn() const { return z_; }
   const StatisticalOptions& options() const { return opt_; }
   /// Model runs so far (one per objective evaluation).
-  long model_runs() const { return *runs_; }
+  long model_runs() const { return runs_->load(); }
   /// Densities floored by the loglik metric so far.
-  long floored() const { return *floored_; }
+  long floored() const { return floored_->load(); }
 
  private:
   Eigen::MatrixXd run_model(const Eigen::VectorXd& theta) const;
@@ -127,8 +128,9 @@ class StatisticalObjective {
   Eigen::MatrixXd z_;
   std::vector<Eigen::VectorXd> f_exp_grid_;   // f_exp at each response's grid nodes
   std::vector<double> exp_outside_;           // f_exp mass outside each grid
-  std::shared_ptr<long> runs_ = std::make_shared<long>(0);
-  std::shared_ptr<long> floored_ = std::make_shared<long>(0);
+  // Atomic: starts optimised side by side (OptimizerOptions::start_threads) share the objective.
+  std::shared_ptr<std::atomic<long>> runs_ = std::make_shared<std::atomic<long>>(0);
+  std::shared_ptr<std::atomic<long>> floored_ = std::make_shared<std::atomic<long>>(0);
 };
 
 }  // namespace smi::improve
