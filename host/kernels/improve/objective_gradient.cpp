@@ -147,12 +147,8 @@ bool StatisticalObjective::has_gradient() const {
   return jacobian_ && opt_.metric != MetricKind::custom && sd_based(opt_.bandwidth);
 }
 
-Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta, Eigen::VectorXd& grad) const {
-  if (!has_gradient())
-    throw InvalidArgument("this calibration has no analytic gradient (it needs metric pr or loglik, an sd-based bandwidth and a model "
-                          "with a gradient)");
-  const Eigen::MatrixXd X = inputs_at(theta);
-  const Eigen::MatrixXd Y = run_model(theta);
+std::vector<Eigen::MatrixXd> StatisticalObjective::model_jacobian(const Eigen::MatrixXd& X) const {
+  if (!jacobian_) throw InvalidArgument("the model has no gradient (an smi.Kriging, or an object with m:gradient(X), has one)");
   const std::vector<Eigen::MatrixXd> J = jacobian_(X);
   if (J.size() != responses_.size())
     throw DimensionMismatch(fmt::format("the model's gradient covers {} responses, the calibration has {}", J.size(), responses_.size()));
@@ -162,6 +158,17 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
                                           J[r].rows(), J[r].cols(), X.rows(), X.cols()));
     if (!J[r].allFinite()) throw InvalidArgument(fmt::format("the model's gradient of '{}' is not finite", responses_[r].name));
   }
+  return J;
+}
+
+Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta, Eigen::VectorXd& grad) const {
+  if (!has_gradient())
+    throw InvalidArgument("this calibration has no analytic gradient (it needs metric pr or loglik, an sd-based bandwidth and a model "
+                          "with a gradient)");
+  const Eigen::MatrixXd X = inputs_at(theta);
+  const Eigen::MatrixXd Y = run_model(theta);
+  const std::vector<Eigen::MatrixXd> J = model_jacobian(X);
+
   const Eigen::Index N = Y.rows();
   Evaluation e;
   e.parts.resize(Y.cols());

@@ -82,6 +82,9 @@ class StatisticalObjective {
   using ModelJacobian = std::function<std::vector<Eigen::MatrixXd>(const Eigen::MatrixXd& X)>;
   /// Set when the model has a gradient (a Kriging's closed form, a model's own `gradient`).
   void set_model_jacobian(ModelJacobian j) { jacobian_ = std::move(j); }
+  bool has_model_jacobian() const { return static_cast<bool>(jacobian_); }
+  /// The model's Jacobian at the rows of X, checked (one per response, N×k each, finite).
+  std::vector<Eigen::MatrixXd> model_jacobian(const Eigen::MatrixXd& X) const;
   /// value_and_gradient works: metric PR or loglik, an sd-based bandwidth rule ("silverman",
   /// "normal", "1.06", "scott"), and a model Jacobian.
   bool has_gradient() const;
