@@ -17,7 +17,8 @@
 //                 n = 2000, crn = "random" | "quantiles", grid = {lo, hi, nodes} | {response = {...}},
 //                 grid_nodes = 4001, bandwidth = "silverman", threads = 1, design_bounds = {x = {lo, hi}},
 //                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
-//                 penalty = function(theta) return number end (prior knowledge, added), ...}
+//                 penalty = function(theta) return number end (prior knowledge, added),
+//                 moment_start = false (true: every start first matched to the data's means and sds), ...}
 // Common: method = "slsqp"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
 //         ftol_abs, fd_step, initial_step,
 //         identifiability = true|false|{points, rel_tol, abs_tol, tolerance, step},
@@ -222,7 +223,10 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
       oo.gradient = gradient_with_extras(L, s, obj);
       out.analytic_gradient = true;
     }
-    if (s.overlap_start) oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
+    if (s.moment_start)
+      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+    else if (s.overlap_start)
+      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
     out.opt = minimize(s.params, f, oo);
     // per-response parts, or one "metric" part when a custom metric returned a bare number
     out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");
@@ -267,7 +271,10 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
         Replicate rep;
         rep.f = with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
         if (o->has_gradient()) rep.gradient = gradient_with_extras(L, s, *o);
-        if (s.overlap_start) rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
+        if (s.moment_start)
+          rep.prepare_start = [o](const Eigen::VectorXd& t) { return moment_start(*o, t); };
+        else if (s.overlap_start)
+          rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
         rep.keep = o;
         return rep;
       };

@@ -397,7 +397,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient", "intervals"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -460,6 +460,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
 
   read_priors(L, idx, s);
   s.overlap_start = o.boolean("overlap_start", true);
+  s.moment_start = o.boolean("moment_start", false);
   s.gradient = o.string("gradient", "auto");
   if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
     throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
