@@ -209,10 +209,22 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   } else {
     std::vector<std::string> responses;
     for (const auto& r : s.responses) responses.push_back(r.name);
-    LuaModel model(L, s.model_parts, s.input_names_slot, responses);
+    // Surrogate models run without Lua; then, when nothing else in an evaluation calls Lua (a
+    // custom metric, a penalty, a prior function, a progress function), the starts run side by
+    // side on `threads` threads (the same result as one after another), each evaluation on one.
+    StatisticalOptions so = s.stat;
+    const bool lua_free_extras = !s.metric_slot && !s.penalty_slot && !s.progress_slot &&
+                                 std::none_of(s.priors.begin(), s.priors.end(), [](const PriorSpec& p) { return p.fn_slot != 0; });
+    const int start_threads = std::min(s.stat.threads, s.optimizer.multistart);
+    Model cpp = kriging_model(L, s, responses, start_threads > 1 ? 1 : 2);
+    if (cpp && lua_free_extras && start_threads > 1) {
+      oo.start_threads = start_threads;
+      so.threads = 1;
+    }
+    Model model = cpp ? cpp : Model(LuaModel(L, s.model_parts, s.input_names_slot, responses));
     CustomMetric metric;
     if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
-    out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
+    out.stat.emplace(s.inputs, s.responses, s.params, model, so, metric);
     if (s.gradient != "differences") out.stat->set_model_jacobian(model_jacobian(L, s, responses));
     const StatisticalObjective& obj = *out.stat;
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
