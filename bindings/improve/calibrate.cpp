@@ -229,8 +229,8 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     const StatisticalObjective& obj = *out.stat;
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
     if (s.gradient == "analytic" && !obj.has_gradient())
-      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", an sd-based bandwidth (silverman, normal, 1.06, "
-                            "scott) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", a bandwidth rule with a derivative (silverman, "
+                            "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
     if (obj.has_gradient()) {
       oo.gradient = gradient_with_extras(L, s, obj);
       out.analytic_gradient = true;

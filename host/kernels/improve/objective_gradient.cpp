@@ -11,6 +11,7 @@
 // |t| > 9 (φ < 3e-18 relative) are skipped.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -33,6 +34,71 @@ constexpr double kCut = 9.0;
 
 bool sd_based(const std::string& rule) {
   return rule == "silverman" || rule == "normal_reference" || rule == "normal" || rule == "1.06" || rule == "scott";
+}
+bool robust_rule(const std::string& rule) { return rule == "robust" || rule == "silverman_robust"; }
+bool mad_rule(const std::string& rule) { return rule == "mad" || rule == "matlab"; }
+
+/// Adds scale · ∂q/∂x_i of the sample p-quantile (linear interpolation between order statistics,
+/// core/descriptive's quantile_sorted) to out: 1 − frac at the lower order statistic, frac at the
+/// upper. `order` sorts x ascending.
+void add_quantile_weights(const std::vector<Eigen::Index>& order, double p, double scale, Eigen::VectorXd& out) {
+  const Eigen::Index n = static_cast<Eigen::Index>(order.size());
+  const double h = (static_cast<double>(n) - 1.0) * p;
+  const auto lo = static_cast<Eigen::Index>(std::floor(h));
+  const Eigen::Index hi = std::min<Eigen::Index>(lo + 1, n - 1);
+  const double frac = h - static_cast<double>(lo);
+  out[order[static_cast<std::size_t>(lo)]] += scale * (1.0 - frac);
+  out[order[static_cast<std::size_t>(hi)]] += scale * frac;
+}
+
+std::vector<Eigen::Index> argsort(const Eigen::VectorXd& x) {
+  std::vector<Eigen::Index> o(static_cast<std::size_t>(x.size()));
+  for (std::size_t i = 0; i < o.size(); ++i) o[i] = static_cast<Eigen::Index>(i);
+  std::stable_sort(o.begin(), o.end(), [&x](Eigen::Index a, Eigen::Index b) { return x[a] < x[b]; });
+  return o;
+}
+
+/// ∂h/∂y_i of the bandwidth rule at y. sd-based rules h = c·sd: c (y_i − ȳ)/((N − 1) sd).
+/// "robust" 0.9 min(sd, IQR/1.34) N^−0.2 and "mad" (MAD/0.6745)(4/(3N))^0.2 go through the order
+/// statistics their quantiles interpolate: piecewise linear in y, so the derivative is exact
+/// wherever no two samples swap order (almost everywhere on CRN), as the rules themselves are.
+Eigen::VectorXd bandwidth_gradient(const Eigen::VectorXd& y, const std::string& rule, double h) {
+  const Eigen::Index N = y.size();
+  const double n = static_cast<double>(N), sd = stddev(y), mean = y.mean();
+  const Eigen::VectorXd dsd = (y.array() - mean).matrix() / ((n - 1.0) * sd);
+  if (sd_based(rule)) return (h / sd) * dsd;
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(N);
+  const std::vector<Eigen::Index> order = argsort(y);
+  if (robust_rule(rule)) {
+    const double c = 0.9 * std::pow(n, -0.2);
+    const Eigen::VectorXd s = sorted(y);
+    const double iqr = quantile_sorted(s, 0.75) - quantile_sorted(s, 0.25);
+    if (!(iqr > 0.0) || sd <= iqr / 1.34) return c * dsd;
+    add_quantile_weights(order, 0.75, c / 1.34, g);
+    add_quantile_weights(order, 0.25, -c / 1.34, g);
+    return g;
+  }
+  // mad: MAD = median_k |y_k − m|, m = median(y): ∂MAD/∂y_i = Σ_k w_k sign(y_k − m)(δ_ik − ∂m/∂y_i).
+  const double c = std::pow(4.0 / (3.0 * n), 0.2);
+  Eigen::VectorXd dm = Eigen::VectorXd::Zero(N);
+  add_quantile_weights(order, 0.5, 1.0, dm);
+  const double m = quantile_sorted(sorted(y), 0.5);
+  const Eigen::VectorXd dev = (y.array() - m).abs().matrix();
+  const double md = quantile_sorted(sorted(dev), 0.5);
+  if (!(md > 0.0)) {  // the rule falls back to the range
+    g[order.back()] += c;
+    g[order.front()] -= c;
+    return g;
+  }
+  Eigen::VectorXd wd = Eigen::VectorXd::Zero(N);
+  add_quantile_weights(argsort(dev), 0.5, 1.0, wd);
+  for (Eigen::Index k = 0; k < N; ++k) {
+    if (wd[k] == 0.0) continue;
+    const double sk = y[k] > m ? 1.0 : (y[k] < m ? -1.0 : 0.0);
+    g[k] += wd[k] * sk;
+    g -= (wd[k] * sk) * dm;
+  }
+  return (c / 0.6745) * g;
 }
 
 /// ∂metric/∂y_i and ∂metric/∂h of one response, given a_g = ∂metric/∂(kernel sum at point x_g)
@@ -144,7 +210,7 @@ void kernel_sums_uniform(const Eigen::VectorXd& y, double h, double lo, double d
 }  // namespace
 
 bool StatisticalObjective::has_gradient() const {
-  return jacobian_ && opt_.metric != MetricKind::custom && sd_based(opt_.bandwidth);
+  return jacobian_ && opt_.metric != MetricKind::custom && (sd_based(opt_.bandwidth) || robust_rule(opt_.bandwidth) || mad_rule(opt_.bandwidth));
 }
 
 std::vector<Eigen::MatrixXd> StatisticalObjective::model_jacobian(const Eigen::MatrixXd& X) const {
@@ -163,7 +229,8 @@ std::vector<Eigen::MatrixXd> StatisticalObjective::model_jacobian(const Eigen::M
 
 Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta, Eigen::VectorXd& grad) const {
   if (!has_gradient())
-    throw InvalidArgument("this calibration has no analytic gradient (it needs metric pr or loglik, an sd-based bandwidth and a model "
+    throw InvalidArgument("this calibration has no analytic gradient (it needs metric pr or loglik, a bandwidth rule other than lscv and sj, "
+                          "and a model "
                           "with a gradient)");
   const Eigen::MatrixXd X = inputs_at(theta);
   const Eigen::MatrixXd Y = run_model(theta);
@@ -228,9 +295,8 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
       e.parts[j] = -s;
       kernel_sums(y, h, r.data, a, false, gy, gh, opt_.threads);
     }
-    // Through the bandwidth h = c·sd(y): ∂h/∂y_i = c (y_i − ȳ) / ((N − 1) sd).
-    const double c = h / sd, mean = y.mean();
-    GY.col(j) = gy + (gh * c / ((static_cast<double>(N) - 1.0) * sd)) * (y.array() - mean).matrix();
+    // Through the bandwidth: ∂objective/∂y_i += ∂objective/∂h · ∂h/∂y_i.
+    GY.col(j) = gy + gh * bandwidth_gradient(y, opt_.bandwidth, h);
   }
   e.value = e.parts.sum();
   // Through the model and the inputs' quantile functions.

@@ -85,8 +85,12 @@ class StatisticalObjective {
   bool has_model_jacobian() const { return static_cast<bool>(jacobian_); }
   /// The model's Jacobian at the rows of X, checked (one per response, N×k each, finite).
   std::vector<Eigen::MatrixXd> model_jacobian(const Eigen::MatrixXd& X) const;
-  /// value_and_gradient works: metric PR or loglik, an sd-based bandwidth rule ("silverman",
-  /// "normal", "1.06", "scott"), and a model Jacobian.
+  /// value_and_gradient works: metric PR or loglik, a bandwidth rule with a closed-form derivative
+  /// ("silverman", "normal", "1.06", "scott", "robust", "mad"), and a model Jacobian. Not "lscv"
+  /// or "sj": their h solves an optimisation or a fixed-point equation over all pairs of samples
+  /// (its derivative by the implicit function theorem costs O(N²) per evaluation), nor a custom
+  /// metric (a Lua function of the outputs gives no ∂metric/∂y): those calibrate on central
+  /// differences of the objective.
   bool has_gradient() const;
   /// The objective (the same value as operator()) and its gradient in θ's own units, by the
   /// chain rule through the inputs' quantile functions, the model's Jacobian, the KDE (its

@@ -1,6 +1,7 @@
 // The calibration objective's analytic gradient (issue 11 item 1) against central differences
 // of the objective itself, on CRN: quantile functions of normal, lognormal and uniform inputs,
-// a model Jacobian, the KDE with its sd-based bandwidth, PR (with outside mass) and loglik.
+// a model Jacobian, the KDE with its bandwidth (sd-based, IQR-based robust, MAD), PR (with outside mass)
+// and loglik.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -71,7 +72,7 @@ StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "sil
 
 TEST_CASE("PR and loglik gradients agree with central differences of the objective") {
   for (MetricKind m : {MetricKind::pr, MetricKind::loglik})
-    for (const char* bw : {"silverman", "scott"}) {
+    for (const char* bw : {"silverman", "scott", "robust", "mad"}) {
       const StatisticalObjective f = make(m, bw);
       REQUIRE(f.has_gradient());
       for (const Eigen::VectorXd& t : {Eigen::VectorXd((Eigen::VectorXd(6) << 4.6, 0.4, 2.2, 0.3, 1.1, 0.2).finished()),
