@@ -102,7 +102,7 @@ void report(const char* key, const Run& run) {
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : ".";
   // ---- 1. analytic model, 4 parameters
-  {
+  if (!(argc > 2 && std::string(argv[2]) == "profile")) {
     smi::Rng g(2026);
     const Eigen::VectorXd a = g.normal(60, 5.0, 0.3), b = g.normal(60, 2.0, 0.2);
     ResponseSpec r1, r2;

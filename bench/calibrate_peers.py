@@ -145,6 +145,12 @@ L.append("- why the evaluation ratio stays near 3x: SLSQP needs about as many it
          "moment start (Levenberg–Marquardt on the responses' means and sds: model + Jacobian runs, no KDE) removes the "
          "first iterates. Per evaluation the gradient costs less than a second KDE pass, so the CPU ratio is larger than "
          "the evaluation ratio.\n")
+L.append("- also tried once (2026-11-23, a throw-away program on this problem, not kept): NLopt's LD_LBFGS, LD_MMA, LD_CCSAQ, "
+         "LD_VAR2 and LD_TNEWTON with the analytic gradient, and stopping on ftol_rel 1e-5 to 1e-7 instead of xtol_rel. "
+         "Without the moment start the best within 1e-4 was L-BFGS at xtol_rel 1e-4 (37 evaluations, 1.1e-5), with it "
+         "L-BFGS at xtol_rel 1e-4 (22 evaluations + 2, 7.0e-5: 4.1x against SciPy's 99); SLSQP stays the default "
+         "(bound handling, and every L-BFGS evaluation is a value and a gradient). Stopping on ftol_rel never beat "
+         "xtol_rel at the same distance.\n")
 if "trial_analytic_time" not in ours:
     open(out, "w").write("\n".join(L) + "\n")
     print("\n".join(L))
@@ -160,7 +166,13 @@ for key, name in (("trial_analytic", "analytic"), ("trial_moments", "analytic, m
              f"{' '.join(ours[key + '_converged_starts'])} | {' '.join(ours[key + '_start_values'])} | {ours[key + '_optima'][0]} | "
              f"{ours[key + '_near'][0]} of 4 (objective gap {ours[key + '_near_gap'][0]}) | {ours[key + '_near_summary_diff'][0]} |")
 L.append("")
-L.append("- CPU is the process's CPU seconds over both threads; on an idle 2-core machine the wall time is about CPU / 2.")
+L.append("- CPU is the process's CPU seconds over both threads; on an idle 2-core machine the wall time is about CPU / 2 "
+         "when the two threads' starts balance.")
+if "profile_value_and_gradient" in ours:
+    pr = {k[len("profile_"):]: 1e3 * float(v[0]) for k, v in ours.items() if k.startswith("profile_")}
+    L.append(f"- one evaluation at the start, one thread's CPU (bench_calibrate profile): value {pr['value']:.1f} ms (model "
+             f"{pr['model']:.1f} ms, the rest the two KDEs on 4001 nodes), value and gradient {pr['value_and_gradient']:.1f} ms "
+             f"(Jacobians {pr['jacobian']:.1f} ms).")
 L.append("- With two responses the ten parameters are not all determined: starts end at different points of (nearly) the same "
          "objective. \"The same optimum\" is therefore judged where the data can tell: the objective, and the predicted "
          "responses' summaries (four standardised Hermite moments per response, unit variance per datum; the data's own "
