@@ -1,14 +1,19 @@
 // Speed and accuracy of calibration (issue 11), run by run_calibrate.sh beside SciPy's SLSQP
 // with finite differences on the same objective (the CRN matrix, data and grids are written to
-// a folder the peer reads). Prints "key value" lines.
-//   bench_calibrate <dir> [quick]   (quick: part 1 only)
+// a folder the peer reads). Prints "key value" lines: wall and CPU seconds, the optimiser's
+// evaluations, objective evaluations, model runs and Jacobian runs, status, optimum.
+//   bench_calibrate <dir> [quick|profile]   (quick: part 1 only; profile: part 2's cost per evaluation)
 // 1. Analytic model, 4 parameters: a ~ N(μa, σa), b ~ N(μb, σb); y1 = a + b², y2 = 3a − b;
-//    PR on fixed grids, n = 1000 CRN samples. Ours with the analytic gradient, ours with
-//    central differences, and (in the peer script) SciPy SLSQP with 2-point differences.
+//    PR on fixed grids, n = 1000 CRN samples. Ours with the analytic gradient (tight, default
+//    tolerances, with the moment-matching start), ours with central differences, and (in the
+//    peer script) SciPy SLSQP with 2-point differences at several ftol.
 // 2. A trial-2-like calibration: 10 parameters (5 inputs' means and stds), 2000 CRN samples, two
 //    responses predicted by Kriging surrogates (150-point LHS designs of smooth functions), PR
-//    on 4001-node grids, 4 starts: analytic gradient against differences.
+//    on 4001-node grids, 4 starts side by side on 2 threads: analytic gradient (with and without
+//    the moment start) against differences, and whether the starts agree where the data can tell.
+#include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <fmt/format.h>
@@ -17,6 +22,7 @@
 
 #include "core/rng.hpp"
 #include "improve/bounded_optimizer.hpp"
+#include "improve/overlap_start.hpp"
 #include "improve/statistical_objective.hpp"
 #include "surrogate/kriging.hpp"
 
@@ -25,6 +31,12 @@ using namespace smi::improve;
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 void write(const std::string& path, const Eigen::MatrixXd& m) {
   std::ofstream f(path);
@@ -35,26 +47,52 @@ void write(const std::string& path, const Eigen::MatrixXd& m) {
   }
 }
 
+/// Jacobian runs of the bench's models (each a pass over the CRN sample like a model run).
+std::atomic<long> g_jacobian_runs{0};
+/// Calls of the objective's value-and-gradient (NLopt's SLSQP asks for a value alone at some points).
+std::atomic<long> g_gradient_calls{0};
+
+double process_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 struct Run {
   OptimizationResult r;
-  double seconds = 0.0;
+  double seconds = 0.0;  ///< wall, best of the repetitions
+  double cpu = 0.0;      ///< CPU seconds of all threads, of the best repetition
+  long model_runs = 0, jacobian_runs = 0, gradient_calls = 0;
+  /// Objective evaluations: the optimiser's (a value, or a value and its gradient) plus those made
+  /// choosing the start; model runs = these + the moment start's steps.
+  long objective_evaluations = 0;
 };
 
-/// Best of `reps` runs (the result of the last).
-Run timed(int reps, const std::vector<Parameter>& p, const Objective& f, const OptimizerOptions& o) {
+/// Best of `reps` runs (the result and counts of the last).
+Run timed(int reps, const std::vector<Parameter>& p, const Objective& f, const OptimizerOptions& o, const StatisticalObjective& obj) {
   Run out;
   out.seconds = 1e300;
   for (int i = 0; i < reps; ++i) {
-    const double t0 = now();
+    const long m0 = obj.model_runs(), j0 = g_jacobian_runs.load(), q0 = g_gradient_calls.load();
+    const double t0 = now(), c0 = process_cpu();
     out.r = minimize(p, f, o);
-    out.seconds = std::min(out.seconds, now() - t0);
+    const double w = now() - t0, c = process_cpu() - c0;
+    if (w < out.seconds) out.seconds = w, out.cpu = c;
+    out.model_runs = obj.model_runs() - m0;
+    out.jacobian_runs = g_jacobian_runs.load() - j0;
+    out.gradient_calls = g_gradient_calls.load() - q0;
   }
+  // Every gradient call ran the Jacobian once; the other Jacobian runs are the moment start's
+  // steps, each with one model run; every other model run is an objective evaluation.
+  out.objective_evaluations = out.model_runs - (out.jacobian_runs - out.gradient_calls);
   return out;
 }
 
 void report(const char* key, const Run& run) {
-  std::printf("%s_time %.6f\n%s_evals %d\n%s_status %s\n%s_value %.12g\n%s_theta", key, run.seconds, key, run.r.evaluations, key,
-              run.r.status.c_str(), key, run.r.value, key);
+  std::printf("%s_gradient_calls %ld\n", key, run.gradient_calls);
+  std::printf("%s_time %.6f\n%s_cpu %.6f\n%s_evals %d\n%s_objective_evals %ld\n%s_model_runs %ld\n%s_jacobian_runs %ld\n%s_status %s\n%s_value %.12g\n%s_theta",
+              key, run.seconds, key, run.cpu, key, run.r.evaluations, key, run.objective_evaluations, key, run.model_runs, key,
+              run.jacobian_runs, key, run.r.status.c_str(), key, run.r.value, key);
   for (Eigen::Index i = 0; i < run.r.theta.size(); ++i) std::printf(" %.10g", run.r.theta[i]);
   std::printf("\n");
 }
@@ -64,7 +102,7 @@ void report(const char* key, const Run& run) {
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : ".";
   // ---- 1. analytic model, 4 parameters
-  {
+  if (!(argc > 2 && std::string(argv[2]) == "profile")) {
     smi::Rng g(2026);
     const Eigen::VectorXd a = g.normal(60, 5.0, 0.3), b = g.normal(60, 2.0, 0.2);
     ResponseSpec r1, r2;
@@ -86,6 +124,7 @@ int main(int argc, char** argv) {
     };
     StatisticalObjective obj(in, {r1, r2}, p, model, so);
     obj.set_model_jacobian([](const Eigen::MatrixXd& X) {
+      ++g_jacobian_runs;
       Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(X.rows(), 2), J2 = J1;
       J1.col(0).setOnes();
       J1.col(1) = 2 * X.col(1);
@@ -99,15 +138,25 @@ int main(int argc, char** argv) {
     o.ftol_abs = 1e-12;
     o.maxeval = 2000;
     OptimizerOptions oa = o;
-    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) { return obj.value_and_gradient(t, gr); };
-    report("analytic4", timed(3, p, f, oa));
-    report("differences4", timed(1, p, f, o));
+    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) {
+      ++g_gradient_calls;
+      return obj.value_and_gradient(t, gr);
+    };
+    report("analytic4", timed(3, p, f, oa, obj));
+    report("differences4", timed(1, p, f, o, obj));
     // The default tolerances of smi.calibrate (xtol_rel 1e-6, ftol_abs 1e-8).
     OptimizerOptions od;
     od.gradient = oa.gradient;
-    report("analytic4default", timed(3, p, f, od));
+    report("analytic4default", timed(3, p, f, od, obj));
+    // A moment-matching start (Levenberg-Marquardt on the responses' means and sds) first.
+    od.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+    report("analytic4moments", timed(3, p, f, od, obj));
+    OptimizerOptions ol = od;  // and a looser xtol_rel (1e-4 of the scaled box)
+    ol.xtol_rel = 1e-4;
+    report("analytic4momentsloose", timed(3, p, f, ol, obj));
     od.gradient = {};
-    report("differences4default", timed(1, p, f, od));
+    od.prepare_start = {};
+    report("differences4default", timed(1, p, f, od, obj));
     write(dir + "/z.txt", obj.crn());
     write(dir + "/y1.txt", r1.data);
     write(dir + "/y2.txt", r2.data);
@@ -118,7 +167,7 @@ int main(int argc, char** argv) {
     write(dir + "/box.txt", box);
   }
   // ---- 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
-  if (!(argc > 2 && std::string(argv[2]) == "quick")) {
+  if (!(argc > 2 && std::string(argv[2]) == "quick")) {  // "profile": part 2's evaluation cost only
     const int k = 5;
     Eigen::MatrixXd lo(1, k), hi(1, k);
     lo << 0.5, 1.0, 2.0, 0.2, 3.0;
@@ -158,40 +207,84 @@ int main(int argc, char** argv) {
     so.n = 2000;
     so.grid_nodes = 4001;
     so.seed = 3;
-    so.threads = 2;
+    // One thread per evaluation: the starts run side by side instead (profile: timed in the
+    // thread's CPU time, steadier than wall time on a shared machine).
+    const bool profile = argc > 2 && std::string(argv[2]) == "profile";
+    const int nt = 1;
+    so.threads = nt;
     auto model = [&](const Eigen::MatrixXd& X) {
       Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::kriging::predict_mean(k1, X, 2);
-      Y.col(1) = smi::kriging::predict_mean(k2, X, 2);
+      Y.col(0) = smi::kriging::predict_mean(k1, X, nt);
+      Y.col(1) = smi::kriging::predict_mean(k2, X, nt);
       return Y;
     };
     StatisticalObjective obj(in, {r1, r2}, p, model, so);
     obj.set_model_jacobian([&](const Eigen::MatrixXd& X) {
-      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, 2), smi::kriging::predict_gradient(k2, X, 2)};
+      ++g_jacobian_runs;
+      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, nt), smi::kriging::predict_gradient(k2, X, nt)};
     });
+    if (profile) {
+      // Cost of one evaluation's parts at the start, CPU seconds of one thread (best of 30 each).
+      Eigen::VectorXd t0(static_cast<Eigen::Index>(p.size()));
+      for (std::size_t i = 0; i < p.size(); ++i) t0[static_cast<Eigen::Index>(i)] = p[i].start;
+      auto best = [](auto&& fn) {
+        double b = 1e300;
+        for (int r = 0; r < 30; ++r) {
+          const double a = cpu_now();
+          fn();
+          b = std::min(b, cpu_now() - a);
+        }
+        return b;
+      };
+      const Eigen::MatrixXd X = obj.inputs_at(t0);
+      std::printf("profile_inputs %.6f\n", best([&] { (void)obj.inputs_at(t0); }));
+      std::printf("profile_model %.6f\n", best([&] { (void)model(X); }));
+      std::printf("profile_jacobian %.6f\n", best([&] {
+        (void)smi::kriging::predict_gradient(k1, X, 1);
+        (void)smi::kriging::predict_gradient(k2, X, 1);
+      }));
+      std::printf("profile_value %.6f\n", best([&] { (void)obj(t0); }));
+      Eigen::VectorXd gr;
+      std::printf("profile_value_and_gradient %.6f\n", best([&] { (void)obj.value_and_gradient(t0, gr); }));
+      return 0;
+    }
     Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
     OptimizerOptions o;
     o.multistart = 4;
     o.seed = 11;
     o.maxeval = 300;  // the study's budget per start
+    o.start_threads = 2;  // the starts side by side (model, KDE and Jacobian on one thread each)
     OptimizerOptions oa = o;
-    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) { return obj.value_and_gradient(t, gr); };
-    const Run an = timed(1, p, f, oa);
-    report("trial_analytic", an);
-    std::printf("trial_analytic_agree %d\ntrial_analytic_optima %zu\ntrial_analytic_converged_starts", an.r.starts_agree ? 1 : 0, an.r.optima.size());
-    for (const auto& s : an.r.starts) std::printf(" %s", s.status.c_str());
-    std::printf("\n");
-    const Run fd = timed(1, p, f, o);
-    report("trial_differences", fd);
-    std::printf("trial_differences_agree %d\ntrial_differences_optima %zu\ntrial_differences_converged_starts", fd.r.starts_agree ? 1 : 0,
-                fd.r.optima.size());
-    for (const auto& s : fd.r.starts) std::printf(" %s", s.status.c_str());
-    std::printf("\n");
-    for (const auto& s : an.r.starts) {
-      std::printf("trial_analytic_start_value %.10g", s.value);
-      for (Eigen::Index i = 0; i < s.theta.size(); ++i) std::printf(" %.6g", s.theta[i]);
-      std::printf("\n");
-    }
+    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) {
+      ++g_gradient_calls;
+      return obj.value_and_gradient(t, gr);
+    };
+    OptimizerOptions om = oa;
+    om.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+    // Agreement where the data can tell: the starts whose objective is within the near-optimal
+    // tolerance of the best (smi.calibrate's PR default, 0.01 per response) and the largest
+    // difference of their predicted responses' summaries (four standardised Hermite moments per
+    // response, unit variance per datum: differences far below 1/sqrt(40) are invisible to the data).
+    auto agreement = [&](const char* key, const Run& run) {
+      report(key, run);
+      std::printf("%s_agree %d\n%s_optima %zu\n%s_converged_starts", key, run.r.starts_agree ? 1 : 0, key, run.r.optima.size(), key);
+      for (const auto& st : run.r.starts) std::printf(" %s", st.status.c_str());
+      std::printf("\n%s_start_values", key);
+      for (const auto& st : run.r.starts) std::printf(" %.8f", st.value);
+      const Eigen::VectorXd best = obj.summaries(run.r.theta);
+      int near = 0;
+      double gap = 0.0, dsum = 0.0;
+      for (const auto& st : run.r.starts) {
+        if (st.value - run.r.value > 0.02) continue;
+        ++near;
+        gap = std::max(gap, st.value - run.r.value);
+        dsum = std::max(dsum, (obj.summaries(st.theta) - best).cwiseAbs().maxCoeff());
+      }
+      std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
+    };
+    agreement("trial_analytic", timed(1, p, f, oa, obj));
+    agreement("trial_moments", timed(1, p, f, om, obj));
+    agreement("trial_differences", timed(1, p, f, o, obj));
   }
   return 0;
 }

@@ -17,7 +17,8 @@
 //                 n = 2000, crn = "random" | "quantiles", grid = {lo, hi, nodes} | {response = {...}},
 //                 grid_nodes = 4001, bandwidth = "silverman", threads = 1, design_bounds = {x = {lo, hi}},
 //                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
-//                 penalty = function(theta) return number end (prior knowledge, added), ...}
+//                 penalty = function(theta) return number end (prior knowledge, added),
+//                 moment_start = false (true: every start first matched to the data's means and sds), ...}
 // Common: method = "slsqp"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
 //         ftol_abs, fd_step, initial_step,
 //         identifiability = true|false|{points, rel_tol, abs_tol, tolerance, step},
@@ -208,21 +209,36 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   } else {
     std::vector<std::string> responses;
     for (const auto& r : s.responses) responses.push_back(r.name);
-    LuaModel model(L, s.model_parts, s.input_names_slot, responses);
+    // Surrogate models run without Lua; then, when nothing else in an evaluation calls Lua (a
+    // custom metric, a penalty, a prior function, a progress function), the starts run side by
+    // side on `threads` threads (the same result as one after another), each evaluation on one.
+    StatisticalOptions so = s.stat;
+    const bool lua_free_extras = !s.metric_slot && !s.penalty_slot && !s.progress_slot &&
+                                 std::none_of(s.priors.begin(), s.priors.end(), [](const PriorSpec& p) { return p.fn_slot != 0; });
+    const int start_threads = std::min(s.stat.threads, s.optimizer.multistart);
+    Model cpp = kriging_model(L, s, responses, start_threads > 1 ? 1 : 2);
+    if (cpp && lua_free_extras && start_threads > 1) {
+      oo.start_threads = start_threads;
+      so.threads = 1;
+    }
+    Model model = cpp ? cpp : Model(LuaModel(L, s.model_parts, s.input_names_slot, responses));
     CustomMetric metric;
     if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
-    out.stat.emplace(s.inputs, s.responses, s.params, model, s.stat, metric);
+    out.stat.emplace(s.inputs, s.responses, s.params, model, so, metric);
     if (s.gradient != "differences") out.stat->set_model_jacobian(model_jacobian(L, s, responses));
     const StatisticalObjective& obj = *out.stat;
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
     if (s.gradient == "analytic" && !obj.has_gradient())
-      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", an sd-based bandwidth (silverman, normal, 1.06, "
-                            "scott) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", a bandwidth rule with a derivative (silverman, "
+                            "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
     if (obj.has_gradient()) {
       oo.gradient = gradient_with_extras(L, s, obj);
       out.analytic_gradient = true;
     }
-    if (s.overlap_start) oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
+    if (s.moment_start)
+      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+    else if (s.overlap_start)
+      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
     out.opt = minimize(s.params, f, oo);
     // per-response parts, or one "metric" part when a custom metric returned a bare number
     out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");
@@ -267,7 +283,10 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
         Replicate rep;
         rep.f = with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
         if (o->has_gradient()) rep.gradient = gradient_with_extras(L, s, *o);
-        if (s.overlap_start) rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
+        if (s.moment_start)
+          rep.prepare_start = [o](const Eigen::VectorXd& t) { return moment_start(*o, t); };
+        else if (s.overlap_start)
+          rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
         rep.keep = o;
         return rep;
       };

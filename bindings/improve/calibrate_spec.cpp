@@ -397,7 +397,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "gradient", "intervals"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer.method = parse_method(o.string("method", "slsqp"));
@@ -460,6 +460,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
 
   read_priors(L, idx, s);
   s.overlap_start = o.boolean("overlap_start", true);
+  s.moment_start = o.boolean("moment_start", false);
   s.gradient = o.string("gradient", "auto");
   if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
     throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
@@ -515,7 +516,8 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
     throw InvalidArgument("bootstrap must be a number of replicates or {replicates =, level =, seed =}");
   }
   lua_pop(L, 1);
-  // intervals = true | {level =, delta =}: profile intervals. delta = ½ χ²₁(level) reads the
+  // intervals = true | {level =, delta =, observations =}: profile intervals. delta = ½ χ²₁(level)
+  // (with observations: its small-sample calibration, profile_intervals.hpp) reads the
   // objective as a negative log-likelihood (metric "loglik", or an objective that is one); PR is
   // not one, so it needs delta (an objective increase) given.
   const int iv = lua_getfield(L, idx, "intervals");
@@ -524,9 +526,14 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
     po.optimizer = s.optimizer;
     po.optimizer.multistart = 1;
     bool has_delta = false;
+    int observations = 0;  // > 0: the small-sample (F-calibrated) delta
     if (iv == LUA_TTABLE) {
       lua::Options io(L, lua_gettop(L), "smi.calibrate intervals");
-      io.check_known({"level", "delta"});
+      io.check_known({"level", "delta", "observations"});
+      observations = io.has("observations") ? static_cast<int>(io.integer("observations", 0)) : 0;
+      if (io.has("observations") && (io.has("delta") || observations < 1))
+        throw InvalidArgument(fmt::format("intervals.observations (the number of data of the likelihood) must be an integer >= 1 and goes with "
+                                          "level, not delta; got {}", observations));
       if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
       s.interval_level = io.number("level", 0.9);
       has_delta = io.has("delta");
@@ -540,7 +547,8 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
       if (s.statistical && s.stat.metric == MetricKind::pr)
         throw InvalidArgument("intervals: PR is not a log-likelihood, so a level has no delta; give intervals = {delta = <objective increase>} "
                               "or use metric = \"loglik\" or bootstrap");
-      po.delta = likelihood_ratio_delta(s.interval_level);
+      po.delta = observations > 0 ? likelihood_ratio_delta(s.interval_level, observations, static_cast<int>(s.params.size()))
+                                  : likelihood_ratio_delta(s.interval_level);
     }
     s.intervals = po;
   } else if (iv != LUA_TNIL && !(iv == LUA_TBOOLEAN)) {

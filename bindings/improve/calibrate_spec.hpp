@@ -56,6 +56,7 @@ struct CalibrateSpec {
   /// loglik, else differences; "analytic" requires it; "differences" never uses it.
   std::string gradient = "auto";
   bool overlap_start = true;  ///< move a start where PR saturates at 2 (overlap_start = false: keep it)
+  bool moment_start = false;  ///< move every start by Levenberg-Marquardt on the responses' moments (kept when better)
 
   // Diagnostics.
   bool identifiability = true;

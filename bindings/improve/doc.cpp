@@ -36,6 +36,9 @@ options:
                               -- "analytic" or "differences"
   overlap_start = true        -- a start where a response's PR is near 2 (no overlap) is first moved
                               -- to a moment-matching start
+  moment_start = false        -- true: every start is first moved to match the responses' means and
+                              -- sds (Levenberg-Marquardt, analytic Jacobian where the model has a
+                              -- gradient), kept when the objective is lower: fewer evaluations
   n = ${n}                    -- CRN sample size per evaluation
   crn = "random"              -- "random" draws or "quantiles" (stratified) common random numbers
   grid = nil                  -- {output = {lower, upper}}: PR integration ranges
@@ -58,7 +61,8 @@ options:
                               -- abs_tol = ${ident_abs_tol}, tolerance =, directions = true}: a sweep
                               -- of each parameter and the directions the data determine or not
   intervals = nil             -- {level = 0.9} profile intervals (loglik / objective read as a negative
-                              -- log-likelihood) or {delta = rise}
+                              -- log-likelihood) or {delta = rise}; observations = n (data count)
+                              -- gives the small-sample delta n/2 ln(1 + t²(n-k)/(n-k)), k parameters
   bootstrap = nil             -- replicates, or {replicates = ${boot_replicates}, level = ${boot_level},
                               -- seed =, maxeval =, multistart =, warm = false}: full calibrations
                               -- on resampled data (model form; warm = true starts at the optimum)

@@ -47,6 +47,29 @@ Eigen::MatrixXd read_jacobian(lua_State* L, const std::string& r, bool lenient, 
 
 }  // namespace
 
+smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const std::vector<std::string>& responses, int threads) {
+  std::vector<const kriging::Model*> per(responses.size(), nullptr);
+  for (const ModelPart& p : s.model_parts) {
+    const auto* k = p.self_slot ? surrogate::test_kriging(L, p.self_slot) : nullptr;
+    if (!k) return {};
+    if (p.output.empty()) {
+      if (s.model_parts.size() != 1 || responses.size() != 1) return {};
+      per[0] = &k->model;
+    } else {
+      for (std::size_t r = 0; r < responses.size(); ++r)
+        if (responses[r] == p.output) per[r] = &k->model;
+    }
+  }
+  for (const auto* m : per)
+    if (!m) return {};  // a response without its Kriging: LuaModel says which
+  // The boxes stay alive: the spec's slots hold them on the Lua stack for the whole call.
+  return [per, threads](const Eigen::MatrixXd& X) {
+    Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(per.size()));
+    for (std::size_t r = 0; r < per.size(); ++r) Y.col(static_cast<Eigen::Index>(r)) = kriging::predict_mean(*per[r], X, threads);
+    return Y;
+  };
+}
+
 smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, const CalibrateSpec& s,
                                                                   const std::vector<std::string>& responses) {
   std::vector<Source> src;

@@ -14,6 +14,12 @@
 
 namespace smi::bind::improve {
 
+/// The model without Lua when every response's part is an smi.Kriging (per-response parts, or one
+/// Kriging for a single response): predict_mean on `threads` threads, the numbers of
+/// m:evaluate(X). Empty otherwise. Being Lua-free it may run on several threads at once (starts
+/// side by side).
+smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const std::vector<std::string>& responses, int threads);
+
 /// Empty when some response's model has no gradient.
 smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, const CalibrateSpec& s,
                                                                   const std::vector<std::string>& responses);

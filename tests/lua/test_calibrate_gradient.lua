@@ -29,6 +29,21 @@ T.case("Kriging surrogates: analytic gradient, same optimum as differences, ends
   end
 end)
 
+T.case("Kriging models with threads = 2: the starts run side by side, with the result of one after another", function()
+  local spec = {model = {y1 = k1, y2 = k2}, inputs = inputs, data = data, n = 400, grid_nodes = 1001, seed = 5,
+                multistart = 4, identifiability = false, threads = 1}
+  local one = smi.calibrate(spec)
+  spec.threads = 2
+  local two = smi.calibrate(spec)
+  T.eq(two.evaluations, one.evaluations, "evaluations")
+  T.eq(two.objective, one.objective, "objective")
+  for k, v in pairs(one.params) do T.eq(two.params[k], v, k) end
+  T.eq(#two.history, #one.history, "history rows")
+  for i = 1, #one.history, 7 do T.eq(two.history[i].objective, one.history[i].objective, "history row " .. i) end
+  for s = 1, 4 do T.eq(two.starts[s].objective, one.starts[s].objective, "start " .. s) end
+  T.eq(two.starts_agree, one.starts_agree, "starts_agree")
+end)
+
 T.case("a model object's own gradient method is used; a function model falls back to differences", function()
   local calls = 0
   local model = {

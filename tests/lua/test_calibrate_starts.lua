@@ -23,4 +23,30 @@ T.case("no overlap at the start: moved by moment matching, then calibrated", fun
   T.truthy(stuck.objective > 1.99, "without it the optimiser cannot leave PR = 2")
 end)
 
+T.case("moment_start: every start matched to the data's mean and sd first, then the same optimum in fewer evaluations", function()
+  local g = smi.rng(8)
+  local a, b = g:normal(80, 5, 0.3), g:normal(80, 2, 0.2)
+  local y1, y2 = {}, {}
+  for i = 1, #a do y1[i] = a[i] + b[i] ^ 2; y2[i] = 3 * a[i] - b[i] end
+  local spec = {
+    model = function(M) return {y1 = M:col(1) + M:col(2):map(function(v) return v * v end), y2 = M:col(1) * 3 - M:col(2)} end,
+    inputs = {{name = "a", mean = {3, 7, 4.2}, std = {0.05, 1, 0.6}}, {name = "b", mean = {1, 3, 2.4}, std = {0.05, 1, 0.5}}},
+    data = {y1 = smi.vec(y1), y2 = smi.vec(y2)}, n = 400, grid_nodes = 1001, seed = 2, identifiability = false,
+  }
+  local plain = smi.calibrate(spec)
+  spec.moment_start = true
+  local moved = smi.calibrate(spec)
+  local said = false
+  for _, w in ipairs(moved.warnings) do said = said or w:find("moment-matching start", 1, true) ~= nil end
+  T.truthy(said, "the start was moved (and said so)")
+  -- The moved start reproduces the data's mean of y2 = 3a - b: 3 mean(a) - mean(b).
+  local m2 = 0
+  for i = 1, #y2 do m2 = m2 + y2[i] / #y2 end
+  T.near(3 * moved.starts[1].start["a.mean"] - moved.starts[1].start["b.mean"], m2, 0.02 * math.abs(m2), "the start matches the mean of y2")
+  T.near(moved.objective, plain.objective, 1e-3, "the same optimum")
+  for _, p in ipairs{"a.mean", "a.std", "b.mean", "b.std"} do T.near(moved.params[p], plain.params[p], 0.02, p) end
+  print(("evaluations: plain %d, moment start %d (+%d model runs choosing the start)"):format(plain.evaluations, moved.evaluations, moved.start_evaluations or -1))
+  T.truthy(moved.evaluations < plain.evaluations, ("fewer optimiser evaluations: %d < %d"):format(moved.evaluations, plain.evaluations))
+end)
+
 T.finish()

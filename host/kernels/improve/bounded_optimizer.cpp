@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <nlopt.hpp>
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
+#include "stats/parallel.hpp"
 
 namespace smi::improve {
 
@@ -249,13 +251,29 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
 
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   OptimizationResult res;
+  // The starts, drawn in order from one stream (the same points whatever start_threads is).
   Rng rng(opt.seed, hash_label("multistart"));
+  std::vector<Eigen::VectorXd> u0s;
   for (int s = 0; s < opt.multistart; ++s) {
     Eigen::VectorXd u0(k);
     for (Eigen::Index i = 0; i < k; ++i) {
       const Parameter& p = params[static_cast<std::size_t>(i)];
       u0[i] = s == 0 ? (p.start - p.lower) / (p.upper - p.lower) : rng.uniform01();
     }
+    u0s.push_back(std::move(u0));
+  }
+  // Each start keeps its own history and warnings, merged in start order afterwards, so the
+  // result is the same whether the starts run one after another or side by side.
+  struct StartRun {
+    StartResult sr;
+    std::vector<HistoryEntry> history;
+    std::vector<std::string> warnings;
+    int prepare_evaluations = 0;
+  };
+  std::vector<StartRun> runs(static_cast<std::size_t>(opt.multistart));
+  auto run_one = [&](int s) {
+    StartRun& out = runs[static_cast<std::size_t>(s)];
+    Eigen::VectorXd u0 = u0s[static_cast<std::size_t>(s)];
     Eigen::VectorXd given(k);
     for (Eigen::Index i = 0; i < k; ++i) {
       const Parameter& p = params[static_cast<std::size_t>(i)];
@@ -263,23 +281,37 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
     }
     if (opt.prepare_start) {
       const PreparedStart ps = opt.prepare_start(given);
-      res.start_evaluations += ps.evaluations;
-      if (!ps.note.empty()) res.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
+      out.prepare_evaluations = ps.evaluations;
+      if (!ps.note.empty()) out.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
       for (Eigen::Index i = 0; i < k; ++i) {
         const Parameter& p = params[static_cast<std::size_t>(i)];
         u0[i] = std::clamp((ps.theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
       }
     }
-    StartResult sr = run_start(params, f, opt, u0, s, res.history, res.warnings);
-    sr.given = given;
-    res.evaluations += sr.evaluations;
-    if (s == 0 || sr.value < res.value) {
-      res.theta = sr.theta;
-      res.value = sr.value;
-      res.status = sr.status;
-      res.converged = sr.converged;
+    out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
+    out.sr.given = given;
+  };
+  if (opt.start_threads > 1 && opt.multistart > 1) {
+    // One start per block (work far above parallel_blocks' inline threshold).
+    smi::detail::parallel_blocks(opt.multistart, std::min(opt.start_threads, opt.multistart), 1e12, [&](Eigen::Index b, Eigen::Index e) {
+      for (Eigen::Index s = b; s < e; ++s) run_one(static_cast<int>(s));
+    });
+  } else {
+    for (int s = 0; s < opt.multistart; ++s) run_one(s);
+  }
+  for (int s = 0; s < opt.multistart; ++s) {
+    StartRun& r = runs[static_cast<std::size_t>(s)];
+    res.start_evaluations += r.prepare_evaluations;
+    res.history.insert(res.history.end(), std::make_move_iterator(r.history.begin()), std::make_move_iterator(r.history.end()));
+    res.warnings.insert(res.warnings.end(), r.warnings.begin(), r.warnings.end());
+    res.evaluations += r.sr.evaluations;
+    if (s == 0 || r.sr.value < res.value) {
+      res.theta = r.sr.theta;
+      res.value = r.sr.value;
+      res.status = r.sr.status;
+      res.converged = r.sr.converged;
     }
-    res.starts.push_back(std::move(sr));
+    res.starts.push_back(std::move(r.sr));
   }
   for (const HistoryEntry& h : res.history)
     if (h.value == res.value && h.theta == res.theta) {

@@ -1,10 +1,14 @@
 #include "improve/overlap_start.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/descriptive.hpp"
+#include "improve/input_derivatives.hpp"
 
 namespace smi::improve {
 
@@ -19,6 +23,119 @@ double moment_mismatch(const StatisticalObjective& obj, const Eigen::VectorXd& t
     s += std::pow((pm - m) / sd, 2) + std::pow(std::log(ps / sd), 2);
   }
   return s;
+}
+
+Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::VectorXd& theta, Eigen::MatrixXd* jacobian, int& runs) {
+  const Eigen::Index k = theta.size();
+  std::vector<std::pair<double, double>> target;  // measured (mean, sd) per response; sd 0 = skipped
+  for (const ResponseSpec& r : obj.responses()) {
+    auto [m, sd] = r.moments();
+    target.emplace_back(m, (sd > 0.0 && std::isfinite(sd) && std::isfinite(m)) ? sd : 0.0);
+  }
+  auto residuals = [&](const Eigen::MatrixXd& Y) {
+    std::vector<double> r;
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+      const auto [m, sd] = target[static_cast<std::size_t>(j)];
+      if (!(sd > 0.0)) continue;
+      r.push_back((Y.col(j).mean() - m) / sd);
+      r.push_back(std::log(std::max(stddev(Y.col(j)), 1e-12 * sd) / sd));
+    }
+    return Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
+  };
+  const Eigen::MatrixXd Y = obj.predict(theta);
+  ++runs;
+  const Eigen::VectorXd r = residuals(Y);
+  if (!jacobian) return r;
+  jacobian->setZero(r.size(), k);
+  if (!obj.has_model_jacobian()) {
+    // Forward differences, 1e-6 of each range (away from the upper bound).
+    for (Eigen::Index p = 0; p < k; ++p) {
+      const Parameter& par = obj.parameters()[static_cast<std::size_t>(p)];
+      const double h = 1e-6 * (par.upper - par.lower) * (theta[p] + 1e-6 * (par.upper - par.lower) <= par.upper ? 1.0 : -1.0);
+      Eigen::VectorXd t = theta;
+      t[p] += h;
+      jacobian->col(p) = (residuals(obj.predict(t)) - r) / h;
+      ++runs;
+    }
+    return r;
+  }
+  // dr/dθ_p = Σ_i w_i Σ_c J_ic dx_ic/dθ_p with w = 1/(N sd_r) (mean) or (y_i − ȳ)/((N − 1) sd(y)²) (log sd).
+  const Eigen::MatrixXd X = obj.inputs_at(theta);
+  const std::vector<Eigen::MatrixXd> J = obj.model_jacobian(X);
+  const auto mom = obj.input_moments(theta);
+  std::vector<InputDerivatives> dx;
+  for (std::size_t c = 0; c < obj.inputs().size(); ++c)
+    dx.push_back(input_derivatives(obj.inputs()[c].family, mom[c].first, mom[c].second, obj.crn().col(static_cast<Eigen::Index>(c))));
+  const double N = static_cast<double>(Y.rows());
+  Eigen::Index row = 0;
+  for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+    const double sd = target[static_cast<std::size_t>(j)].second;
+    if (!(sd > 0.0)) continue;
+    const double ps = std::max(stddev(Y.col(j)), 1e-12 * sd);
+    const Eigen::VectorXd wm = Eigen::VectorXd::Constant(Y.rows(), 1.0 / (N * sd));
+    const Eigen::VectorXd ws = (Y.col(j).array() - Y.col(j).mean()).matrix() / ((N - 1.0) * ps * ps);
+    for (std::size_t c = 0; c < obj.inputs().size(); ++c) {
+      const InputSpec& in = obj.inputs()[c];
+      const Eigen::VectorXd g = J[static_cast<std::size_t>(j)].col(static_cast<Eigen::Index>(c));
+      for (int which = 0; which < 2; ++which) {
+        const Eigen::VectorXd& w = which == 0 ? wm : ws;
+        const Eigen::VectorXd s = g.cwiseProduct(w);
+        if (in.mean_param >= 0) (*jacobian)(row + which, in.mean_param) += s.dot(dx[c].dmean);
+        if (in.std_param >= 0) (*jacobian)(row + which, in.std_param) += s.dot(dx[c].dstd);
+      }
+    }
+    row += 2;
+  }
+  return r;
+}
+
+PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const MomentStartOptions& opt) {
+  PreparedStart out{theta, {}};
+  const std::vector<Parameter>& params = obj.parameters();
+  const Eigen::Index k = theta.size();
+  Eigen::VectorXd range(k);
+  for (Eigen::Index p = 0; p < k; ++p) range[p] = params[static_cast<std::size_t>(p)].upper - params[static_cast<std::size_t>(p)].lower;
+  auto project = [&](Eigen::VectorXd t) {
+    for (Eigen::Index p = 0; p < k; ++p) t[p] = std::clamp(t[p], params[static_cast<std::size_t>(p)].lower, params[static_cast<std::size_t>(p)].upper);
+    return t;
+  };
+  int runs = 0;
+  Eigen::VectorXd t = theta;
+  Eigen::MatrixXd Jt;
+  Eigen::VectorXd r = moment_residuals(obj, t, &Jt, runs);
+  if (r.size() == 0) return out;
+  const double start_mismatch = r.squaredNorm();
+  double lambda = -1.0;
+  for (int it = 0; it < opt.max_iterations && r.squaredNorm() > opt.tolerance; ++it) {
+    const Eigen::MatrixXd Ju = Jt * range.asDiagonal();  // scaled units
+    const Eigen::MatrixXd A = Ju.transpose() * Ju;
+    const Eigen::VectorXd b = -Ju.transpose() * r;
+    if (lambda < 0.0) lambda = 1e-3 * std::max(1e-12, A.diagonal().maxCoeff());
+    bool accepted = false;
+    for (int tries = 0; tries < 12 && !accepted; ++tries) {
+      const Eigen::VectorXd du = (A + lambda * Eigen::MatrixXd::Identity(k, k)).ldlt().solve(b);
+      const Eigen::VectorXd tn = project(t + range.cwiseProduct(du));
+      if ((tn - t).cwiseQuotient(range).norm() < 1e-12) break;
+      Eigen::MatrixXd Jn;
+      const Eigen::VectorXd rn = moment_residuals(obj, tn, &Jn, runs);
+      if (rn.allFinite() && rn.squaredNorm() < r.squaredNorm()) {
+        t = tn, r = rn, Jt = Jn, accepted = true;
+        lambda = std::max(1e-15, lambda / 3.0);
+      } else {
+        lambda *= 5.0;
+      }
+    }
+    if (!accepted) break;
+  }
+  out.evaluations = runs;
+  if (t == theta) return out;
+  const double before = obj(theta).value, after = obj(t).value;
+  out.evaluations += 2;
+  if (!(after < before)) return out;
+  out.theta = t;
+  out.note = fmt::format("moved to a moment-matching start (means and sds of the responses; mismatch {:.3g} -> {:.3g}, objective {:.4g} -> "
+                         "{:.4g}, {} model runs)", start_mismatch, r.squaredNorm(), before, after, out.evaluations);
+  return out;
 }
 
 PreparedStart overlap_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const OverlapStartOptions& opt) {

@@ -21,6 +21,26 @@ struct OverlapStartOptions {
 /// The moment mismatch above at θ (one model run).
 double moment_mismatch(const StatisticalObjective& obj, const Eigen::VectorXd& theta);
 
+/// The moment mismatch's residuals at θ, two per response with a measured sd > 0:
+/// (mean(y_r) − m_r)/sd_r and ln(sd(y_r)/sd_r); with `jacobian` non-null also their derivatives in
+/// θ's own units (rows: residuals, columns: parameters), by the chain rule through the model's
+/// Jacobian when it has one (one model run and one Jacobian run), else by forward differences
+/// (k more model runs). `runs` counts the model runs.
+Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::VectorXd& theta, Eigen::MatrixXd* jacobian, int& runs);
+
+struct MomentStartOptions {
+  int max_iterations = 30;   ///< Levenberg–Marquardt iterations (each one model + Jacobian run)
+  double tolerance = 1e-10;  ///< stop when the mismatch (sum of squared residuals) is below
+};
+
+/// Moment-matching start (issue 11 item 2, and fewer evaluations for the optimiser after it):
+/// Levenberg–Marquardt on moment_residuals in scaled [0, 1] units, projected on the box; with more
+/// parameters than residuals each step is the smallest that reduces the mismatch, so directions
+/// the moments do not see stay where they were. The moved point is returned when the objective
+/// there is lower than at θ (two objective evaluations), θ otherwise. `evaluations` counts model
+/// runs (objective evaluations and moment steps alike).
+PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const MomentStartOptions& opt = {});
+
 /// θ itself when every response's PR overlaps; else the moment-matching point, with a note.
 /// Only for the PR metric (the start is returned unchanged otherwise).
 PreparedStart overlap_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const OverlapStartOptions& opt = {});

@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/normal.hpp"
+#include "stats/special.hpp"
 
 namespace smi::improve {
 
@@ -15,6 +16,16 @@ double likelihood_ratio_delta(double level) {
   if (!(level > 0.0 && level < 1.0)) throw InvalidArgument(fmt::format("interval level must be in (0, 1), got {}", level));
   const double z = normal_quantile(0.5 * (1.0 + level));
   return 0.5 * z * z;
+}
+
+double likelihood_ratio_delta(double level, int observations, int parameters) {
+  (void)likelihood_ratio_delta(level);  // checks the level
+  if (observations <= parameters)
+    throw InvalidArgument(fmt::format("intervals: {} observations for {} parameters: the small-sample delta needs more observations than "
+                                      "parameters (leave observations out for the plain likelihood-ratio interval)", observations, parameters));
+  const double m = static_cast<double>(observations - parameters);
+  const double t = student_t_quantile(0.5 * (1.0 + level), m);
+  return 0.5 * static_cast<double>(observations) * std::log1p(t * t / m);
 }
 
 namespace {

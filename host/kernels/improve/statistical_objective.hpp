@@ -7,6 +7,7 @@
 //   "loglik" −Σ_r Σ_i log f_pre,r(y_exp,r,i)            (densities floored at 1e-300)
 //   custom   any function of the predicted outputs (supplied by the caller).
 #include <Eigen/Core>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -81,8 +82,15 @@ class StatisticalObjective {
   using ModelJacobian = std::function<std::vector<Eigen::MatrixXd>(const Eigen::MatrixXd& X)>;
   /// Set when the model has a gradient (a Kriging's closed form, a model's own `gradient`).
   void set_model_jacobian(ModelJacobian j) { jacobian_ = std::move(j); }
-  /// value_and_gradient works: metric PR or loglik, an sd-based bandwidth rule ("silverman",
-  /// "normal", "1.06", "scott"), and a model Jacobian.
+  bool has_model_jacobian() const { return static_cast<bool>(jacobian_); }
+  /// The model's Jacobian at the rows of X, checked (one per response, N×k each, finite).
+  std::vector<Eigen::MatrixXd> model_jacobian(const Eigen::MatrixXd& X) const;
+  /// value_and_gradient works: metric PR or loglik, a bandwidth rule with a closed-form derivative
+  /// ("silverman", "normal", "1.06", "scott", "robust", "mad"), and a model Jacobian. Not "lscv"
+  /// or "sj": their h solves an optimisation or a fixed-point equation over all pairs of samples
+  /// (its derivative by the implicit function theorem costs O(N²) per evaluation), nor a custom
+  /// metric (a Lua function of the outputs gives no ∂metric/∂y): those calibrate on central
+  /// differences of the objective.
   bool has_gradient() const;
   /// The objective (the same value as operator()) and its gradient in θ's own units, by the
   /// chain rule through the inputs' quantile functions, the model's Jacobian, the KDE (its
@@ -109,9 +117,9 @@ class StatisticalObjective {
   const Eigen::MatrixXd& crn() const { return z_; }
   const StatisticalOptions& options() const { return opt_; }
   /// Model runs so far (one per objective evaluation).
-  long model_runs() const { return *runs_; }
+  long model_runs() const { return runs_->load(); }
   /// Densities floored by the loglik metric so far.
-  long floored() const { return *floored_; }
+  long floored() const { return floored_->load(); }
 
  private:
   Eigen::MatrixXd run_model(const Eigen::VectorXd& theta) const;
@@ -127,8 +135,9 @@ class StatisticalObjective {
   Eigen::MatrixXd z_;
   std::vector<Eigen::VectorXd> f_exp_grid_;   // f_exp at each response's grid nodes
   std::vector<double> exp_outside_;           // f_exp mass outside each grid
-  std::shared_ptr<long> runs_ = std::make_shared<long>(0);
-  std::shared_ptr<long> floored_ = std::make_shared<long>(0);
+  // Atomic: starts optimised side by side (OptimizerOptions::start_threads) share the objective.
+  std::shared_ptr<std::atomic<long>> runs_ = std::make_shared<std::atomic<long>>(0);
+  std::shared_ptr<std::atomic<long>> floored_ = std::make_shared<std::atomic<long>>(0);
 };
 
 }  // namespace smi::improve

@@ -112,6 +112,22 @@ BetaInc beta_inc_both(double a, double b, double x) {
 
 double beta_inc(double a, double b, double x) { return beta_inc_both(a, b, x).lower; }
 
+double student_t_quantile(double p, double df) {
+  if (!(p > 0.0 && p < 1.0) || !(df > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  if (p == 0.5) return 0.0;
+  // Two-sided tail q = P(|T| > t) = I_{df/(df+t²)}(df/2, 1/2), decreasing in t.
+  const double q = 2.0 * std::min(p, 1.0 - p);
+  auto tail = [&](double t) { return beta_inc_both(0.5 * df, 0.5, df / (df + t * t)).lower; };
+  double lo = 0.0, hi = 1.0;
+  while (tail(hi) > q && hi < 1e300) lo = hi, hi *= 4.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
+    const double m = 0.5 * (lo + hi);
+    (tail(m) > q ? lo : hi) = m;
+  }
+  const double t = 0.5 * (lo + hi);
+  return p < 0.5 ? -t : t;
+}
+
 double log_normal_cdf(double x) {
   if (x > -5.0) return std::log1p(-0.5 * std::erfc(x / kSqrt2));
   // Φ(x) = φ(x) R(−x) with the Mills ratio R(t) = Φ(−t)/φ(t) by its continued fraction

@@ -28,6 +28,11 @@ BetaInc beta_inc_both(double a, double b, double x);
 /// I_x(a, b), the regularised incomplete beta.
 double beta_inc(double a, double b, double x);
 
+/// Student's t quantile: t with P(T_df <= t) = p, p in (0, 1), df > 0, by bisection on the
+/// incomplete beta (P(|T| > t) = I_{df/(df+t²)}(df/2, 1/2)), to about 1e-10 relative
+/// (the incomplete beta's accuracy at df = 1).
+double student_t_quantile(double p, double df);
+
 /// log Φ(x) (standard normal), accurate for x far below 0 where Φ underflows.
 double log_normal_cdf(double x);
 /// Φ(b) − Φ(a) for a <= b to full relative precision: complements in the upper tail, and a

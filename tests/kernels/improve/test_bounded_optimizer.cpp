@@ -90,6 +90,19 @@ TEST_CASE("multistart escapes a local minimum") {
   const OptimizationResult again = minimize(p, f, o);
   CHECK(again.evaluations == many.evaluations);
   CHECK(again.theta[0] == many.theta[0]);
+  // Starts side by side: the same starts, history (in start order), optima and warnings.
+  o.start_threads = 2;
+  const OptimizationResult side = minimize(p, f, o);
+  REQUIRE(side.history.size() == many.history.size());
+  for (std::size_t i = 0; i < side.history.size(); ++i) {
+    CHECK(side.history[i].start == many.history[i].start);
+    CHECK(side.history[i].theta[0] == many.history[i].theta[0]);
+    CHECK(side.history[i].value == many.history[i].value);
+  }
+  CHECK(side.theta[0] == many.theta[0]);
+  CHECK(side.optima == many.optima);
+  CHECK(side.warnings == many.warnings);
+  for (std::size_t s = 0; s < side.starts.size(); ++s) CHECK(side.starts[s].given[0] == many.starts[s].given[0]);
 }
 
 TEST_CASE("the objective's own exception comes out of minimize with its message") {
