@@ -11,7 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
-#include "stats/parallel.hpp"
+#include "core/thread_pool.hpp"
 
 namespace smi::improve {
 
@@ -292,10 +292,9 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
     out.sr.given = given;
   };
   if (opt.start_threads > 1 && opt.multistart > 1) {
-    // One start per block (work far above parallel_blocks' inline threshold).
-    smi::detail::parallel_blocks(opt.multistart, std::min(opt.start_threads, opt.multistart), 1e12, [&](Eigen::Index b, Eigen::Index e) {
-      for (Eigen::Index s = b; s < e; ++s) run_one(static_cast<int>(s));
-    });
+    // One task per start; a start's exception reaches this thread (the pool rethrows it).
+    pool::parallel_for(opt.multistart, std::min(opt.start_threads, opt.multistart),
+                       [&](long s) { run_one(static_cast<int>(s)); });
   } else {
     for (int s = 0; s < opt.multistart; ++s) run_one(s);
   }
