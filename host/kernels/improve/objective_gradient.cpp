@@ -167,7 +167,7 @@ void kernel_sums_uniform(const Eigen::VectorXd& y, double h, double lo, double d
   constexpr Eigen::Index kSamples = 256;
   const long nb = static_cast<long>((N + kSamples - 1) / kSamples);
   std::vector<double> ghs(static_cast<std::size_t>(nb), 0.0);
-  smi::detail::parallel_for(nb, threads, [&](long sb) {
+  pool::parallel_for(nb, threads, [&](long sb) {
     double acc_h = 0.0;
     for (Eigen::Index i = sb * kSamples; i < std::min(N, (sb + 1) * kSamples); ++i) {
       const double u0 = (y[i] - kCut * h - lo) / dx, u1 = (y[i] + kCut * h - lo) / dx;
