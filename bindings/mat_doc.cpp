@@ -3,6 +3,7 @@
 
 namespace smi::bind {
 
+// long: one raw string of reference text (data, no logic); doc.lua reads it entry by entry
 DocText doc_mat() {
   return {"bindings/mat_doc.cpp", R"DOC(
 @ smi.mat(rows | vec | mat | r, c) -> mat

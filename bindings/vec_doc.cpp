@@ -3,6 +3,7 @@
 
 namespace smi::bind {
 
+// long: one raw string of reference text (data, no logic); doc.lua reads it entry by entry
 DocText doc_vec() {
   return {"bindings/vec_doc.cpp", R"DOC(
 @ smi.vec(x) -> vec

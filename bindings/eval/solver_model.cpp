@@ -67,27 +67,15 @@ int parse_trampoline(lua_State* L) {
   return 1;
 }
 
-/// Builds the config common to both forms from the option table at index 1.
-se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
-  lua::Options o(L, 1, fname);
-  if (batch)
-    o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
-                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor"});
-  else
-    o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
-                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
-                   "executor"});
-  Policy& pol = lua::policy(L);
-  se::CommandConfig c;
-  c.batch = batch;
-  c.name = o.string("name", "model");
-  if (!valid_model_name(c.name))
-    luaL_error(L, "%s: name '%s' must be letters, digits, '_', '-' or '.' (it names the runs folder)", fname, c.name.c_str());
-  o.push("inputs");
-  c.inputs = lua::to_strings(L, -1, "inputs");
-  o.push("outputs");
-  c.outputs = lua::to_strings(L, -1, "outputs");
-  lua_pop(L, 2);
+// What solver_config reads from Lua before anything is checked against the sandbox policy.
+struct SolverOptions {
+  std::vector<std::string> argv, files;
+  std::string on_failure, store, template_file, template_text;
+  std::vector<std::pair<std::string, std::string>> exec_opts;
+};
+
+// command = {program, arg, ...} (no shell) and parse = function: the argv.
+std::vector<std::string> read_command(lua_State* L, lua::Options& o, bool batch, const char* fname) {
   if (o.push("command") != LUA_TTABLE)
     luaL_error(L, "%s: option 'command' must be the argv table {program, arg, ...} (no shell), got %s", fname,
                luaL_typename(L, -1));
@@ -98,17 +86,11 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     luaL_error(L, "%s: option 'parse' must be a function(dir, h%s) returning {output = value, ...}, got %s", fname,
                batch ? ", n" : "", luaL_typename(L, -1));
   lua_pop(L, 1);
-  std::vector<std::string> files;
-  if (o.push("files") != LUA_TNIL) files = lua::to_strings(L, -1, "files");
-  lua_pop(L, 1);
-  c.version = o.string("version", "");
-  c.timeout = o.number("timeout", c.timeout);
-  c.retries = static_cast<int>(o.integer("retries", c.retries));
-  c.concurrency = static_cast<int>(o.integer("concurrency", c.concurrency));
-  c.batch_size = static_cast<int>(o.integer("batch_size", c.batch_size));
-  c.reuse_failed = o.boolean("reuse_failed", c.reuse_failed);
-  const std::string on_failure = o.string("on_failure", "stop");
-  // executor = {kind = "slurm", partition = "short", ...} overrides --executor/--slurm-opt key by key.
+  return argv;
+}
+
+// executor = {kind = "slurm", partition = "short", ...} overrides --executor/--slurm-opt key by key.
+std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State* L, lua::Options& o, const char* fname) {
   std::vector<std::pair<std::string, std::string>> exec_opts;
   if (const int t = o.push("executor"); t != LUA_TNIL) {
     if (t != LUA_TTABLE) luaL_error(L, "%s: option 'executor' must be a table {kind = \"slurm\", partition = ..., ...}, got %s", fname, luaL_typename(L, -1));
@@ -131,65 +113,128 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     }
   }
   lua_pop(L, 1);
-  const std::string store = o.string("store", "");
-  std::string template_file, template_text;
+  return exec_opts;
+}
+
+// constants = {name = number | string}: values the deck template sees besides the inputs.
+void read_constants(lua_State* L, lua::Options& o, const char* fname, se::CommandConfig& c) {
+  if (o.push("constants") != LUA_TNIL) {
+    if (!lua_istable(L, -1)) luaL_error(L, "%s: option 'constants' must be a table {name = value}", fname);
+    lua_pushnil(L);
+    while (lua_next(L, -2)) {
+      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: constants must have string keys", fname);
+      const std::string k = lua_tostring(L, -2);
+      if (lua_type(L, -1) == LUA_TNUMBER) c.constants[k] = se::DeckValue::num(lua_tonumber(L, -1));
+      else if (lua_type(L, -1) == LUA_TSTRING) c.constants[k] = se::DeckValue::str(lua_tostring(L, -1));
+      else luaL_error(L, "%s: constant '%s' must be a number or a string, got %s", fname, k.c_str(), luaL_typename(L, -1));
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
+}
+
+// The deck: a template (file or text), its file name and constants (command form), or the
+// points file's name (batch form).
+void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se::CommandConfig& c, SolverOptions& so) {
   if (!batch) {
-    template_file = o.string("template", "");
-    template_text = o.string("template_string", "");
-    if (template_file.empty() == template_text.empty())
+    so.template_file = o.string("template", "");
+    so.template_text = o.string("template_string", "");
+    if (so.template_file.empty() == so.template_text.empty())
       luaL_error(L, "%s: give exactly one of 'template' (a file) or 'template_string' (the text)", fname);
     c.deck_file = o.string("deck", "input.deck");
-    if (o.push("constants") != LUA_TNIL) {
-      if (!lua_istable(L, -1)) luaL_error(L, "%s: option 'constants' must be a table {name = value}", fname);
-      lua_pushnil(L);
-      while (lua_next(L, -2)) {
-        if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: constants must have string keys", fname);
-        const std::string k = lua_tostring(L, -2);
-        if (lua_type(L, -1) == LUA_TNUMBER) c.constants[k] = se::DeckValue::num(lua_tonumber(L, -1));
-        else if (lua_type(L, -1) == LUA_TSTRING) c.constants[k] = se::DeckValue::str(lua_tostring(L, -1));
-        else luaL_error(L, "%s: constant '%s' must be a number or a string, got %s", fname, k.c_str(), luaL_typename(L, -1));
-        lua_pop(L, 1);
-      }
-    }
-    lua_pop(L, 1);
+    read_constants(L, o, fname, c);
   } else {
     c.deck_file = o.string("input_file", "points.csv");
   }
+}
+
+// The executor: the command line's choice (--executor, --slurm-opt, --detach), then the study's
+// executor = {...} key by key.
+void apply_executor(const Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
+  if (!pol.executor.empty()) c.executor.kind = pol.executor;
+  for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
+  c.executor.detach = pol.detach;
+  for (const auto& [k, v] : so.exec_opts) {
+    if (k == "detach") c.executor.detach = v == "1";
+    else c.executor.set(k, v);
+  }
+  c.executor.validate();
+}
+
+// The program, extra files and template, checked by the sandbox. Extra files and the template
+// are opened here and used through those descriptors (hashed and copied by the evaluator):
+// never re-opened by name.
+void open_solver_inputs(Policy& pol, const SolverOptions& so, bool batch, const char* fname, se::CommandConfig& c) {
+  c.program_name = so.argv[0];
+  c.program = pol.check_exec(so.argv[0], fname).string();
+  c.args.assign(so.argv.begin() + 1, so.argv.end());
+  for (const auto& f : so.files) {
+    CheckedFile cf = pol.open_read(f);
+    c.files.push_back(cf.path);
+    c.file_fds.push_back(std::make_shared<const pathwalk::Fd>(std::move(cf.fd)));
+  }
+  if (!so.template_file.empty()) {
+    const CheckedFile tf = pol.open_read(so.template_file);
+    c.deck = std::make_shared<se::DeckTemplate>(read_checked(tf, so.template_file), tf.path);
+  } else if (!batch) {
+    c.deck = std::make_shared<se::DeckTemplate>(so.template_text, "(template_string)");
+  }
+}
+
+// Where runs and records go: runs/<name> and the store under --out (locked: one process per
+// output folder keeps the work folders unique), and the shared store of --store if any.
+void place_solver_outputs(Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
+  const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
+  c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
+  se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
+  c.store_path = pol.checked_write_file(so.store.empty() ? (out / "evaluations.sqlite").string() : so.store);
+  if (!pol.store_path.empty()) {
+    const std::string shared = pol.checked_read_file(pol.store_path);
+    if (shared != c.store_path) c.shared_store_path = shared;
+  }
+}
+
+/// Builds the config common to both forms from the option table at index 1: the options are
+/// read from Lua first (Lua errors), then checked against the sandbox policy under protect().
+se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
+  lua::Options o(L, 1, fname);
+  if (batch)
+    o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
+                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor"});
+  else
+    o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
+                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
+                   "executor"});
+  Policy& pol = lua::policy(L);
+  se::CommandConfig c;
+  SolverOptions so;
+  c.batch = batch;
+  c.name = o.string("name", "model");
+  if (!valid_model_name(c.name))
+    luaL_error(L, "%s: name '%s' must be letters, digits, '_', '-' or '.' (it names the runs folder)", fname, c.name.c_str());
+  o.push("inputs");
+  c.inputs = lua::to_strings(L, -1, "inputs");
+  o.push("outputs");
+  c.outputs = lua::to_strings(L, -1, "outputs");
+  lua_pop(L, 2);
+  so.argv = read_command(L, o, batch, fname);
+  if (o.push("files") != LUA_TNIL) so.files = lua::to_strings(L, -1, "files");
+  lua_pop(L, 1);
+  c.version = o.string("version", "");
+  c.timeout = o.number("timeout", c.timeout);
+  c.retries = static_cast<int>(o.integer("retries", c.retries));
+  c.concurrency = static_cast<int>(o.integer("concurrency", c.concurrency));
+  c.batch_size = static_cast<int>(o.integer("batch_size", c.batch_size));
+  c.reuse_failed = o.boolean("reuse_failed", c.reuse_failed);
+  so.on_failure = o.string("on_failure", "stop");
+  so.exec_opts = read_executor_options(L, o, fname);
+  so.store = o.string("store", "");
+  read_deck(L, o, batch, fname, c, so);
   lua::protect(L, fname, [&] {
-    c.on_failure = se::parse_on_failure(on_failure);
-    if (!pol.executor.empty()) c.executor.kind = pol.executor;
-    for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
-    c.executor.detach = pol.detach;
-    for (const auto& [k, v] : exec_opts) {
-      if (k == "detach") c.executor.detach = v == "1";
-      else c.executor.set(k, v);
-    }
-    c.executor.validate();
-    c.program_name = argv[0];
-    c.program = pol.check_exec(argv[0], fname).string();
-    c.args.assign(argv.begin() + 1, argv.end());
-    // Extra files and the template are opened here, through the sandbox, and used through
-    // those descriptors (hashed and copied by the evaluator): never re-opened by name.
-    for (const auto& f : files) {
-      CheckedFile cf = pol.open_read(f);
-      c.files.push_back(cf.path);
-      c.file_fds.push_back(std::make_shared<const pathwalk::Fd>(std::move(cf.fd)));
-    }
-    if (!template_file.empty()) {
-      const CheckedFile tf = pol.open_read(template_file);
-      c.deck = std::make_shared<se::DeckTemplate>(read_checked(tf, template_file), tf.path);
-    } else if (!batch) {
-      c.deck = std::make_shared<se::DeckTemplate>(template_text, "(template_string)");
-    }
-    const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
-    c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
-    // Work folders live under --out: one process per output folder keeps them unique.
-    se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
-    c.store_path = pol.checked_write_file(store.empty() ? (out / "evaluations.sqlite").string() : store);
-    if (!pol.store_path.empty()) {
-      const std::string shared = pol.checked_read_file(pol.store_path);
-      if (shared != c.store_path) c.shared_store_path = shared;
-    }
+    c.on_failure = se::parse_on_failure(so.on_failure);
+    apply_executor(pol, so, c);
+    open_solver_inputs(pol, so, batch, fname, c);
+    place_solver_outputs(pol, so, c);
     return 0;
   });
   return c;
@@ -253,6 +298,67 @@ int model_planned(lua_State* L) {
   return 1;
 }
 
+namespace {
+
+// A progress line on the terminal (none when quiet or piped), redrawn at most ten times a second.
+se::ProgressFn terminal_progress(const Model& m, const Policy& pol) {
+  if (pol.quiet || !isatty(STDERR_FILENO)) return {};
+  return [&m, shown_at = -1.0](const se::Progress& p, bool final) mutable {
+    const double now = se::monotonic_seconds();
+    if (!final && now - shown_at < 0.1) return;  // a terminal line ten times a second is plenty
+    shown_at = now;
+    se::show_progress(stderr, se::format_progress(m.name, p), final);
+  };
+}
+
+// --dry-run: prints the plan of this evaluation and adds it to the totals; returns the runs it
+// needs that are not stored.
+std::size_t print_dry_plan(lua_State* L, Model& m, const Eigen::MatrixXd& X) {
+  const se::Plan plan = m.ev->plan(X);
+  std::printf("%s\n", se::format_plan(m.name, plan, m.ev->config().concurrency).c_str());
+  if (const std::string ex = m.ev->executor_plan(plan); !ex.empty()) std::printf("%s", ex.c_str());
+  std::fflush(stdout);
+  add_planned(L, plan);
+  return plan.runs;
+}
+
+// The failed points (the first ten) and where their records are; "" when none failed.
+std::string failure_summary(const Model& m, const Eigen::MatrixXd& X, const se::EvalResult& r) {
+  if (r.failed == 0) return "";
+  std::string summary = fmt::format("model '{}': {} of {} point{} failed{}:", m.name, r.failed, X.rows(), X.rows() == 1 ? "" : "s",
+                                    r.stopped ? " (on_failure = 'stop')" : " (skipped)");
+  int shown = 0;
+  for (std::size_t i = 0; i < r.status.size(); ++i)
+    if (r.status[i] == se::Status::Failed && shown++ < 10) summary += fmt::format("\n  row {}: {}", i + 1, r.reason[i]);
+  if (shown > 10) summary += fmt::format("\n  ... and {} more (see info.failures)", shown - 10);
+  summary += fmt::format("\n  records in {}", m.ev->config().store_path);
+  return summary;
+}
+
+// A dry run that lacks dry_missing runs of this evaluation stops the study here: what comes next
+// is computed from these outputs, which a dry run does not have, so planning further would feed
+// NaN to the next step. Prints the plan so far and asks the runtime to exit cleanly (status 0).
+void stop_dry_run(lua_State* L, const Model& m, const Policy& pol, std::size_t dry_missing) {
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
+  auto total = [&](const char* k) {
+    lua_getfield(L, -1, k);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    return v;
+  };
+  const double runs = total("runs"), points = total("points"), reused = total("reused"), eta = total("eta");
+  lua_pop(L, 1);
+  std::printf("dry run: stopped at model '%s': %zu of its runs are not in the store, and what the study does next "
+              "depends on their results.\ndry run: plan so far: %.0f solver run%s for %.0f point%s (%.0f already "
+              "stored), ETA %s; run without --dry-run to make them, then --dry-run again plans the rest.\n",
+              m.name.c_str(), dry_missing, runs, runs == 1 ? "" : "s", points, points == 1 ? "" : "s", reused,
+              eta < 0 ? "unknown (no stored timing)" : se::format_duration(eta).c_str());
+  std::fflush(stdout);
+  pol.request_exit(0);  // the next Lua instruction ends the run quietly, exit status 0
+}
+
+}  // namespace
+
 int evaluate_solver(lua_State* L, Model& m) {
   const Eigen::MatrixXd X = design_of(L, 2, m);
   const Policy& pol = lua::policy(L);
@@ -266,7 +372,6 @@ int evaluate_solver(lua_State* L, Model& m) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
   }
   const int outs = lua_gettop(L);
-  const int concurrency = m.ev->config().concurrency;
 
   // The parser runs under pcall; a Lua error in it becomes LuaError, which the evaluator turns
   // into a failed record ("unparsable output: ...").
@@ -293,16 +398,7 @@ int evaluate_solver(lua_State* L, Model& m) {
     return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(v.data(), static_cast<Eigen::Index>(n),
                                                              static_cast<Eigen::Index>(m.outputs.size())));
   };
-  const bool show = !pol.quiet && isatty(STDERR_FILENO);
-  se::ProgressFn progress;
-  double shown_at = -1;
-  if (show)
-    progress = [&](const se::Progress& p, bool final) {
-      const double now = se::monotonic_seconds();
-      if (!final && now - shown_at < 0.1) return;  // a terminal line ten times a second is plenty
-      shown_at = now;
-      se::show_progress(stderr, se::format_progress(m.name, p), final);
-    };
+  const se::ProgressFn progress = terminal_progress(m, pol);
 
   // Ctrl-C (and the other aborts of the runtime) arm a count hook firing at every instruction;
   // while we wait on solvers no Lua runs, so we look for that hook ourselves, and ask the
@@ -321,24 +417,9 @@ int evaluate_solver(lua_State* L, Model& m) {
   std::string summary;
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored
   lua::protect(L, fname, [&] {
-    if (pol.dry_run) {
-      const se::Plan plan = m.ev->plan(X);
-      std::printf("%s\n", se::format_plan(m.name, plan, concurrency).c_str());
-      if (const std::string ex = m.ev->executor_plan(plan); !ex.empty()) std::printf("%s", ex.c_str());
-      std::fflush(stdout);
-      add_planned(L, plan);
-      dry_missing = plan.runs;
-    }
+    if (pol.dry_run) dry_missing = print_dry_plan(L, m, X);
     r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
-    if (r.failed > 0) {
-      summary = fmt::format("model '{}': {} of {} point{} failed{}:", m.name, r.failed, X.rows(), X.rows() == 1 ? "" : "s",
-                            r.stopped ? " (on_failure = 'stop')" : " (skipped)");
-      int shown = 0;
-      for (std::size_t i = 0; i < r.status.size(); ++i)
-        if (r.status[i] == se::Status::Failed && shown++ < 10) summary += fmt::format("\n  row {}: {}", i + 1, r.reason[i]);
-      if (shown > 10) summary += fmt::format("\n  ... and {} more (see info.failures)", shown - 10);
-      summary += fmt::format("\n  records in {}", m.ev->config().store_path);
-    }
+    summary = failure_summary(m, X, r);
     return 0;
   });
   if (r.stopped) {
@@ -347,26 +428,7 @@ int evaluate_solver(lua_State* L, Model& m) {
   }
   if (!summary.empty() && !pol.quiet) std::fprintf(stderr, "smi.model: %s\n", summary.c_str());
   push_results(L, m, r);
-  if (dry_missing > 0 && pol.request_exit) {
-    // What comes next is computed from these outputs, which a dry run does not have: planning
-    // further would feed NaN to the next step. Stop here, cleanly, with the plan so far.
-    lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
-    auto total = [&](const char* k) {
-      lua_getfield(L, -1, k);
-      const double v = lua_tonumber(L, -1);
-      lua_pop(L, 1);
-      return v;
-    };
-    const double runs = total("runs"), points = total("points"), reused = total("reused"), eta = total("eta");
-    lua_pop(L, 1);
-    std::printf("dry run: stopped at model '%s': %zu of its runs are not in the store, and what the study does next "
-                "depends on their results.\ndry run: plan so far: %.0f solver run%s for %.0f point%s (%.0f already "
-                "stored), ETA %s; run without --dry-run to make them, then --dry-run again plans the rest.\n",
-                m.name.c_str(), dry_missing, runs, runs == 1 ? "" : "s", points, points == 1 ? "" : "s", reused,
-                eta < 0 ? "unknown (no stored timing)" : se::format_duration(eta).c_str());
-    std::fflush(stdout);
-    pol.request_exit(0);  // the next Lua instruction ends the run quietly, exit status 0
-  }
+  if (dry_missing > 0 && pol.request_exit) stop_dry_run(L, m, pol, dry_missing);
   return 2;
 }
 

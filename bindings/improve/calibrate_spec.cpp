@@ -390,86 +390,82 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
   // The list stays on the stack too, below the functions.
 }
 
-}  // namespace
+// method, multistart, maxeval, tolerances and steps of the optimiser (shared by the bootstrap's
+// and the intervals' refits unless they say otherwise).
+OptimizerOptions read_optimizer(lua::Options& o, std::uint64_t seed) {
+  OptimizerOptions opt;
+  opt.method = parse_method(o.string("method", "slsqp"));
+  opt.multistart = static_cast<int>(o.integer("multistart", 1));
+  opt.maxeval = static_cast<int>(o.integer("maxeval", 500));
+  opt.xtol_rel = o.number("xtol_rel", 1e-6);
+  opt.ftol_abs = o.number("ftol_abs", 1e-8);
+  opt.fd_step = o.number("fd_step", 1e-4);
+  opt.initial_step = o.number("initial_step", 0.1);
+  opt.seed = seed;
+  return opt;
+}
 
-CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
-  idx = lua_absindex(L, idx);
-  lua::Options o(L, idx, "smi.calibrate");
-  o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
-                 "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals"});
-  CalibrateSpec s;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
-  s.optimizer.method = parse_method(o.string("method", "slsqp"));
-  s.optimizer.multistart = static_cast<int>(o.integer("multistart", 1));
-  s.optimizer.maxeval = static_cast<int>(o.integer("maxeval", 500));
-  s.optimizer.xtol_rel = o.number("xtol_rel", 1e-6);
-  s.optimizer.ftol_abs = o.number("ftol_abs", 1e-8);
-  s.optimizer.fd_step = o.number("fd_step", 1e-4);
-  s.optimizer.initial_step = o.number("initial_step", 0.1);
-  s.optimizer.seed = seed;
+// objective = function(theta) ... end with parameters: the function stays on the stack.
+void read_objective_form(lua_State* L, int idx, lua::Options& o, CalibrateSpec& s) {
+  if (o.has("inputs") || o.has("data") || o.has("metric"))
+    throw InvalidArgument("inputs/data/metric belong to the model form; with objective = ... give parameters only");
+  if (o.has("penalty"))
+    throw InvalidArgument("penalty belongs to the model form; with objective = ... add it to the objective's value");
+  read_parameters(L, idx, s);
+  if (lua_getfield(L, idx, "objective") != LUA_TFUNCTION) throw InvalidArgument("objective must be a function(theta) returning a number");
+  s.objective_slot = lua_gettop(L);
+}
 
-  const bool has_objective = o.has("objective"), has_model = o.has("model");
-  if (has_objective == has_model)
-    throw InvalidArgument("give either objective = function(theta) ... end with parameters, or model with inputs and data");
-  if (has_objective) {
-    if (o.has("inputs") || o.has("data") || o.has("metric"))
-      throw InvalidArgument("inputs/data/metric belong to the model form; with objective = ... give parameters only");
-    if (o.has("penalty"))
-      throw InvalidArgument("penalty belongs to the model form; with objective = ... add it to the objective's value");
-    read_parameters(L, idx, s);
-    if (lua_getfield(L, idx, "objective") != LUA_TFUNCTION) throw InvalidArgument("objective must be a function(theta) returning a number");
-    s.objective_slot = lua_gettop(L);
+// metric = "pr" | "loglik" | ... | function: a custom metric stays on the stack.
+void read_metric(lua_State* L, int idx, CalibrateSpec& s) {
+  const int mt = lua_getfield(L, idx, "metric");
+  if (mt == LUA_TFUNCTION) {
+    s.stat.metric = MetricKind::custom;
+    s.metric_slot = lua_gettop(L);
   } else {
-    if (o.has("parameters"))
-      throw InvalidArgument("with a model, the calibrated parameters are the input ranges: give mean/std as {lower, upper, start}");
-    s.statistical = true;
-    s.stat.n = static_cast<Eigen::Index>(o.integer("n", 2000));
-    s.stat.seed = seed;
-    const std::string crn = o.string("crn", "random");
-    if (crn == "random") s.stat.crn = CrnKind::random;
-    else if (crn == "quantiles") s.stat.crn = CrnKind::quantiles;
-    else throw InvalidArgument(fmt::format("crn must be \"random\" or \"quantiles\", got \"{}\"", crn));
-    s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", 4001));
-    s.stat.bandwidth = o.string("bandwidth", "silverman");
-    s.stat.threads = static_cast<int>(o.integer("threads", 1));
-    read_model(L, idx, s);
-    read_inputs(L, idx, s);
-    read_data(L, idx, s);
-    read_grid(L, idx, s);
-    read_design(L, idx, s);
-    const int mt = lua_getfield(L, idx, "metric");
-    if (mt == LUA_TFUNCTION) {
-      s.stat.metric = MetricKind::custom;
-      s.metric_slot = lua_gettop(L);
-    } else {
-      s.stat.metric = parse_metric(read_string(L, "metric", "pr"));
-      lua_pop(L, 1);
-    }
-    // penalty = function(theta) return number end: prior knowledge on the parameters themselves
-    // (a weighed mass, a handbook value), added to the metric's sum; its names are the
-    // parameters' ("k.mean", "k.std").
-    const int pen = lua_getfield(L, idx, "penalty");
-    if (pen == LUA_TFUNCTION) s.penalty_slot = lua_gettop(L);
-    else if (pen == LUA_TNIL) lua_pop(L, 1);
-    else throw InvalidArgument(fmt::format("penalty must be a function(theta) returning a number, got a {}", luaL_typename(L, -1)));
-    for (const auto& r : s.responses)
-      if (!r.f_exp_from_data && r.f_exp && r.data.size() == 0 && s.stat.metric == MetricKind::loglik)
-        throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));
+    s.stat.metric = parse_metric(read_string(L, "metric", "pr"));
+    lua_pop(L, 1);
   }
+}
 
-  read_priors(L, idx, s);
-  s.overlap_start = o.boolean("overlap_start", true);
-  s.moment_start = o.boolean("moment_start", false);
-  s.gradient = o.string("gradient", "auto");
-  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
-    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
-  s.prior_weight = o.number("prior_weight", 1.0);
-  if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
-    throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
+// penalty = function(theta) return number end: prior knowledge on the parameters themselves
+// (a weighed mass, a handbook value), added to the metric's sum; its names are the
+// parameters' ("k.mean", "k.std"). The function stays on the stack.
+void read_penalty(lua_State* L, int idx, CalibrateSpec& s) {
+  const int pen = lua_getfield(L, idx, "penalty");
+  if (pen == LUA_TFUNCTION) s.penalty_slot = lua_gettop(L);
+  else if (pen == LUA_TNIL) lua_pop(L, 1);
+  else throw InvalidArgument(fmt::format("penalty must be a function(theta) returning a number, got a {}", luaL_typename(L, -1)));
+}
 
-  // Diagnostics: identifiability = true | false | {points =, rel_tol =, abs_tol =, tolerance =, step =};
-  // bootstrap = replicates | {replicates =, level =, seed =}.
+// model with inputs and data: the statistical calibration's sampling, model, data and metric.
+void read_model_form(lua_State* L, int idx, lua::Options& o, CalibrateSpec& s, std::uint64_t seed) {
+  if (o.has("parameters"))
+    throw InvalidArgument("with a model, the calibrated parameters are the input ranges: give mean/std as {lower, upper, start}");
+  s.statistical = true;
+  s.stat.n = static_cast<Eigen::Index>(o.integer("n", 2000));
+  s.stat.seed = seed;
+  const std::string crn = o.string("crn", "random");
+  if (crn == "random") s.stat.crn = CrnKind::random;
+  else if (crn == "quantiles") s.stat.crn = CrnKind::quantiles;
+  else throw InvalidArgument(fmt::format("crn must be \"random\" or \"quantiles\", got \"{}\"", crn));
+  s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", 4001));
+  s.stat.bandwidth = o.string("bandwidth", "silverman");
+  s.stat.threads = static_cast<int>(o.integer("threads", 1));
+  read_model(L, idx, s);
+  read_inputs(L, idx, s);
+  read_data(L, idx, s);
+  read_grid(L, idx, s);
+  read_design(L, idx, s);
+  read_metric(L, idx, s);
+  read_penalty(L, idx, s);
+  for (const auto& r : s.responses)
+    if (!r.f_exp_from_data && r.f_exp && r.data.size() == 0 && s.stat.metric == MetricKind::loglik)
+      throw InvalidArgument(fmt::format("data.{} is a distribution, but metric \"loglik\" needs the data points", r.name));
+}
+
+// identifiability = true | false | {points =, rel_tol =, abs_tol =, tolerance =, step =, directions =}.
+void read_identifiability(lua_State* L, int idx, CalibrateSpec& s) {
   const int it = lua_getfield(L, idx, "identifiability");
   if (it == LUA_TBOOLEAN) {
     s.identifiability = lua_toboolean(L, -1);
@@ -491,6 +487,10 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   // PR is unit-free (range [0, 2] per response): a change below 1e-3 over a whole range is noise.
   if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = 1e-3;
   lua_pop(L, 1);
+}
+
+// bootstrap = replicates | {replicates =, level =, seed =, maxeval =, warm =, multistart =}.
+void read_bootstrap(lua_State* L, int idx, CalibrateSpec& s, std::uint64_t seed) {
   const int bt = lua_getfield(L, idx, "bootstrap");
   if (bt == LUA_TNUMBER || bt == LUA_TTABLE) {
     BootstrapOptions b;
@@ -516,10 +516,13 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
     throw InvalidArgument("bootstrap must be a number of replicates or {replicates =, level =, seed =}");
   }
   lua_pop(L, 1);
-  // intervals = true | {level =, delta =, observations =}: profile intervals. delta = ½ χ²₁(level)
-  // (with observations: its small-sample calibration, profile_intervals.hpp) reads the
-  // objective as a negative log-likelihood (metric "loglik", or an objective that is one); PR is
-  // not one, so it needs delta (an objective increase) given.
+}
+
+// intervals = true | {level =, delta =, observations =}: profile intervals. delta = ½ χ²₁(level)
+// (with observations: its small-sample calibration, profile_intervals.hpp) reads the
+// objective as a negative log-likelihood (metric "loglik", or an objective that is one); PR is
+// not one, so it needs delta (an objective increase) given.
+void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
   const int iv = lua_getfield(L, idx, "intervals");
   if (iv == LUA_TTABLE || (iv == LUA_TBOOLEAN && lua_toboolean(L, -1))) {
     ProfileOptions po;
@@ -555,6 +558,42 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
     throw InvalidArgument("intervals must be true or {level = 0.9} or {delta = <objective increase>}");
   }
   lua_pop(L, 1);
+}
+
+}  // namespace
+
+// The values the calibration needs stay where they are read: functions (objective, metric,
+// penalty, priors' fn, progress) are left on the Lua stack and their slots recorded, in this order.
+CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  lua::Options o(L, idx, "smi.calibrate");
+  o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
+                 "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals"});
+  CalibrateSpec s;
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  s.optimizer = read_optimizer(o, seed);
+
+  const bool has_objective = o.has("objective"), has_model = o.has("model");
+  if (has_objective == has_model)
+    throw InvalidArgument("give either objective = function(theta) ... end with parameters, or model with inputs and data");
+  if (has_objective) read_objective_form(L, idx, o, s);
+  else read_model_form(L, idx, o, s, seed);
+
+  read_priors(L, idx, s);
+  s.overlap_start = o.boolean("overlap_start", true);
+  s.moment_start = o.boolean("moment_start", false);
+  s.gradient = o.string("gradient", "auto");
+  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
+    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
+  s.prior_weight = o.number("prior_weight", 1.0);
+  if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
+    throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
+
+  // Diagnostics.
+  read_identifiability(L, idx, s);
+  read_bootstrap(L, idx, s, seed);
+  read_intervals(L, idx, s);
   const int pt = lua_getfield(L, idx, "progress");
   if (pt == LUA_TFUNCTION) s.progress_slot = lua_gettop(L);
   else if (pt == LUA_TNIL) lua_pop(L, 1);

@@ -118,6 +118,124 @@ void push_directions(lua_State* L, const std::vector<std::string>& names, const 
   lua_setfield(L, -2, "directions");
 }
 
+/// starts: each start's point, optimum, objective, evaluations and status, in start order.
+void push_starts(lua_State* L, const std::vector<std::string>& names, const OptimizationResult& r) {
+  lua_createtable(L, static_cast<int>(r.starts.size()), 0);
+  for (std::size_t i = 0; i < r.starts.size(); ++i) {
+    const StartResult& st = r.starts[i];
+    lua_createtable(L, 0, 6);
+    push_named(L, names, st.start);
+    lua_setfield(L, -2, "start");
+    push_named(L, names, st.theta);
+    lua_setfield(L, -2, "params");
+    lua::set_number(L, "objective", st.value);
+    lua::set_integer(L, "evaluations", st.evaluations);
+    lua::set_string(L, "status", st.status);
+    lua::set_boolean(L, "converged", st.converged);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "starts");
+}
+
+/// optima: the distinct optima the starts reached (each with the start that found it).
+void push_optima(lua_State* L, const std::vector<std::string>& names, const OptimizationResult& r) {
+  lua_createtable(L, static_cast<int>(r.optima.size()), 0);
+  for (std::size_t i = 0; i < r.optima.size(); ++i) {
+    const StartResult& st = r.starts[static_cast<std::size_t>(r.optima[i])];
+    lua_createtable(L, 0, 3);
+    push_named(L, names, st.theta);
+    lua_setfield(L, -2, "params");
+    lua::set_number(L, "objective", st.value);
+    lua::set_integer(L, "start", r.optima[i] + 1);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "optima");
+}
+
+/// identifiability: spans, weak parameters, one-at-a-time profiles and the directions.
+void push_identifiability(lua_State* L, const std::vector<std::string>& names, const CalibrationOutcome& out) {
+  const IdentifiabilityResult& id = *out.ident;
+  lua_createtable(L, 0, 4);
+  push_named(L, names, id.span);
+  lua_setfield(L, -2, "span");
+  std::vector<std::string> weak;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (id.weak[i]) weak.push_back(names[i]);
+  push_strings(L, weak);
+  lua_setfield(L, -2, "weak");
+  lua_createtable(L, 0, static_cast<int>(names.size()));
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    lua_createtable(L, 0, 2);
+    lua::set_vec(L, "nodes", id.nodes.row(static_cast<Eigen::Index>(i)).transpose());
+    lua::set_vec(L, "values", id.profiles.row(static_cast<Eigen::Index>(i)).transpose());
+    lua_setfield(L, -2, names[i].c_str());
+  }
+  lua_setfield(L, -2, "profiles");
+  int evaluations = id.evaluations;
+  if (out.directions) {
+    push_directions(L, names, *out.directions);
+    evaluations += out.directions->evaluations;
+  }
+  lua::set_integer(L, "evaluations", evaluations);
+  lua_setfield(L, -2, "identifiability");
+}
+
+/// near_optimal: the points that fit as well as the optimum within the tolerance.
+void push_near_optimal(lua_State* L, const std::vector<std::string>& names, const DirectionsResult& d) {
+  lua_createtable(L, 0, 3);
+  lua::set_number(L, "tolerance", d.tolerance);
+  lua_createtable(L, static_cast<int>(d.near_optimal.size()), 0);
+  for (std::size_t i = 0; i < d.near_optimal.size(); ++i) {
+    push_named(L, names, d.near_optimal[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "points");
+  lua::set_vec(L, "objectives", Eigen::Map<const Eigen::VectorXd>(d.near_optimal_values.data(), static_cast<Eigen::Index>(d.near_optimal_values.size())));
+  lua_setfield(L, -2, "near_optimal");
+}
+
+/// bootstrap: percentile bounds, standard deviations and the replicates' optima.
+void push_bootstrap(lua_State* L, const std::vector<std::string>& names, const CalibrateSpec& s, const BootstrapResult& b) {
+  lua_createtable(L, 0, 8);
+  push_named(L, names, b.lower);
+  lua_setfield(L, -2, "lower");
+  push_named(L, names, b.upper);
+  lua_setfield(L, -2, "upper");
+  push_named(L, names, b.stddev);
+  lua_setfield(L, -2, "std");
+  lua::set_number(L, "level", s.bootstrap->level);
+  lua::set_integer(L, "replicates", static_cast<lua_Integer>(b.thetas.rows()));
+  lua::set_integer(L, "failed", b.failed);
+  lua::set_boolean(L, "paired", b.paired);
+  lua::set_integer(L, "evaluations", b.evaluations);
+  lua::push_mat(L, b.thetas);
+  lua_setfield(L, -2, "samples");
+  lua_setfield(L, -2, "bootstrap");
+}
+
+/// intervals: each parameter's profile interval with its profile, and the delta (and level).
+void push_profile_intervals(lua_State* L, const std::vector<std::string>& names, const CalibrateSpec& s, const CalibrationOutcome& out) {
+  lua_createtable(L, 0, static_cast<int>(names.size()) + 3);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const ProfileInterval& iv = out.profile->intervals[i];
+    lua_createtable(L, 0, 6);
+    lua::set_number(L, "lower", iv.lower);
+    lua::set_number(L, "upper", iv.upper);
+    lua::set_boolean(L, "determined", iv.determined);
+    lua::set_boolean(L, "lower_open", iv.lower_open);
+    lua::set_boolean(L, "upper_open", iv.upper_open);
+    lua_createtable(L, 0, 2);
+    lua::set_vec(L, "nodes", iv.nodes);
+    lua::set_vec(L, "objective", iv.values);
+    lua_setfield(L, -2, "profile");
+    lua_setfield(L, -2, names[i].c_str());
+  }
+  lua::set_number(L, "delta", s.intervals->delta);
+  if (s.interval_level > 0.0) lua::set_number(L, "level", s.interval_level);
+  lua::set_integer(L, "evaluations", out.profile->evaluations);
+  lua_setfield(L, -2, "intervals");
+}
+
 }  // namespace
 
 void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
@@ -145,112 +263,13 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   lua_setfield(L, -2, "at_bounds");
   push_history(L, names, out.part_names, r.history);
 
-  lua_createtable(L, static_cast<int>(r.starts.size()), 0);
-  for (std::size_t i = 0; i < r.starts.size(); ++i) {
-    const StartResult& st = r.starts[i];
-    lua_createtable(L, 0, 6);
-    push_named(L, names, st.start);
-    lua_setfield(L, -2, "start");
-    push_named(L, names, st.theta);
-    lua_setfield(L, -2, "params");
-    lua::set_number(L, "objective", st.value);
-    lua::set_integer(L, "evaluations", st.evaluations);
-    lua::set_string(L, "status", st.status);
-    lua::set_boolean(L, "converged", st.converged);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
-  lua_setfield(L, -2, "starts");
+  push_starts(L, names, r);
   lua::set_boolean(L, "starts_agree", r.starts_agree);
-  lua_createtable(L, static_cast<int>(r.optima.size()), 0);
-  for (std::size_t i = 0; i < r.optima.size(); ++i) {
-    const StartResult& st = r.starts[static_cast<std::size_t>(r.optima[i])];
-    lua_createtable(L, 0, 3);
-    push_named(L, names, st.theta);
-    lua_setfield(L, -2, "params");
-    lua::set_number(L, "objective", st.value);
-    lua::set_integer(L, "start", r.optima[i] + 1);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
-  lua_setfield(L, -2, "optima");
-
-  if (out.ident) {
-    const IdentifiabilityResult& id = *out.ident;
-    lua_createtable(L, 0, 4);
-    push_named(L, names, id.span);
-    lua_setfield(L, -2, "span");
-    std::vector<std::string> weak;
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (id.weak[i]) weak.push_back(names[i]);
-    push_strings(L, weak);
-    lua_setfield(L, -2, "weak");
-    lua_createtable(L, 0, static_cast<int>(names.size()));
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      lua_createtable(L, 0, 2);
-      lua::set_vec(L, "nodes", id.nodes.row(static_cast<Eigen::Index>(i)).transpose());
-      lua::set_vec(L, "values", id.profiles.row(static_cast<Eigen::Index>(i)).transpose());
-      lua_setfield(L, -2, names[i].c_str());
-    }
-    lua_setfield(L, -2, "profiles");
-    int evaluations = id.evaluations;
-    if (out.directions) {
-      push_directions(L, names, *out.directions);
-      evaluations += out.directions->evaluations;
-    }
-    lua::set_integer(L, "evaluations", evaluations);
-    lua_setfield(L, -2, "identifiability");
-  }
-  if (out.directions) {
-    const DirectionsResult& d = *out.directions;
-    lua_createtable(L, 0, 3);
-    lua::set_number(L, "tolerance", d.tolerance);
-    lua_createtable(L, static_cast<int>(d.near_optimal.size()), 0);
-    for (std::size_t i = 0; i < d.near_optimal.size(); ++i) {
-      push_named(L, names, d.near_optimal[i]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-    }
-    lua_setfield(L, -2, "points");
-    lua::set_vec(L, "objectives", Eigen::Map<const Eigen::VectorXd>(d.near_optimal_values.data(), static_cast<Eigen::Index>(d.near_optimal_values.size())));
-    lua_setfield(L, -2, "near_optimal");
-  }
-  if (out.boot) {
-    const BootstrapResult& b = *out.boot;
-    lua_createtable(L, 0, 8);
-    push_named(L, names, b.lower);
-    lua_setfield(L, -2, "lower");
-    push_named(L, names, b.upper);
-    lua_setfield(L, -2, "upper");
-    push_named(L, names, b.stddev);
-    lua_setfield(L, -2, "std");
-    lua::set_number(L, "level", s.bootstrap->level);
-    lua::set_integer(L, "replicates", static_cast<lua_Integer>(b.thetas.rows()));
-    lua::set_integer(L, "failed", b.failed);
-    lua::set_boolean(L, "paired", b.paired);
-    lua::set_integer(L, "evaluations", b.evaluations);
-    lua::push_mat(L, b.thetas);
-    lua_setfield(L, -2, "samples");
-    lua_setfield(L, -2, "bootstrap");
-  }
-  if (out.profile) {
-    lua_createtable(L, 0, static_cast<int>(names.size()) + 3);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const ProfileInterval& iv = out.profile->intervals[i];
-      lua_createtable(L, 0, 6);
-      lua::set_number(L, "lower", iv.lower);
-      lua::set_number(L, "upper", iv.upper);
-      lua::set_boolean(L, "determined", iv.determined);
-      lua::set_boolean(L, "lower_open", iv.lower_open);
-      lua::set_boolean(L, "upper_open", iv.upper_open);
-      lua_createtable(L, 0, 2);
-      lua::set_vec(L, "nodes", iv.nodes);
-      lua::set_vec(L, "objective", iv.values);
-      lua_setfield(L, -2, "profile");
-      lua_setfield(L, -2, names[i].c_str());
-    }
-    lua::set_number(L, "delta", s.intervals->delta);
-    if (s.interval_level > 0.0) lua::set_number(L, "level", s.interval_level);
-    lua::set_integer(L, "evaluations", out.profile->evaluations);
-    lua_setfield(L, -2, "intervals");
-  }
+  push_optima(L, names, r);
+  if (out.ident) push_identifiability(L, names, out);
+  if (out.directions) push_near_optimal(L, names, *out.directions);
+  if (out.boot) push_bootstrap(L, names, s, *out.boot);
+  if (out.profile) push_profile_intervals(L, names, s, out);
   if (out.stat) push_statistical(L, s, out);
 }
 

@@ -77,6 +77,79 @@ int decision_tostring(lua_State* L) {
   return 1;
 }
 
+// The criteria: their names (inames), the magnitudes of every candidate (M, one column per
+// criterion) and the weights w (all given, or none: equal weights).
+void read_criteria(lua_State* L, int crits, int cands, const std::vector<std::string>& cnames,
+                   std::vector<std::string>& inames, Eigen::MatrixXd& M, Eigen::VectorXd& w) {
+  const auto I = static_cast<int>(w.size());
+  int weighted = 0;
+  for (int i = 1; i <= I; ++i) {
+    lua_rawgeti(L, crits, i);
+    if (!lua_istable(L, -1)) throw InvalidArgument(fmt::format("criteria[{}] must be a table {{name =, weight =, magnitude =}}", i));
+    const int crit = lua_gettop(L);
+    std::string name = fmt::format("criterion {}", i);
+    if (raw_field(L, crit, "name") == LUA_TSTRING) name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    inames.push_back(name);
+    if (raw_field(L, crit, "weight") != LUA_TNIL) {
+      w[i - 1] = read_number(L, -1, fmt::format("criteria[{}] ('{}').weight", i, name));
+      ++weighted;
+    }
+    lua_pop(L, 1);
+    read_magnitudes(L, crit, cands, cnames, name, M, i - 1);
+    lua_pop(L, 1);
+  }
+  if (weighted == 0)
+    w.setConstant(1.0 / I);  // spec §6 Decision: equal weights when none are given
+  else if (weighted != I)
+    throw InvalidArgument(fmt::format("{} of {} criteria have a weight: give every criterion a weight, or none (equal weights)", weighted, I));
+}
+
+// The result table: M, S, ratings, overall, weights, best (index, name, candidate), ranking,
+// ties, the names and warnings, and its printable text.
+void push_decision(lua_State* L, const DecisionResult& r, int cands, const std::vector<std::string>& cnames,
+                   const std::vector<std::string>& inames, const Eigen::VectorXd& w, const std::string& text) {
+  const auto J = static_cast<int>(cnames.size());
+  lua_createtable(L, 0, 16);
+  lua::push_mat(L, r.magnitudes);
+  lua_setfield(L, -2, "M");
+  lua::push_mat(L, r.standardized);
+  lua_setfield(L, -2, "S");
+  lua::push_mat(L, r.ratings);
+  lua_setfield(L, -2, "ratings");
+  lua::set_vec(L, "overall", r.overall);
+  lua::set_vec(L, "weights", w);
+  lua::set_integer(L, "best", static_cast<lua_Integer>(r.best + 1));
+  lua::set_string(L, "best_name", cnames[static_cast<std::size_t>(r.best)]);
+  lua_rawgeti(L, cands, r.best + 1);
+  lua_setfield(L, -2, "best_candidate");
+  std::vector<int> order(static_cast<std::size_t>(J));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return r.overall[a] > r.overall[b]; });
+  lua_createtable(L, J, 0);
+  for (int k = 0; k < J; ++k) {
+    lua_pushinteger(L, order[static_cast<std::size_t>(k)] + 1);
+    lua_rawseti(L, -2, k + 1);
+  }
+  lua_setfield(L, -2, "ranking");
+  lua_createtable(L, static_cast<int>(r.ties.size()), 0);
+  for (std::size_t k = 0; k < r.ties.size(); ++k) {
+    lua_pushinteger(L, static_cast<lua_Integer>(r.ties[k] + 1));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  lua_setfield(L, -2, "ties");
+  for (const auto& [key, list] : {std::pair<const char*, const std::vector<std::string>*>{"candidates", &cnames},
+                                  {"criteria", &inames}, {"warnings", &r.warnings}}) {
+    lua_createtable(L, static_cast<int>(list->size()), 0);
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      lua_pushstring(L, (*list)[k].c_str());
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -2, key);
+  }
+  lua::set_string(L, "printable", text);
+}
+
 }  // namespace
 
 int decision_matrix(lua_State* L) {
@@ -97,68 +170,11 @@ int decision_matrix(lua_State* L) {
     std::vector<std::string> inames;
     Eigen::MatrixXd M(J, I);
     Eigen::VectorXd w(I);
-    int weighted = 0;
-    for (int i = 1; i <= I; ++i) {
-      lua_rawgeti(L, crits, i);
-      if (!lua_istable(L, -1)) throw InvalidArgument(fmt::format("criteria[{}] must be a table {{name =, weight =, magnitude =}}", i));
-      const int crit = lua_gettop(L);
-      std::string name = fmt::format("criterion {}", i);
-      if (raw_field(L, crit, "name") == LUA_TSTRING) name = lua_tostring(L, -1);
-      lua_pop(L, 1);
-      inames.push_back(name);
-      if (raw_field(L, crit, "weight") != LUA_TNIL) {
-        w[i - 1] = read_number(L, -1, fmt::format("criteria[{}] ('{}').weight", i, name));
-        ++weighted;
-      }
-      lua_pop(L, 1);
-      read_magnitudes(L, crit, cands, cnames, name, M, i - 1);
-      lua_pop(L, 1);
-    }
-    if (weighted == 0)
-      w.setConstant(1.0 / I);  // spec §6 Decision: equal weights when none are given
-    else if (weighted != I)
-      throw InvalidArgument(fmt::format("{} of {} criteria have a weight: give every criterion a weight, or none (equal weights)", weighted, I));
+    read_criteria(L, crits, cands, cnames, inames, M, w);
     const DecisionResult r = smi::improve::decision_matrix(M, w, cnames, inames, o.number("tie_tol", 1e-12));
     const std::string text = format_decision(r, cnames, inames, w);
 
-    lua_createtable(L, 0, 16);
-    lua::push_mat(L, r.magnitudes);
-    lua_setfield(L, -2, "M");
-    lua::push_mat(L, r.standardized);
-    lua_setfield(L, -2, "S");
-    lua::push_mat(L, r.ratings);
-    lua_setfield(L, -2, "ratings");
-    lua::set_vec(L, "overall", r.overall);
-    lua::set_vec(L, "weights", w);
-    lua::set_integer(L, "best", static_cast<lua_Integer>(r.best + 1));
-    lua::set_string(L, "best_name", cnames[static_cast<std::size_t>(r.best)]);
-    lua_rawgeti(L, cands, r.best + 1);
-    lua_setfield(L, -2, "best_candidate");
-    std::vector<int> order(static_cast<std::size_t>(J));
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return r.overall[a] > r.overall[b]; });
-    lua_createtable(L, J, 0);
-    for (int k = 0; k < J; ++k) {
-      lua_pushinteger(L, order[static_cast<std::size_t>(k)] + 1);
-      lua_rawseti(L, -2, k + 1);
-    }
-    lua_setfield(L, -2, "ranking");
-    lua_createtable(L, static_cast<int>(r.ties.size()), 0);
-    for (std::size_t k = 0; k < r.ties.size(); ++k) {
-      lua_pushinteger(L, static_cast<lua_Integer>(r.ties[k] + 1));
-      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-    }
-    lua_setfield(L, -2, "ties");
-    for (const auto& [key, list] : {std::pair<const char*, const std::vector<std::string>*>{"candidates", &cnames},
-                                    {"criteria", &inames}, {"warnings", &r.warnings}}) {
-      lua_createtable(L, static_cast<int>(list->size()), 0);
-      for (std::size_t k = 0; k < list->size(); ++k) {
-        lua_pushstring(L, (*list)[k].c_str());
-        lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-      }
-      lua_setfield(L, -2, key);
-    }
-    lua::set_string(L, "printable", text);
+    push_decision(L, r, cands, cnames, inames, w, text);
     luaL_setmetatable(L, kDecisionMeta);
     return 1;
   });

@@ -3,6 +3,7 @@
 
 namespace smi::bind {
 
+// long: one raw string of reference text (data, no logic); doc.lua reads it entry by entry
 DocText doc_stats_dist() {
   return {"bindings/stats/dist_doc.cpp", R"DOC(
 @ module smi.dist

@@ -85,6 +85,56 @@ Recorded read_recorded(const fs::path& file) {
 
 std::string short_commit(const std::string& c) { return c.empty() ? "no commit" : "commit " + c.substr(0, 12); }
 
+enum class LibraryCheck { ok, changed, missing };
+
+// One recorded library against the one at hand (on the library path now, else at its recorded
+// folder): a line saying ok, CHANGED (with the files that differ, when recorded) or MISSING.
+LibraryCheck check_library(const RecordedLib& r, const vm::LibrarySet& here) {
+  // The library at hand: the one on the library path now, else the recorded folder.
+  const vm::Library* cur = here.find(r.name);
+  std::optional<vm::LibrarySet> at_recorded;
+  std::string where = "on the library path";
+  std::error_code ec;
+  if (!cur && !r.path.empty() && fs::is_regular_file(fs::path(r.path) / vm::kManifestName, ec)) {
+    at_recorded = vm::LibrarySet::discover({{r.path, "recorded path"}});
+    cur = at_recorded->find(r.name);
+    where = "at its recorded path";
+  }
+  if (!cur) {
+    std::printf("MISSING  %s %s: not on the library path and not at %s; add its folder with --lib DIR\n",
+                r.name.c_str(), r.version.c_str(), r.path.empty() ? "(no recorded path)" : r.path.c_str());
+    return LibraryCheck::missing;
+  }
+  const vm::FolderHash& h = cur->hash();
+  const std::string& ver = cur->manifest.version.text;
+  if (h.digest == r.hash) {
+    std::printf("ok       %s %s %s (%s), %s\n", r.name.c_str(), ver.c_str(), where.c_str(), cur->folder.string().c_str(),
+                h.digest.substr(0, 19).c_str());
+    if (!r.commit.empty() && cur->git.commit != r.commit)
+      std::printf("         same content, but the checkout is at %s (recorded %s)\n", short_commit(cur->git.commit).c_str(),
+                  short_commit(r.commit).c_str());
+    return LibraryCheck::ok;
+  }
+  std::printf("CHANGED  %s %s (%s): content differs from the recorded %s", r.name.c_str(), ver.c_str(),
+              cur->folder.string().c_str(), r.version.c_str());
+  if (ver != r.version) std::printf(" (version %s now)", ver.c_str());
+  if (!r.commit.empty() || !cur->git.commit.empty())
+    std::printf("; recorded %s, now %s", short_commit(r.commit).c_str(), short_commit(cur->git.commit).c_str());
+  std::printf("\n");
+  if (!r.has_files) {
+    std::printf("         (the results file has no per-file digests, so the changed files cannot be named)\n");
+    return LibraryCheck::changed;
+  }
+  for (const auto& [rel, digest] : r.files) {
+    const auto it = h.files.find(rel);
+    if (it == h.files.end()) std::printf("         removed: %s\n", rel.c_str());
+    else if (it->second != digest) std::printf("         changed: %s\n", rel.c_str());
+  }
+  for (const auto& [rel, digest] : h.files)
+    if (!r.files.count(rel)) std::printf("         added:   %s\n", rel.c_str());
+  return LibraryCheck::changed;
+}
+
 }  // namespace
 
 int cmd_verify(const Args& a, const std::vector<std::string>& args) {
@@ -101,50 +151,9 @@ int cmd_verify(const Args& a, const std::vector<std::string>& args) {
   std::printf("\n");
 
   for (const RecordedLib& r : rec.libs) {
-    // The library at hand: the one on the library path now, else the recorded folder.
-    const vm::Library* cur = here.find(r.name);
-    std::optional<vm::LibrarySet> at_recorded;
-    std::string where = "on the library path";
-    std::error_code ec;
-    if (!cur && !r.path.empty() && fs::is_regular_file(fs::path(r.path) / vm::kManifestName, ec)) {
-      at_recorded = vm::LibrarySet::discover({{r.path, "recorded path"}});
-      cur = at_recorded->find(r.name);
-      where = "at its recorded path";
-    }
-    if (!cur) {
-      ++missing;
-      std::printf("MISSING  %s %s: not on the library path and not at %s; add its folder with --lib DIR\n",
-                  r.name.c_str(), r.version.c_str(), r.path.empty() ? "(no recorded path)" : r.path.c_str());
-      continue;
-    }
-    const vm::FolderHash& h = cur->hash();
-    const std::string& ver = cur->manifest.version.text;
-    if (h.digest == r.hash) {
-      std::printf("ok       %s %s %s (%s), %s\n", r.name.c_str(), ver.c_str(), where.c_str(), cur->folder.string().c_str(),
-                  h.digest.substr(0, 19).c_str());
-      if (!r.commit.empty() && cur->git.commit != r.commit)
-        std::printf("         same content, but the checkout is at %s (recorded %s)\n", short_commit(cur->git.commit).c_str(),
-                    short_commit(r.commit).c_str());
-      continue;
-    }
-    ++changed;
-    std::printf("CHANGED  %s %s (%s): content differs from the recorded %s", r.name.c_str(), ver.c_str(),
-                cur->folder.string().c_str(), r.version.c_str());
-    if (ver != r.version) std::printf(" (version %s now)", ver.c_str());
-    if (!r.commit.empty() || !cur->git.commit.empty())
-      std::printf("; recorded %s, now %s", short_commit(r.commit).c_str(), short_commit(cur->git.commit).c_str());
-    std::printf("\n");
-    if (!r.has_files) {
-      std::printf("         (the results file has no per-file digests, so the changed files cannot be named)\n");
-      continue;
-    }
-    for (const auto& [rel, digest] : r.files) {
-      const auto it = h.files.find(rel);
-      if (it == h.files.end()) std::printf("         removed: %s\n", rel.c_str());
-      else if (it->second != digest) std::printf("         changed: %s\n", rel.c_str());
-    }
-    for (const auto& [rel, digest] : h.files)
-      if (!r.files.count(rel)) std::printf("         added:   %s\n", rel.c_str());
+    const LibraryCheck c = check_library(r, here);
+    changed += c == LibraryCheck::changed;
+    missing += c == LibraryCheck::missing;
   }
 
   bool script_changed = false;

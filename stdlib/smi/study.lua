@@ -204,6 +204,121 @@ function Study:_selection(opts)
   return selected
 end
 
+-- The results saved so far, to merge this run into. Every run merges into them: a step that
+-- does not run now (not selected, or not reached because an earlier one failed or the run was
+-- stopped) keeps its saved result, so results.json never shrinks. A file that does not parse is
+-- an error for a partial run (its steps are needed) and is replaced by a full run.
+function Study:_saved_results(partial)
+  local saved = { study = self.name, seed = self.seed, order = {}, steps = {}, provenance = provenance() }
+  local old, why
+  if partial then
+    old, why = self:load()
+  else
+    local okl, o, w = pcall(self.load, self)
+    if okl then old, why = o, w else why = tostring(o) end
+  end
+  if old then saved.steps = old.steps else self.load_problem = why end
+  for i, st in ipairs(self.steps) do saved.order[i] = st.name end
+  return saved
+end
+
+-- ctx.results: read-only; this run's results first (`live`, with values JSON cannot hold), then
+-- the saved results of steps not selected now; a missing one is an error saying why.
+local function results_view(study, selected, saved, live)
+  return setmetatable({}, {
+    __index = function(_, name)
+      if live[name] ~= nil then return live[name] end
+      -- a step selected in this run is read from this run only, never from an older file
+      local s = not selected[name] and saved.steps[name] or nil
+      if s and s.status == "ok" and s.result ~= nil then return s.result end
+      local why = not study.by_name[name] and "there is no such step"
+        or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
+        or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
+      error(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why), 2)
+    end,
+    __newindex = function() error("study: ctx.results is read-only; return a table from the step instead", 2) end,
+  })
+end
+
+-- A fresh report for every run, from the options given to new{report = ...}.
+function Study:_fresh_report()
+  if not self.report_opts then return end
+  local report = require "smi.report"
+  local ro = {}
+  for k, v in pairs(self.report_opts) do ro[k] = v end
+  ro.title = ro.title or self.name
+  ro.out = ro.out or self.out
+  self.report = report.new(ro)
+end
+
+-- The ctx a step function receives.
+local function step_context(study, st, results)
+  local ctx = {
+    name = st.name, study = study, results = results, out = study.out, seed = study.seed,
+    report = study.report, result = {},
+  }
+  function ctx.log(c, fmt_, ...)
+    if c ~= ctx then return ctx:log(c, fmt_, ...) end -- allow ctx.log("...") too
+    if not study:_quiet() then
+      io.stderr:write(("[%s]   %s: %s\n"):format(study.name, st.name, fmt_:format(...)))
+      io.stderr:flush()
+    end
+  end
+  function ctx.set(c, key, value) c.result[key] = value end
+  return ctx
+end
+
+-- Runs step st's function: ok, its return value (or the error), the traceback, seconds, clock.
+local function call_step(st, ctx)
+  local t0, clock = now()
+  local trace
+  local ok, ret = xpcall(st.fn, function(e)
+    trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e)
+    return e
+  end, ctx)
+  local dt = now() - t0
+  if ok then
+    if ret ~= nil and type(ret) ~= "table" then
+      ok, ret = false, ("step returned a %s; return a table of results (or nil and use ctx:set)"):format(type(ret))
+    end
+  end
+  return ok, ret, trace, dt, clock
+end
+
+-- A failed step: the failure is recorded (a result saved by an earlier run is kept beside it),
+-- the results saved, and the error raised with the step named.
+function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
+  local prev = saved.steps[st.name]
+  if prev and prev.status == "failed" then prev = prev.previous end
+  saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace,
+                           previous = prev }
+  self.timings[#self.timings + 1] = { st.name, "failed", dt }
+  pcall(self._save, self, saved)
+  self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
+  error(("study '%s': step '%s' failed: %s"):format(self.name, st.name, tostring(ret)), 0)
+end
+
+-- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what
+-- JSON can hold in results.json.
+function Study:_run_step(st, k, nsel, results, saved, live)
+  self:_say("step %d/%d %s ...", k, nsel, st.name)
+  local ctx = step_context(self, st, results)
+  local ok, ret, trace, dt, clock = call_step(st, ctx)
+  if not ok then self:_step_failed(st, k, nsel, saved, ret, trace, dt, clock) end
+  local result = ctx.result
+  for key, v in pairs(ret or {}) do result[key] = v end
+  live[st.name] = result
+  -- keep only what JSON can hold in the file
+  local skipped = {}
+  local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
+  saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.decode(text),
+                           not_saved = #skipped > 0 and skipped or nil }
+  self.timings[#self.timings + 1] = { st.name, "ok", dt }
+  self:_save(saved)
+  self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
+    #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+end
+
 doc.add[==[
 @ smi.study:run([opts]) -> results
 Runs the steps (all, or only some) and returns the results by step name. Steps not run keep their
@@ -236,46 +351,10 @@ function Study:run(opts)
   if type(smi) == "table" and type(smi.lock_out) == "function" then smi.lock_out(self.out) end
   local partial = false
   for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
-
-  -- Every run merges into the saved results: a step that does not run now (not selected, or
-  -- not reached because an earlier one failed or the run was stopped) keeps its saved result,
-  -- so results.json never shrinks. A file that does not parse is an error for a partial run
-  -- (its steps are needed) and is replaced by a full run.
-  local saved = { study = self.name, seed = self.seed, order = {}, steps = {}, provenance = provenance() }
-  local old, why
-  if partial then
-    old, why = self:load()
-  else
-    local okl, o, w = pcall(self.load, self)
-    if okl then old, why = o, w else why = tostring(o) end
-  end
-  if old then saved.steps = old.steps else self.load_problem = why end
-  for i, st in ipairs(self.steps) do saved.order[i] = st.name end
-
+  local saved = self:_saved_results(partial)
   local live = {} -- results of this run, with values JSON cannot hold
-  local study = self
-  local results = setmetatable({}, {
-    __index = function(_, name)
-      if live[name] ~= nil then return live[name] end
-      -- a step selected in this run is read from this run only, never from an older file
-      local s = not selected[name] and saved.steps[name] or nil
-      if s and s.status == "ok" and s.result ~= nil then return s.result end
-      local why = not study.by_name[name] and "there is no such step"
-        or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
-        or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
-      error(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why), 2)
-    end,
-    __newindex = function() error("study: ctx.results is read-only; return a table from the step instead", 2) end,
-  })
-
-  if self.report_opts then -- a fresh report for every run
-    local report = require "smi.report"
-    local ro = {}
-    for k, v in pairs(self.report_opts) do ro[k] = v end
-    ro.title = ro.title or self.name
-    ro.out = ro.out or self.out
-    self.report = report.new(ro)
-  end
+  local results = results_view(self, selected, saved, live)
+  self:_fresh_report()
 
   local nsel, k = 0, 0
   for _, st in ipairs(self.steps) do if selected[st.name] then nsel = nsel + 1 end end
@@ -284,54 +363,7 @@ function Study:run(opts)
   for _, st in ipairs(self.steps) do
     if selected[st.name] then
       k = k + 1
-      self:_say("step %d/%d %s ...", k, nsel, st.name)
-      local ctx = {
-        name = st.name, study = self, results = results, out = self.out, seed = self.seed,
-        report = self.report, result = {},
-      }
-      function ctx.log(c, fmt_, ...)
-        if c ~= ctx then return ctx:log(c, fmt_, ...) end -- allow ctx.log("...") too
-        if not study:_quiet() then
-          io.stderr:write(("[%s]   %s: %s\n"):format(study.name, st.name, fmt_:format(...)))
-          io.stderr:flush()
-        end
-      end
-      function ctx.set(c, key, value) c.result[key] = value end
-      local t0, clock = now()
-      local trace
-      local ok, ret = xpcall(st.fn, function(e)
-        trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e)
-        return e
-      end, ctx)
-      local dt = now() - t0
-      if ok then
-        if ret ~= nil and type(ret) ~= "table" then
-          ok, ret = false, ("step returned a %s; return a table of results (or nil and use ctx:set)"):format(type(ret))
-        end
-      end
-      if not ok then
-        -- the failure is recorded; a result saved by an earlier run is kept beside it
-        local prev = saved.steps[st.name]
-        if prev and prev.status == "failed" then prev = prev.previous end
-        saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace,
-                                 previous = prev }
-        self.timings[#self.timings + 1] = { st.name, "failed", dt }
-        pcall(self._save, self, saved)
-        self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
-        error(("study '%s': step '%s' failed: %s"):format(self.name, st.name, tostring(ret)), 0)
-      end
-      local result = ctx.result
-      for key, v in pairs(ret or {}) do result[key] = v end
-      live[st.name] = result
-      -- keep only what JSON can hold in the file
-      local skipped = {}
-      local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
-      saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.decode(text),
-                               not_saved = #skipped > 0 and skipped or nil }
-      self.timings[#self.timings + 1] = { st.name, "ok", dt }
-      self:_save(saved)
-      self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
-        #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+      self:_run_step(st, k, nsel, results, saved, live)
     end
   end
   local total = now() - t_start

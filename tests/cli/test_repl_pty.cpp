@@ -100,6 +100,96 @@ std::string temp_history() {
   return tmpl;
 }
 
+// An expression is printed without '='; tab completes a global, a nested field, a method.
+void check_printing_and_completion(Session& s) {
+  // an expression is printed without '='
+  s.type("6 * 7\n");
+  CHECK(s.expect("42"));
+
+  // tab completion: a global, a nested field, a method of a userdata
+  s.type("prin\t('completed')\n");
+  CHECK(s.expect("print('completed')"));
+  CHECK(s.expect("completed"));
+  s.type("smi.vec.linsp\t(0, 1, 3)\n");
+  CHECK(s.expect("smi.vec.linspace(0, 1, 3)"));
+  CHECK(s.expect("vec(3)[0, 0.5, 1]"));
+  s.type("v = smi.vec{1, 2, 3}\n");
+  s.type("v:cums\t()\n");
+  CHECK(s.expect("v:cumsum()"));
+  CHECK(s.expect("vec(3)[1, 3, 6]"));
+}
+
+// Multi-line chunks get the second prompt; tables print bounded and readable.
+void check_multiline_and_tables(Session& s) {
+  // multi-line input: the second prompt until the chunk is complete
+  s.type("function twice(a)\n");
+  CHECK(s.expect(">> "));
+  s.type("return a * 2\n");
+  CHECK(s.expect(">> "));
+  s.type("end\n");
+  s.type("twice(21.5)\n");
+  CHECK(s.expect("43"));
+
+  // tables print bounded and readable
+  s.type("t = {1, 2, a = {b = 'x'}}\n");
+  s.type("t\n");
+  CHECK(s.expect("{1, 2, a = {b = \"x\"}}"));
+  s.type("smi.vec.linspace(0, 1, 1000000)\n");
+  CHECK(s.expect("vec(1000000)["));
+}
+
+// Ctrl-C stops a running chunk (plain, under pcall, in a coroutine) and the session goes on.
+void check_interrupting_chunks(Session& s) {
+  // Ctrl-C stops a running chunk and the session goes on
+  s.type("while true do end\n");
+  usleep(300 * 1000);
+  s.type("\x03");
+  CHECK(s.expect("interrupted!"));
+  s.type("'still alive'\n");
+  CHECK(s.expect("still alive"));
+  // ... even when the chunk swallows errors with pcall
+  s.type("while true do pcall(function() while true do end end) end\n");
+  usleep(300 * 1000);
+  s.type("\x03");
+  CHECK(s.expect("interrupted!"));
+  s.type("100 + 1\n");
+  CHECK(s.expect("101"));
+  // ... and when the loop runs inside a coroutine
+  s.type("coroutine.wrap(function() while true do end end)()\n");
+  usleep(300 * 1000);
+  s.type("\x03");
+  CHECK(s.expect("interrupted!"));
+  s.type("100 + 2\n");
+  CHECK(s.expect("102"));
+}
+
+// Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk.
+void check_ctrl_c_at_prompt(Session& s) {
+  // Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk
+  s.type("this is not lua");
+  usleep(100 * 1000);
+  s.type("\x03");
+  usleep(200 * 1000);  // the terminal flushes input typed right after Ctrl-C, as a person would not
+  s.type("2 ^ 10\n");
+  CHECK(s.expect("1024.0"));
+  s.type("for i = 1, 3 do\n");
+  CHECK(s.expect(">> "));
+  s.type("\x03");
+  usleep(200 * 1000);
+  s.type("'fresh'\n");
+  CHECK(s.expect("fresh"));
+}
+
+// The same sandbox as scripts.
+void check_sandbox(Session& s) {
+  // the same sandbox as scripts
+  s.type("io.open('/etc/passwd')\n");
+  CHECK(s.expect("is not allowed"));
+  s.type("io.popen\n");
+  CHECK(s.expect("nil"));
+  CHECK(s.expect("> "));  // ^D typed before readline owns the terminal could be lost
+}
+
 }  // namespace
 
 TEST_CASE("REPL: completion, multi-line input, printing, Ctrl-C, sandbox, history") {
@@ -110,81 +200,11 @@ TEST_CASE("REPL: completion, multi-line input, printing, Ctrl-C, sandbox, histor
     REQUIRE(s.expect("smi-lua "));
     REQUIRE(s.expect("> "));
 
-    // an expression is printed without '='
-    s.type("6 * 7\n");
-    CHECK(s.expect("42"));
-
-    // tab completion: a global, a nested field, a method of a userdata
-    s.type("prin\t('completed')\n");
-    CHECK(s.expect("print('completed')"));
-    CHECK(s.expect("completed"));
-    s.type("smi.vec.linsp\t(0, 1, 3)\n");
-    CHECK(s.expect("smi.vec.linspace(0, 1, 3)"));
-    CHECK(s.expect("vec(3)[0, 0.5, 1]"));
-    s.type("v = smi.vec{1, 2, 3}\n");
-    s.type("v:cums\t()\n");
-    CHECK(s.expect("v:cumsum()"));
-    CHECK(s.expect("vec(3)[1, 3, 6]"));
-
-    // multi-line input: the second prompt until the chunk is complete
-    s.type("function twice(a)\n");
-    CHECK(s.expect(">> "));
-    s.type("return a * 2\n");
-    CHECK(s.expect(">> "));
-    s.type("end\n");
-    s.type("twice(21.5)\n");
-    CHECK(s.expect("43"));
-
-    // tables print bounded and readable
-    s.type("t = {1, 2, a = {b = 'x'}}\n");
-    s.type("t\n");
-    CHECK(s.expect("{1, 2, a = {b = \"x\"}}"));
-    s.type("smi.vec.linspace(0, 1, 1000000)\n");
-    CHECK(s.expect("vec(1000000)["));
-
-    // Ctrl-C stops a running chunk and the session goes on
-    s.type("while true do end\n");
-    usleep(300 * 1000);
-    s.type("\x03");
-    CHECK(s.expect("interrupted!"));
-    s.type("'still alive'\n");
-    CHECK(s.expect("still alive"));
-    // ... even when the chunk swallows errors with pcall
-    s.type("while true do pcall(function() while true do end end) end\n");
-    usleep(300 * 1000);
-    s.type("\x03");
-    CHECK(s.expect("interrupted!"));
-    s.type("100 + 1\n");
-    CHECK(s.expect("101"));
-    // ... and when the loop runs inside a coroutine
-    s.type("coroutine.wrap(function() while true do end end)()\n");
-    usleep(300 * 1000);
-    s.type("\x03");
-    CHECK(s.expect("interrupted!"));
-    s.type("100 + 2\n");
-    CHECK(s.expect("102"));
-
-    // Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk
-    s.type("this is not lua");
-    usleep(100 * 1000);
-    s.type("\x03");
-    usleep(200 * 1000);  // the terminal flushes input typed right after Ctrl-C, as a person would not
-    s.type("2 ^ 10\n");
-    CHECK(s.expect("1024.0"));
-    s.type("for i = 1, 3 do\n");
-    CHECK(s.expect(">> "));
-    s.type("\x03");
-    usleep(200 * 1000);
-    s.type("'fresh'\n");
-    CHECK(s.expect("fresh"));
-
-    // the same sandbox as scripts
-    s.type("io.open('/etc/passwd')\n");
-    CHECK(s.expect("is not allowed"));
-    s.type("io.popen\n");
-    CHECK(s.expect("nil"));
-    CHECK(s.expect("> "));  // ^D typed before readline owns the terminal could be lost
-
+    check_printing_and_completion(s);
+    check_multiline_and_tables(s);
+    check_interrupting_chunks(s);
+    check_ctrl_c_at_prompt(s);
+    check_sandbox(s);
     s.type("\x04");  // Ctrl-D: end of input
     const int status = s.wait_exit();
     CHECK(status == 0);

@@ -22,6 +22,7 @@
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -77,63 +78,48 @@ int batch(const char* path) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
-    std::puts("smi-test-solver 1.0");
-    return 0;
-  }
-  const double t0 = now();
-  if (argc != 2 && !(argc == 4 && std::strcmp(argv[2], "-o") == 0)) {
-    std::fprintf(stderr, "usage: smi-test-solver DECK [-o RESULTS]\n");
-    return 2;
-  }
-  const std::string out_path = argc == 4 ? argv[3] : "results.txt";
-  if (std::string(argv[1]).size() > 4 && std::string(argv[1]).substr(std::string(argv[1]).size() - 4) == ".csv")
-    return batch(argv[1]);
-  std::ifstream deck(argv[1]);
-  if (!deck) {
-    std::fprintf(stderr, "smi-test-solver: cannot read deck '%s'\n", argv[1]);
-    return 2;
-  }
+// The deck: "key = value" lines; x* keys are the inputs (numbers), mode/sleep/exit_code/log
+// steer the solver's behaviour, any other value is echoed to echo.txt.
+struct Deck {
   std::vector<std::pair<std::string, double>> xs;
   std::map<std::string, std::string> keys;
-  std::string echo, line;
+  std::string echo;
+};
+
+// 0, or the exit status for a malformed deck (after saying why on stderr).
+int read_deck(const char* path, std::ifstream& in, Deck& d) {
+  std::string line;
   int lineno = 0;
-  while (std::getline(deck, line)) {
+  while (std::getline(in, line)) {
     ++lineno;
     const auto hash = line.find('#');
     if (hash == 0) continue;
     const auto eq = line.find('=');
     if (trim(line).empty()) continue;
     if (eq == std::string::npos) {
-      std::fprintf(stderr, "smi-test-solver: %s line %d: expected key = value\n", argv[1], lineno);
+      std::fprintf(stderr, "smi-test-solver: %s line %d: expected key = value\n", path, lineno);
       return 3;
     }
     const std::string k = trim(line.substr(0, eq)), v = trim(line.substr(eq + 1));
-    keys[k] = v;
+    d.keys[k] = v;
     if (!k.empty() && k[0] == 'x') {
       char* end = nullptr;
-      const double d = std::strtod(v.c_str(), &end);
+      const double x = std::strtod(v.c_str(), &end);
       if (end == v.c_str() || *end) {
-        std::fprintf(stderr, "smi-test-solver: %s line %d: '%s' is not a number\n", argv[1], lineno, v.c_str());
+        std::fprintf(stderr, "smi-test-solver: %s line %d: '%s' is not a number\n", path, lineno, v.c_str());
         return 3;
       }
-      xs.emplace_back(k, d);
+      d.xs.emplace_back(k, x);
     } else if (k != "mode" && k != "sleep" && k != "exit_code" && k != "log") {
-      echo += v + "\n";
+      d.echo += v + "\n";
     }
   }
-  if (keys.count("log")) {
-    std::ofstream log(keys["log"], std::ios::app);
-    log << getpid() << ' ' << (xs.empty() ? 0.0 : xs[0].second) << '\n';
-  }
-  if (!echo.empty()) std::ofstream("echo.txt") << echo;
-  const std::string mode = keys.count("mode") ? keys["mode"] : "ok";
-  if (keys.count("sleep")) nap(std::atof(keys["sleep"].c_str()));
-  std::fprintf(stdout, "smi-test-solver: %zu inputs, mode %s\n", xs.size(), mode.c_str());
-  std::fflush(stdout);
+  return 0;
+}
+
+// The failure modes tests ask for (crash, exit, flaky, hang*, no_output, stderr_only): the exit
+// status to end with, or none to go on and write results. Hanging modes never return.
+std::optional<int> misbehave(const std::string& mode, std::map<std::string, std::string>& keys) {
   if (mode == "crash") {
     std::fprintf(stderr, "smi-test-solver: crashing on purpose\n");
     std::fflush(stderr);
@@ -178,6 +164,44 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "smi-test-solver: reading deck\nsmi-test-solver: licence expired (on purpose)\n");
     return 0;
   }
+  return std::nullopt;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::puts("smi-test-solver 1.0");
+    return 0;
+  }
+  const double t0 = now();
+  if (argc != 2 && !(argc == 4 && std::strcmp(argv[2], "-o") == 0)) {
+    std::fprintf(stderr, "usage: smi-test-solver DECK [-o RESULTS]\n");
+    return 2;
+  }
+  const std::string out_path = argc == 4 ? argv[3] : "results.txt";
+  if (std::string(argv[1]).size() > 4 && std::string(argv[1]).substr(std::string(argv[1]).size() - 4) == ".csv")
+    return batch(argv[1]);
+  std::ifstream deck(argv[1]);
+  if (!deck) {
+    std::fprintf(stderr, "smi-test-solver: cannot read deck '%s'\n", argv[1]);
+    return 2;
+  }
+  Deck d;
+  if (const int rc = read_deck(argv[1], deck, d)) return rc;
+  auto& xs = d.xs;
+  auto& keys = d.keys;
+  const std::string& echo = d.echo;
+  if (keys.count("log")) {
+    std::ofstream log(keys["log"], std::ios::app);
+    log << getpid() << ' ' << (xs.empty() ? 0.0 : xs[0].second) << '\n';
+  }
+  if (!echo.empty()) std::ofstream("echo.txt") << echo;
+  const std::string mode = keys.count("mode") ? keys["mode"] : "ok";
+  if (keys.count("sleep")) nap(std::atof(keys["sleep"].c_str()));
+  std::fprintf(stdout, "smi-test-solver: %zu inputs, mode %s\n", xs.size(), mode.c_str());
+  std::fflush(stdout);
+  if (const std::optional<int> rc = misbehave(mode, keys)) return *rc;
   std::ofstream out(out_path);
   if (mode == "garbage") {
     out << "f = banana\ng = ####\n";

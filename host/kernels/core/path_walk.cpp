@@ -62,6 +62,62 @@ int open_path(int dirfd, const char* name, int extra = 0) {
   return fd;
 }
 
+// The components to walk, in todo: the working folder's (for a relative path) then the path's.
+// false (and w.error, w.where set) when the path text is empty, too long, holds a NUL or has
+// too many components. must_be_dir: the path ends in "/", "." or ".." (a trailing "/" also
+// follows a last link, as the kernel does).
+bool components_to_walk(const std::string& path, bool& follow_last, bool& must_be_dir, std::deque<std::string>& todo,
+                        Walk& w) {
+  if (path.empty() || path.size() > kMaxPathText || path.find('\0') != std::string::npos) {
+    // (a NUL would end the name the kernel sees while the walk's text went on)
+    w.error = path.empty() ? ENOENT : path.size() > kMaxPathText ? ENAMETOOLONG : EINVAL;
+    w.where = path;
+    return false;
+  }
+  must_be_dir = path.back() == '/';
+  if (must_be_dir) follow_last = true;  // as the kernel: "link/" names what the link points to
+  if (path[0] != '/') {
+    char buf[PATH_MAX];
+    if (!::getcwd(buf, sizeof buf)) {
+      w.error = errno;
+      w.where = path;
+      return false;
+    }
+    split(buf, todo, false);
+  }
+  split(path, todo, false);
+  if (todo.size() > kMaxComponents) {
+    w.error = ENAMETOOLONG;
+    w.where = path;
+    return false;
+  }
+  if (!todo.empty() && (todo.back() == "." || todo.back() == "..")) must_be_dir = true;
+  return true;
+}
+
+// The walk reached its end: a path naming a folder is expressed as (its parent, its name); the
+// result holds the parent's descriptor and canonical text, or ENOTDIR when the path asked for a
+// folder and names something else.
+void finish_walk(Walk& w, std::vector<std::string>& names, std::vector<Fd>& fds, bool must_be_dir) {
+  if (w.leaf.empty() && !names.empty()) {
+    w.leaf = names.back();
+    names.pop_back();
+    Fd self = std::move(fds.back());
+    fds.pop_back();
+    w.exists = ::fstat(self.get(), &w.st) == 0;
+  } else if (w.leaf.empty()) {
+    w.exists = ::fstat(fds[0].get(), &w.st) == 0;
+  }
+  if (must_be_dir && w.exists && !S_ISDIR(w.st.st_mode) && !S_ISLNK(w.st.st_mode)) {
+    w.error = ENOTDIR;
+    w.where = describe(names, {w.leaf});
+    return;
+  }
+  w.dir_path = join(names);
+  w.dir = std::move(fds.back());
+  w.where = w.canonical();
+}
+
 }  // namespace
 
 void Fd::reset() {
@@ -83,33 +139,14 @@ bool within(const std::string& path, const std::string& root) {
   return path.size() == r.size() || path[r.size()] == '/';
 }
 
+// long: one loop over the queue of components, whose cases (".", "..", a link spliced into the
+// queue, a folder descended into, the leaf) all move the same state (the queue, the open folder
+// descriptors and their names, the link count); its entry and exit are in the helpers above.
 Walk walk(const std::string& path, bool follow_last) {
   Walk w;
   std::deque<std::string> todo;
-  if (path.empty() || path.size() > kMaxPathText || path.find('\0') != std::string::npos) {
-    // (a NUL would end the name the kernel sees while the walk's text went on)
-    w.error = path.empty() ? ENOENT : path.size() > kMaxPathText ? ENAMETOOLONG : EINVAL;
-    w.where = path;
-    return w;
-  }
-  bool must_be_dir = path.back() == '/';
-  if (must_be_dir) follow_last = true;  // as the kernel: "link/" names what the link points to
-  if (path[0] != '/') {
-    char buf[PATH_MAX];
-    if (!::getcwd(buf, sizeof buf)) {
-      w.error = errno;
-      w.where = path;
-      return w;
-    }
-    split(buf, todo, false);
-  }
-  split(path, todo, false);
-  if (todo.size() > kMaxComponents) {
-    w.error = ENAMETOOLONG;
-    w.where = path;
-    return w;
-  }
-  if (!todo.empty() && (todo.back() == "." || todo.back() == "..")) must_be_dir = true;
+  bool must_be_dir = false;
+  if (!components_to_walk(path, follow_last, must_be_dir, todo, w)) return w;
 
   std::vector<Fd> fds;              // fds[0] = "/", fds[i] = names[i-1]
   std::vector<std::string> names;   // canonical components of the folder reached
@@ -208,24 +245,7 @@ Walk walk(const std::string& path, bool follow_last) {
     w.st = st;
     break;
   }
-  if (w.leaf.empty() && !names.empty()) {
-    // The path names a folder: express it as (its parent, its name).
-    w.leaf = names.back();
-    names.pop_back();
-    Fd self = std::move(fds.back());
-    fds.pop_back();
-    w.exists = ::fstat(self.get(), &w.st) == 0;
-  } else if (w.leaf.empty()) {
-    w.exists = ::fstat(fds[0].get(), &w.st) == 0;
-  }
-  if (must_be_dir && w.exists && !S_ISDIR(w.st.st_mode) && !S_ISLNK(w.st.st_mode)) {
-    w.error = ENOTDIR;
-    w.where = describe(names, {w.leaf});
-    return w;
-  }
-  w.dir_path = join(names);
-  w.dir = std::move(fds.back());
-  w.where = w.canonical();
+  finish_walk(w, names, fds, must_be_dir);
   return w;
 }
 

@@ -253,198 +253,253 @@ std::string Evaluator::executor_plan(const Plan& pl) {
                        cfg_.name);
 }
 
-EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, const ParseBatchFn& parse_batch,
-                               const ProgressFn& progress, bool launch) {
-  const Eigen::Index n = X.rows(), m = static_cast<Eigen::Index>(cfg_.outputs.size());
-  auto pts = points_of(X);
+// One call of evaluate(): the points, the tasks that run them, and the bookkeeping of runs as
+// they finish. Each step is one member; the executor calls back into on_done and on_tick.
+struct Evaluator::Run {
+  Evaluator& ev;
+  const CommandConfig& cfg;
+  const ParseFn& parse;
+  const ParseBatchFn& parse_batch;
+  const ProgressFn& progress;
+  const Eigen::Index m;                          // outputs
+  std::vector<Point> pts;
+  std::vector<std::vector<std::size_t>> tasks;   // the points one process evaluates
+  std::vector<int> attempts;
+  std::vector<std::string> dirs, task_keys;
+  EvalResult res;
+  Progress prog;
+  double sum_seconds = 0;
+  std::unique_ptr<PendingTable> pending_runs;
+  std::unique_ptr<Executor> sched;
+
+  Run(Evaluator& e, const Eigen::MatrixXd& X, const ParseFn& p, const ParseBatchFn& pb, const ProgressFn& pr)
+      : ev(e), cfg(e.cfg_), parse(p), parse_batch(pb), progress(pr), m(static_cast<Eigen::Index>(cfg.outputs.size())),
+        pts(e.points_of(X)) {}
+
+  void plan_tasks(bool launch);
+  void name_tasks();
+  void start_executor();
+  Job make_job(std::size_t t);
+  void prepare_deck(std::size_t t) const;
+  Eigen::MatrixXd parse_outputs(std::size_t t) const;
+  std::string failure_reason(const Outcome& o, Eigen::MatrixXd& Yt);
+  void store_task(std::size_t t, const Outcome& o, const std::string& reason, const Eigen::MatrixXd& Yt);
+  void check_interrupt() const;
+  void on_done(const Outcome& o);
+  void on_tick();
+  void fill_result(Eigen::Index n, bool launch);
+};
+
+// Tasks: one point per process in command mode, chunks of batch_size in batch mode; none on a
+// dry run (launch = false) or when every point is stored.
+void Evaluator::Run::plan_tasks(bool launch) {
   std::vector<std::size_t> pending;
   for (std::size_t k = 0; k < pts.size(); ++k)
-    if (!lookup(pts[k])) pending.push_back(k);
-
-  // Tasks: the points one process evaluates (one in command mode, a chunk in batch mode).
-  std::vector<std::vector<std::size_t>> tasks;
-  if (cfg_.batch) {
-    const std::size_t per = cfg_.batch_size > 0 ? static_cast<std::size_t>(cfg_.batch_size) : std::max<std::size_t>(pending.size(), 1);
+    if (!ev.lookup(pts[k])) pending.push_back(k);
+  if (!launch) return;
+  if (cfg.batch) {
+    const std::size_t per = cfg.batch_size > 0 ? static_cast<std::size_t>(cfg.batch_size) : std::max<std::size_t>(pending.size(), 1);
     for (std::size_t s = 0; s < pending.size(); s += per)
       tasks.emplace_back(pending.begin() + static_cast<std::ptrdiff_t>(s),
                          pending.begin() + static_cast<std::ptrdiff_t>(std::min(pending.size(), s + per)));
   } else {
     for (std::size_t k : pending) tasks.push_back({k});
   }
-  if (!launch) tasks.clear();
-  std::vector<int> attempts(tasks.size(), 0);
-  std::vector<std::string> dirs(tasks.size()), task_keys(tasks.size());
+}
+
+// A task's key is its point's (a batch's: the hash of its points' keys); its work directory
+// under runs_dir is named by the key's start.
+void Evaluator::Run::name_tasks() {
+  attempts.assign(tasks.size(), 0);
+  dirs.resize(tasks.size());
+  task_keys.resize(tasks.size());
   for (std::size_t t = 0; t < tasks.size(); ++t) {
     std::string id = pts[tasks[t][0]].key;
-    if (cfg_.batch) {
+    if (cfg.batch) {
       Sha256 h;
       for (std::size_t k : tasks[t]) h.field(pts[k].key);
       id = "batch-" + h.hex();
     }
-    dirs[t] = (fs::path(cfg_.runs_dir) / id.substr(0, 16 + (cfg_.batch ? 6 : 0))).string();
+    dirs[t] = (fs::path(cfg.runs_dir) / id.substr(0, 16 + (cfg.batch ? 6 : 0))).string();
     task_keys[t] = id;
   }
+}
 
-  EvalResult res;
-  Progress prog;
+void Evaluator::Run::start_executor() {
   prog.total = tasks.size();
-  double sum_seconds = 0;
-  const Timing stored = tasks.empty() ? Timing{} : store().timing(cfg_.program_name, cfg_.version);
+  const Timing stored = tasks.empty() ? Timing{} : ev.store().timing(cfg.program_name, cfg.version);
   prog.mean_seconds = stored.count ? stored.mean : 0;
-
   // Slurm jobs outlive smi-lua: they are recorded in the store's pending table (written here,
   // by the evaluator's process only) so that a rerun reattaches to them.
-  std::unique_ptr<PendingTable> pending_runs;
-  if (cfg_.executor.kind != "local" && !tasks.empty()) pending_runs = std::make_unique<PendingTable>(store().handle());
-  std::unique_ptr<Executor> exec = make_executor(cfg_.executor, cfg_.concurrency, pending_runs.get(), cfg_.runs_dir, cfg_.name);
-  Executor& sched = *exec;
-  auto make_job = [&](std::size_t t) {
-    Job job;
-    job.id = t;
-    job.key = task_keys[t];
-    job.attempt = attempts[t] + 1;
-    job.timeout = cfg_.timeout;
-    job.spec.program = cfg_.program;
-    job.spec.workdir = dirs[t];
-    job.spec.stdout_path = (fs::path(dirs[t]) / kStdoutFile).string();
-    job.spec.stderr_path = (fs::path(dirs[t]) / kStderrFile).string();
-    job.spec.argv.push_back(cfg_.program_name);
-    for (std::string a : cfg_.args) {
-      for (auto [pat, val] : {std::pair<std::string, std::string>{"{deck}", cfg_.deck_file}, {"{workdir}", dirs[t]}})
-        for (std::size_t at = a.find(pat); at != std::string::npos; at = a.find(pat, at + val.size()))
-          a.replace(at, pat.size(), val);
-      job.spec.argv.push_back(std::move(a));
-    }
-    job.prepare = [this, t, &tasks, &pts, &dirs] {
-      std::string deck;
-      if (cfg_.batch) {
-        Eigen::MatrixXd rows(static_cast<Eigen::Index>(tasks[t].size()), static_cast<Eigen::Index>(cfg_.inputs.size()));
-        for (std::size_t r = 0; r < tasks[t].size(); ++r) rows.row(static_cast<Eigen::Index>(r)) = pts[tasks[t][r]].x.transpose();
-        deck = csv_of(cfg_.inputs, rows);
-      } else {
-        deck = pts[tasks[t][0]].deck;
-      }
-      prepare_work_dir(dirs[t], cfg_.deck_file, deck, cfg_.files, cfg_.file_fds);
-    };
-    return job;
-  };
+  if (cfg.executor.kind != "local" && !tasks.empty()) pending_runs = std::make_unique<PendingTable>(ev.store().handle());
+  sched = make_executor(cfg.executor, cfg.concurrency, pending_runs.get(), cfg.runs_dir, cfg.name);
+}
 
-  auto finish_task = [&](std::size_t t, const Outcome& o, const std::string& reason, const Eigen::MatrixXd& Yt) {
-    const std::string out_tail = file_tail((fs::path(dirs[t]) / kStdoutFile).string(), kTailBytes);
-    const std::string err_tail = file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes);
-    const bool ok = reason.empty();
-    for (std::size_t r = 0; r < tasks[t].size(); ++r) {
-      Point& p = pts[tasks[t][r]];
-      p.status = ok ? Status::Ok : Status::Failed;
-      p.reason = reason;
-      p.duration = o.seconds / static_cast<double>(tasks[t].size());
-      p.y = ok ? Eigen::VectorXd(Yt.row(static_cast<Eigen::Index>(r)).transpose()) : Eigen::VectorXd::Constant(m, kNaN);
-      Record rec;
-      rec.key = p.key;
-      rec.model = cfg_.name;
-      rec.program = cfg_.program_name;
-      rec.version = cfg_.version;
-      for (std::size_t j = 0; j < cfg_.inputs.size(); ++j) rec.inputs.emplace_back(cfg_.inputs[j], p.x[static_cast<Eigen::Index>(j)]);
-      if (ok)
-        for (std::size_t j = 0; j < cfg_.outputs.size(); ++j) rec.outputs.emplace_back(cfg_.outputs[j], p.y[static_cast<Eigen::Index>(j)]);
-      rec.ok = ok;
-      rec.reason = reason;
-      rec.duration = p.duration;
-      rec.attempts = attempts[t];
-      rec.stdout_tail = out_tail;
-      rec.stderr_tail = err_tail;
-      rec.workdir = dirs[t];
-      store().put(rec);  // committed now: a SIGKILL after this line loses nothing of this run
-    }
-  };
-
-  auto check_interrupt = [&] {
-    if (!stop_check_) return;
-    const std::string why = stop_check_();
-    if (!why.empty())
-      throw Interrupted(fmt::format("{}; {} finished run{} of model '{}' are stored, running the study again "
-                                    "resumes from there", why, prog.done, prog.done == 1 ? "" : "s", cfg_.name));
-  };
-
-  auto on_done = [&](const Outcome& o) {
-    const std::size_t t = o.id;
-    ++res.launched;
-    std::string reason = o.reason;
-    Eigen::MatrixXd Yt;
-    if (o.ok()) {
-      try {
-        const std::size_t np = tasks[t].size();
-        if (cfg_.batch) {
-          Yt = parse_batch(dirs[t], np);
-          if (Yt.rows() != static_cast<Eigen::Index>(np) || Yt.cols() != m)
-            throw ParseError(fmt::format("the batch parser returned {}x{} values for {} points and {} outputs", Yt.rows(),
-                                         Yt.cols(), np, m));
-        } else {
-          const NamedValues vals = parse(dirs[t]);
-          Yt = Eigen::MatrixXd::Constant(1, m, kNaN);
-          for (Eigen::Index j = 0; j < m; ++j) {
-            bool found = false;
-            for (const auto& [name, v] : vals)
-              if (name == cfg_.outputs[static_cast<std::size_t>(j)]) {
-                Yt(0, j) = v;
-                found = true;
-              }
-            if (!found)
-              throw ParseError(fmt::format("the parser returned no value for output '{}'", cfg_.outputs[static_cast<std::size_t>(j)]));
-          }
-        }
-        for (Eigen::Index i = 0; i < Yt.rows(); ++i)
-          for (Eigen::Index j = 0; j < m; ++j)
-            if (!std::isfinite(Yt(i, j)))
-              throw ParseError(fmt::format("output '{}' is {}", cfg_.outputs[static_cast<std::size_t>(j)], Yt(i, j)));
-      } catch (const std::exception& e) {
-        reason = fmt::format("unparsable output: {}", e.what());
-        // A solver that exits 0 after a fatal error says why only on stderr: show its end.
-        const std::string err = last_lines(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes), 3);
-        if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", err);
-      }
-      check_interrupt();  // a Ctrl-C that hit the parser is not the run's failure
-    } else if (o.kind == Outcome::Exited || o.kind == Outcome::Signaled) {
-      const std::string err = last_line(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes));
-      if (!err.empty()) reason += ": " + err;
-    }
-    ++attempts[t];
-    const int allowed = cfg_.retries + (cfg_.on_failure == OnFailure::Retry && cfg_.retries == 0 ? 2 : 0);
-    if (!reason.empty() && attempts[t] <= allowed) {
-      sched.submit(make_job(t));  // fresh work directory, same deck: same key
-      return;
-    }
-    finish_task(t, o, reason, Yt);
-    ++prog.done;
-    sum_seconds += o.seconds;
-    prog.mean_seconds = sum_seconds / static_cast<double>(prog.done);
-    if (!reason.empty()) {
-      ++prog.failed;
-      if (cfg_.on_failure == OnFailure::Stop) {
-        sched.stop_launching();
-        res.stopped = true;
-      }
-    }
-  };
-
-  auto on_tick = [&] {
-    check_interrupt();
-    if (!progress) return;
-    prog.running = sched.running();
-    const std::size_t left = prog.total - prog.done;
-    prog.eta_seconds = prog.mean_seconds > 0
-                           ? static_cast<double>(left) * prog.mean_seconds / static_cast<double>(std::min<std::size_t>(
-                                                                                   static_cast<std::size_t>(cfg_.concurrency), std::max<std::size_t>(left, 1)))
-                           : -1;
-    progress(prog, false);
-  };
-
-  if (!tasks.empty()) {
-    for (std::size_t t = 0; t < tasks.size(); ++t) sched.submit(make_job(t));
-    sched.run(on_done, on_tick);
-    if (progress) progress(prog, true);
+Job Evaluator::Run::make_job(std::size_t t) {
+  Job job;
+  job.id = t;
+  job.key = task_keys[t];
+  job.attempt = attempts[t] + 1;
+  job.timeout = cfg.timeout;
+  job.spec.program = cfg.program;
+  job.spec.workdir = dirs[t];
+  job.spec.stdout_path = (fs::path(dirs[t]) / kStdoutFile).string();
+  job.spec.stderr_path = (fs::path(dirs[t]) / kStderrFile).string();
+  job.spec.argv.push_back(cfg.program_name);
+  for (std::string a : cfg.args) {
+    for (auto [pat, val] : {std::pair<std::string, std::string>{"{deck}", cfg.deck_file}, {"{workdir}", dirs[t]}})
+      for (std::size_t at = a.find(pat); at != std::string::npos; at = a.find(pat, at + val.size()))
+        a.replace(at, pat.size(), val);
+    job.spec.argv.push_back(std::move(a));
   }
+  job.prepare = [this, t] { prepare_deck(t); };
+  return job;
+}
 
+// The work directory of task t with its deck: the rendered deck (command mode) or the task's
+// points as CSV (batch mode).
+void Evaluator::Run::prepare_deck(std::size_t t) const {
+  std::string deck;
+  if (cfg.batch) {
+    Eigen::MatrixXd rows(static_cast<Eigen::Index>(tasks[t].size()), static_cast<Eigen::Index>(cfg.inputs.size()));
+    for (std::size_t r = 0; r < tasks[t].size(); ++r) rows.row(static_cast<Eigen::Index>(r)) = pts[tasks[t][r]].x.transpose();
+    deck = csv_of(cfg.inputs, rows);
+  } else {
+    deck = pts[tasks[t][0]].deck;
+  }
+  prepare_work_dir(dirs[t], cfg.deck_file, deck, cfg.files, cfg.file_fds);
+}
+
+// The outputs of a finished task, one row per point; throws ParseError when one is missing,
+// the batch parser's shape is wrong, or a value is not finite.
+Eigen::MatrixXd Evaluator::Run::parse_outputs(std::size_t t) const {
+  Eigen::MatrixXd Yt;
+  const std::size_t np = tasks[t].size();
+  if (cfg.batch) {
+    Yt = parse_batch(dirs[t], np);
+    if (Yt.rows() != static_cast<Eigen::Index>(np) || Yt.cols() != m)
+      throw ParseError(fmt::format("the batch parser returned {}x{} values for {} points and {} outputs", Yt.rows(),
+                                   Yt.cols(), np, m));
+  } else {
+    const NamedValues vals = parse(dirs[t]);
+    Yt = Eigen::MatrixXd::Constant(1, m, kNaN);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      bool found = false;
+      for (const auto& [name, v] : vals)
+        if (name == cfg.outputs[static_cast<std::size_t>(j)]) {
+          Yt(0, j) = v;
+          found = true;
+        }
+      if (!found)
+        throw ParseError(fmt::format("the parser returned no value for output '{}'", cfg.outputs[static_cast<std::size_t>(j)]));
+    }
+  }
+  for (Eigen::Index i = 0; i < Yt.rows(); ++i)
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (!std::isfinite(Yt(i, j)))
+        throw ParseError(fmt::format("output '{}' is {}", cfg.outputs[static_cast<std::size_t>(j)], Yt(i, j)));
+  return Yt;
+}
+
+// Why the run of outcome o failed ("" when it did not), with the end of its stderr; fills Yt
+// with its outputs when it succeeded.
+std::string Evaluator::Run::failure_reason(const Outcome& o, Eigen::MatrixXd& Yt) {
+  const std::size_t t = o.id;
+  std::string reason = o.reason;
+  if (o.ok()) {
+    try {
+      Yt = parse_outputs(t);
+    } catch (const std::exception& e) {
+      reason = fmt::format("unparsable output: {}", e.what());
+      // A solver that exits 0 after a fatal error says why only on stderr: show its end.
+      const std::string err = last_lines(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes), 3);
+      if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", err);
+    }
+    check_interrupt();  // a Ctrl-C that hit the parser is not the run's failure
+  } else if (o.kind == Outcome::Exited || o.kind == Outcome::Signaled) {
+    const std::string err = last_line(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes));
+    if (!err.empty()) reason += ": " + err;
+  }
+  return reason;
+}
+
+// Task t's points take their final status and each is committed to the store.
+void Evaluator::Run::store_task(std::size_t t, const Outcome& o, const std::string& reason, const Eigen::MatrixXd& Yt) {
+  const std::string out_tail = file_tail((fs::path(dirs[t]) / kStdoutFile).string(), kTailBytes);
+  const std::string err_tail = file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes);
+  const bool ok = reason.empty();
+  for (std::size_t r = 0; r < tasks[t].size(); ++r) {
+    Point& p = pts[tasks[t][r]];
+    p.status = ok ? Status::Ok : Status::Failed;
+    p.reason = reason;
+    p.duration = o.seconds / static_cast<double>(tasks[t].size());
+    p.y = ok ? Eigen::VectorXd(Yt.row(static_cast<Eigen::Index>(r)).transpose()) : Eigen::VectorXd::Constant(m, kNaN);
+    Record rec;
+    rec.key = p.key;
+    rec.model = cfg.name;
+    rec.program = cfg.program_name;
+    rec.version = cfg.version;
+    for (std::size_t j = 0; j < cfg.inputs.size(); ++j) rec.inputs.emplace_back(cfg.inputs[j], p.x[static_cast<Eigen::Index>(j)]);
+    if (ok)
+      for (std::size_t j = 0; j < cfg.outputs.size(); ++j) rec.outputs.emplace_back(cfg.outputs[j], p.y[static_cast<Eigen::Index>(j)]);
+    rec.ok = ok;
+    rec.reason = reason;
+    rec.duration = p.duration;
+    rec.attempts = attempts[t];
+    rec.stdout_tail = out_tail;
+    rec.stderr_tail = err_tail;
+    rec.workdir = dirs[t];
+    ev.store().put(rec);  // committed now: a SIGKILL after this line loses nothing of this run
+  }
+}
+
+void Evaluator::Run::check_interrupt() const {
+  if (!ev.stop_check_) return;
+  const std::string why = ev.stop_check_();
+  if (!why.empty())
+    throw Interrupted(fmt::format("{}; {} finished run{} of model '{}' are stored, running the study again "
+                                  "resumes from there", why, prog.done, prog.done == 1 ? "" : "s", cfg.name));
+}
+
+// A run ended: retry it while retries are left, else store it and count it.
+void Evaluator::Run::on_done(const Outcome& o) {
+  const std::size_t t = o.id;
+  ++res.launched;
+  Eigen::MatrixXd Yt;
+  const std::string reason = failure_reason(o, Yt);
+  ++attempts[t];
+  const int allowed = cfg.retries + (cfg.on_failure == OnFailure::Retry && cfg.retries == 0 ? 2 : 0);
+  if (!reason.empty() && attempts[t] <= allowed) {
+    sched->submit(make_job(t));  // fresh work directory, same deck: same key
+    return;
+  }
+  store_task(t, o, reason, Yt);
+  ++prog.done;
+  sum_seconds += o.seconds;
+  prog.mean_seconds = sum_seconds / static_cast<double>(prog.done);
+  if (!reason.empty()) {
+    ++prog.failed;
+    if (cfg.on_failure == OnFailure::Stop) {
+      sched->stop_launching();
+      res.stopped = true;
+    }
+  }
+}
+
+void Evaluator::Run::on_tick() {
+  check_interrupt();
+  if (!progress) return;
+  prog.running = sched->running();
+  const std::size_t left = prog.total - prog.done;
+  prog.eta_seconds = prog.mean_seconds > 0
+                         ? static_cast<double>(left) * prog.mean_seconds / static_cast<double>(std::min<std::size_t>(
+                                                                                 static_cast<std::size_t>(cfg.concurrency), std::max<std::size_t>(left, 1)))
+                         : -1;
+  progress(prog, false);
+}
+
+// The result per row of X, from the points (rows with the same key share one point).
+void Evaluator::Run::fill_result(Eigen::Index n, bool launch) {
   res.Y = Eigen::MatrixXd::Constant(n, m, kNaN);
   res.status.assign(static_cast<std::size_t>(n), Status::NotRun);
   res.reason.assign(static_cast<std::size_t>(n), "");
@@ -466,7 +521,21 @@ EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, c
                                 : "not run: dry run";
     }
   }
-  return res;
+}
+
+EvalResult Evaluator::evaluate(const Eigen::MatrixXd& X, const ParseFn& parse, const ParseBatchFn& parse_batch,
+                               const ProgressFn& progress, bool launch) {
+  Run run(*this, X, parse, parse_batch, progress);
+  run.plan_tasks(launch);
+  run.name_tasks();
+  run.start_executor();
+  if (!run.tasks.empty()) {
+    for (std::size_t t = 0; t < run.tasks.size(); ++t) run.sched->submit(run.make_job(t));
+    run.sched->run([&run](const Outcome& o) { run.on_done(o); }, [&run] { run.on_tick(); });
+    if (progress) progress(run.prog, true);
+  }
+  run.fill_result(X.rows(), launch);
+  return std::move(run.res);
 }
 
 }  // namespace smi::eval

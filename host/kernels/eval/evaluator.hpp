@@ -118,6 +118,7 @@ class Evaluator {
 
  private:
   struct Point;
+  struct Run;  // one call of evaluate(): its tasks, retries, records and progress
   std::vector<Point> points_of(const Eigen::MatrixXd& X) const;
   std::string key_of(const Eigen::VectorXd& x, const std::string& deck) const;
   bool lookup(Point& p);

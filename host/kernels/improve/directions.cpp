@@ -74,10 +74,155 @@ Eigen::MatrixXd scaled_hessian(Scaled& s, const Eigen::VectorXd& c, double h) {
   return H;
 }
 
-}  // namespace
+/// The directions (columns of V, strongest first) with their curvatures; from the summaries'
+/// Jacobian also its left vectors U, singular values sv and the summaries S0 at the optimum.
+struct Basis {
+  Eigen::MatrixXd V, U;
+  Eigen::VectorXd sv, curv, S0;
+  double smax = 0.0;
+};
 
-DirectionsResult identifiability_directions(const std::vector<Parameter>& params, const Objective& f, const Eigen::VectorXd& optimum,
-                                            double value, const DirectionsOptions& opt, const Summaries& summaries) {
+/// Basis from the SVD of the summaries' Jacobian by central differences around c (2k + 1 runs).
+Basis summaries_basis(Scaled& s, const Summaries& summaries, const Eigen::VectorXd& u0, const Eigen::VectorXd& c, double h) {
+  const Eigen::Index k = u0.size();
+  Basis b;
+  b.S0 = summaries(s.theta(u0));
+  Eigen::MatrixXd J(b.S0.size(), k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    Eigen::VectorXd up = c, dn = c;
+    up[i] += h;
+    dn[i] -= h;
+    J.col(i) = (summaries(s.theta(up)) - summaries(s.theta(dn))) / (2.0 * h);
+  }
+  s.evaluations += static_cast<int>(2 * k + 1);
+  if (!J.allFinite()) throw Error("identifiability: the summaries' Jacobian at the optimum is not finite");
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  b.V = svd.matrixV();
+  b.U = svd.matrixU();
+  b.sv = Eigen::VectorXd::Zero(k);
+  b.sv.head(svd.singularValues().size()) = svd.singularValues();  // descending; zeros past the rank
+  b.curv = b.sv.array().square();
+  b.smax = b.sv[0];
+  return b;
+}
+
+/// Basis from the eigenvectors of the objective's Hessian around c.
+Basis hessian_basis(Scaled& s, const Eigen::VectorXd& c, double h) {
+  const Eigen::Index k = c.size();
+  Basis b;
+  b.V.resize(k, k);
+  b.curv.resize(k);
+  const Eigen::MatrixXd H = scaled_hessian(s, c, h);
+  if (!H.allFinite()) throw Error("identifiability: the objective's Hessian at the optimum is not finite");
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+  for (Eigen::Index j = 0; j < k; ++j) {  // ascending -> descending
+    b.V.col(j) = es.eigenvectors().col(k - 1 - j);
+    b.curv[j] = es.eigenvalues()[k - 1 - j];
+  }
+  return b;
+}
+
+/// Walks the directions of a basis from the optimum u0 (scaled units), profiling the objective.
+struct Walker {
+  Scaled& s;
+  const Summaries& summaries;
+  const DirectionsOptions& opt;
+  const Basis& b;
+  const Eigen::VectorXd& u0;
+  double value;  // the objective at the optimum
+
+  /// The point at distance t along direction d, corrected along the stronger directions (the
+  /// pseudo-inverse of the Jacobian restricted to them) to keep the summaries at the optimum's.
+  /// Weaker directions are left alone: dividing by their near-zero singular values would throw
+  /// the point across the box on noise.
+  Eigen::VectorXd node(Eigen::Index d, double t) {
+    const Eigen::Index k = u0.size();
+    Eigen::VectorXd u = (u0 + t * b.V.col(d)).cwiseMax(0.0).cwiseMin(1.0);
+    if (!summaries) return u;
+    for (int it = 0; it < opt.corrections; ++it) {
+      const Eigen::VectorXd dS = summaries(s.theta(u)) - b.S0;
+      ++s.evaluations;
+      Eigen::VectorXd step = Eigen::VectorXd::Zero(k);
+      for (Eigen::Index j = 0; j < std::min<Eigen::Index>(k, b.U.cols()); ++j)
+        if (j < d && b.sv[j] > 1e-3 * b.smax) step -= b.V.col(j) * (b.U.col(j).dot(dS) / b.sv[j]);
+      u = (u + step).cwiseMax(0.0).cwiseMin(1.0);
+    }
+    return u;
+  }
+
+  /// One side of direction d, out to `end` in `side` steps: the profile nodes go to prof; stops
+  /// once the rise passes the tolerance and bisects that crossing. Returns whether it crossed;
+  /// ok_t, ok_u: the farthest point still within the tolerance.
+  bool walk_side(Direction& dir, Eigen::Index d, double sign, double end, int side,
+                 std::vector<std::pair<double, double>>& prof, double& ok_t, Eigen::VectorXd& ok_u) {
+    double ok = 0.0, bad = 0.0;
+    bool crossed = false;
+    ok_u = u0;
+    for (int j = 1; j <= side; ++j) {
+      const double t = end * j / side;
+      const Eigen::VectorXd u = node(d, sign * t);
+      const double v = s(u);
+      prof.emplace_back(t, v);
+      dir.rise = std::max(dir.rise, v - value);
+      if (v - value > opt.tolerance) {
+        bad = t;
+        crossed = true;
+        break;
+      }
+      ok = t;
+      ok_u = u;
+    }
+    if (crossed)  // bisect the crossing for the near-optimal set
+      for (int it = 0; it < 5; ++it) {
+        const double t = 0.5 * (ok + bad);
+        const Eigen::VectorXd u = node(d, sign * t);
+        if (s(u) - value <= opt.tolerance) {
+          ok = t;
+          ok_u = u;
+        } else {
+          bad = t;
+        }
+      }
+    ok_t = ok;
+    return crossed;
+  }
+
+  /// Direction d: its loadings (largest positive), curvature, reach to the box and profile.
+  /// Walks out from the optimum towards each bound; a side stops once the rise passes the
+  /// tolerance (a determined direction needs no profile to its bounds). The farthest
+  /// within-tolerance point of each side goes to near.
+  Direction profile(Eigen::Index d, std::vector<std::pair<Eigen::VectorXd, Eigen::Index>>& near) {
+    Direction dir;
+    dir.loadings = b.V.col(d);
+    Eigen::Index big = 0;
+    dir.loadings.cwiseAbs().maxCoeff(&big);
+    const double sign = dir.loadings[big] < 0 ? -1.0 : 1.0;
+    dir.loadings *= sign;
+    dir.curvature = b.curv[d];
+    std::tie(dir.t_lower, dir.t_upper) = reach(u0, dir.loadings);
+    const int side = std::max(1, (opt.points - 1) / 2);
+    std::vector<std::pair<double, double>> prof{{0.0, value}};
+    bool determined = true;  // bounded on both sides: by a rise past the tolerance, or by the box at the optimum
+    for (double end : {dir.t_lower, dir.t_upper}) {
+      if (std::abs(end) < 1e-9) continue;
+      double ok = 0.0;
+      Eigen::VectorXd ok_u;
+      determined = walk_side(dir, d, sign, end, side, prof, ok, ok_u) && determined;
+      if (ok != 0.0) near.emplace_back(ok_u, d);
+    }
+    dir.determined = determined;
+    std::sort(prof.begin(), prof.end());
+    dir.t.resize(static_cast<Eigen::Index>(prof.size()));
+    dir.profile.resize(dir.t.size());
+    for (std::size_t j = 0; j < prof.size(); ++j) {
+      dir.t[static_cast<Eigen::Index>(j)] = prof[j].first;
+      dir.profile[static_cast<Eigen::Index>(j)] = prof[j].second;
+    }
+    return dir;
+  }
+};
+
+void check_directions_input(const std::vector<Parameter>& params, const Eigen::VectorXd& optimum, const DirectionsOptions& opt) {
   validate_parameters(params);
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   if (optimum.size() != k) throw DimensionMismatch(fmt::format("optimum has {} values for {} parameters", optimum.size(), k));
@@ -85,6 +230,30 @@ DirectionsResult identifiability_directions(const std::vector<Parameter>& params
     throw InvalidArgument(fmt::format("identifiability tolerance must be a number > 0, got {}", opt.tolerance));
   if (opt.points < 3) throw InvalidArgument(fmt::format("identifiability needs >= 3 profile points, got {}", opt.points));
   if (!(opt.step > 0.0 && opt.step <= 0.05)) throw InvalidArgument(fmt::format("identifiability step must be in (0, 0.05], got {}", opt.step));
+}
+
+/// The warning when some directions are not determined, naming the weakest by its loadings.
+void warn_undetermined(const std::vector<Parameter>& params, const DirectionsOptions& opt, DirectionsResult& r) {
+  int weak = 0;
+  for (const Direction& d : r.directions) weak += !d.determined;
+  if (weak == 0) return;
+  const Direction& d = r.directions.back();
+  std::string load;
+  for (Eigen::Index i = 0; i < d.loadings.size(); ++i)
+    if (std::abs(d.loadings[i]) >= 0.1)
+      load += fmt::format("{}{:+.3f} {}", load.empty() ? "" : " ", d.loadings[i], params[static_cast<std::size_t>(i)].name);
+  r.warnings.push_back(fmt::format("{} of {} parameter directions are not determined by the data (the objective rises by less than {:.3g} "
+                                   "along them to a bound on at least one side); the weakest: {} (scaled units). See identifiability.directions "
+                                   "and near_optimal",
+                                   weak, params.size(), opt.tolerance, load));
+}
+
+}  // namespace
+
+DirectionsResult identifiability_directions(const std::vector<Parameter>& params, const Objective& f, const Eigen::VectorXd& optimum,
+                                            double value, const DirectionsOptions& opt, const Summaries& summaries) {
+  check_directions_input(params, optimum, opt);
+  const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   Scaled s{params, f};
   Eigen::VectorXd u0(k);
   for (Eigen::Index i = 0; i < k; ++i) {
@@ -97,115 +266,12 @@ DirectionsResult identifiability_directions(const std::vector<Parameter>& params
   // (a std below 0, a lognormal mean at 0).
   const double h = opt.step;
   const Eigen::VectorXd c = u0.cwiseMax(h).cwiseMin(1.0 - h);
+  r.basis = summaries ? "summaries" : "hessian";
+  const Basis b = summaries ? summaries_basis(s, summaries, u0, c, h) : hessian_basis(s, c, h);
 
-  Eigen::MatrixXd V(k, k), U;  // directions (columns, strongest first); summaries' left vectors
-  Eigen::VectorXd sv(k), curv(k), S0;
-  if (summaries) {
-    r.basis = "summaries";
-    S0 = summaries(s.theta(u0));
-    Eigen::MatrixXd J(S0.size(), k);
-    for (Eigen::Index i = 0; i < k; ++i) {
-      Eigen::VectorXd up = c, dn = c;
-      up[i] += h;
-      dn[i] -= h;
-      J.col(i) = (summaries(s.theta(up)) - summaries(s.theta(dn))) / (2.0 * h);
-    }
-    s.evaluations += static_cast<int>(2 * k + 1);
-    if (!J.allFinite()) throw Error("identifiability: the summaries' Jacobian at the optimum is not finite");
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    V = svd.matrixV();
-    U = svd.matrixU();
-    sv.setZero();
-    sv.head(svd.singularValues().size()) = svd.singularValues();  // descending; zeros past the rank
-    curv = sv.array().square();
-  } else {
-    r.basis = "hessian";
-    const Eigen::MatrixXd H = scaled_hessian(s, c, h);
-    if (!H.allFinite()) throw Error("identifiability: the objective's Hessian at the optimum is not finite");
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
-    for (Eigen::Index j = 0; j < k; ++j) {  // ascending -> descending
-      V.col(j) = es.eigenvectors().col(k - 1 - j);
-      curv[j] = es.eigenvalues()[k - 1 - j];
-    }
-  }
-  const double smax = summaries ? sv[0] : 0.0;
-
-  // The point at distance t along direction d, corrected along the stronger directions (the
-  // pseudo-inverse of the Jacobian restricted to them) to keep the summaries at the optimum's.
-  // Weaker directions are left alone: dividing by their near-zero singular values would throw
-  // the point across the box on noise.
-  auto node = [&](Eigen::Index d, double t) -> Eigen::VectorXd {
-    Eigen::VectorXd u = (u0 + t * V.col(d)).cwiseMax(0.0).cwiseMin(1.0);
-    if (!summaries) return u;
-    for (int it = 0; it < opt.corrections; ++it) {
-      const Eigen::VectorXd dS = summaries(s.theta(u)) - S0;
-      ++s.evaluations;
-      Eigen::VectorXd step = Eigen::VectorXd::Zero(k);
-      for (Eigen::Index j = 0; j < std::min<Eigen::Index>(k, U.cols()); ++j)
-        if (j < d && sv[j] > 1e-3 * smax) step -= V.col(j) * (U.col(j).dot(dS) / sv[j]);
-      u = (u + step).cwiseMax(0.0).cwiseMin(1.0);
-    }
-    return u;
-  };
-
-  const int side = std::max(1, (opt.points - 1) / 2);
+  Walker walker{s, summaries, opt, b, u0, value};
   std::vector<std::pair<Eigen::VectorXd, Eigen::Index>> near;
-  for (Eigen::Index d = 0; d < k; ++d) {
-    Direction dir;
-    dir.loadings = V.col(d);
-    Eigen::Index big = 0;
-    dir.loadings.cwiseAbs().maxCoeff(&big);
-    const double sign = dir.loadings[big] < 0 ? -1.0 : 1.0;
-    dir.loadings *= sign;
-    dir.curvature = curv[d];
-    std::tie(dir.t_lower, dir.t_upper) = reach(u0, dir.loadings);
-    // Walk out from the optimum towards each bound; stop a side once the rise passes the
-    // tolerance (a determined direction needs no profile to its bounds).
-    std::vector<std::pair<double, double>> prof{{0.0, value}};
-    bool determined = true;  // bounded on both sides: by a rise past the tolerance, or by the box at the optimum
-    for (double end : {dir.t_lower, dir.t_upper}) {
-      if (std::abs(end) < 1e-9) continue;
-      double ok = 0.0, bad = 0.0;
-      bool crossed = false;
-      Eigen::VectorXd ok_u = u0;
-      for (int j = 1; j <= side; ++j) {
-        const double t = end * j / side;
-        const Eigen::VectorXd u = node(d, sign * t);
-        const double v = s(u);
-        prof.emplace_back(t, v);
-        dir.rise = std::max(dir.rise, v - value);
-        if (v - value > opt.tolerance) {
-          bad = t;
-          crossed = true;
-          break;
-        }
-        ok = t;
-        ok_u = u;
-      }
-      determined = determined && crossed;
-      if (crossed)  // bisect the crossing for the near-optimal set
-        for (int it = 0; it < 5; ++it) {
-          const double t = 0.5 * (ok + bad);
-          const Eigen::VectorXd u = node(d, sign * t);
-          if (s(u) - value <= opt.tolerance) {
-            ok = t;
-            ok_u = u;
-          } else {
-            bad = t;
-          }
-        }
-      if (ok != 0.0) near.emplace_back(ok_u, d);
-    }
-    dir.determined = determined;
-    std::sort(prof.begin(), prof.end());
-    dir.t.resize(static_cast<Eigen::Index>(prof.size()));
-    dir.profile.resize(dir.t.size());
-    for (std::size_t j = 0; j < prof.size(); ++j) {
-      dir.t[static_cast<Eigen::Index>(j)] = prof[j].first;
-      dir.profile[static_cast<Eigen::Index>(j)] = prof[j].second;
-    }
-    r.directions.push_back(std::move(dir));
-  }
+  for (Eigen::Index d = 0; d < k; ++d) r.directions.push_back(walker.profile(d, near));
 
   // Near-optimal set: the optimum, then the far points of every undetermined direction.
   r.near_optimal.push_back(optimum);
@@ -215,19 +281,7 @@ DirectionsResult identifiability_directions(const std::vector<Parameter>& params
     r.near_optimal.push_back(s.theta(u));
     r.near_optimal_values.push_back(s(u));
   }
-  int weak = 0;
-  for (const Direction& d : r.directions) weak += !d.determined;
-  if (weak > 0) {
-    const Direction& d = r.directions.back();
-    std::string load;
-    for (Eigen::Index i = 0; i < k; ++i)
-      if (std::abs(d.loadings[i]) >= 0.1)
-        load += fmt::format("{}{:+.3f} {}", load.empty() ? "" : " ", d.loadings[i], params[static_cast<std::size_t>(i)].name);
-    r.warnings.push_back(fmt::format("{} of {} parameter directions are not determined by the data (the objective rises by less than {:.3g} "
-                                     "along them to a bound on at least one side); the weakest: {} (scaled units). See identifiability.directions "
-                                     "and near_optimal",
-                                     weak, k, opt.tolerance, load));
-  }
+  warn_undetermined(params, opt, r);
   r.evaluations = s.evaluations;
   return r;
 }

@@ -31,6 +31,75 @@ Eigen::MatrixXd run(const propagate::MatrixModel& model, const Eigen::MatrixXd& 
 
 bool spread(const Eigen::VectorXd& y) { return y.maxCoeff() > y.minCoeff(); }
 
+// y with input j fixed at its mean or median (same base sample A: CRN), for each random input.
+std::vector<Eigen::MatrixXd> fixed_input_runs(const std::vector<propagate::Input>& inputs, const propagate::MatrixModel& model,
+                                              const Eigen::MatrixXd& A, std::size_t q, const Options& opt) {
+  std::vector<Eigen::MatrixXd> yfix(inputs.size());
+  for (std::size_t j = 0; j < inputs.size(); ++j) {
+    if (!inputs[j].dist) continue;
+    Eigen::MatrixXd Xj = A;
+    const double c = opt.fix == "mean" ? inputs[j].dist->mean() : inputs[j].dist->quantile(0.5);
+    Xj.col(static_cast<Eigen::Index>(j)).setConstant(c);
+    yfix[j] = run(model, Xj, q, ("fixed '" + inputs[j].name + "'").c_str());
+  }
+  return yfix;
+}
+
+// Sobol': the outputs at a second sample B and at A with column j taken from B (A_B^(j)).
+void sobol_runs(const std::vector<propagate::Input>& inputs, const propagate::MatrixModel& model, const Eigen::MatrixXd& A,
+                std::size_t q, const Options& opt, Eigen::MatrixXd& yB, std::vector<Eigen::MatrixXd>& yAB) {
+  const Eigen::MatrixXd B = propagate::crn_sample(inputs, opt.n, opt.seed, "sobol-B");
+  yB = run(model, B, q, "Sobol B");
+  yAB.assign(inputs.size(), Eigen::MatrixXd());
+  for (std::size_t j = 0; j < inputs.size(); ++j) {
+    if (!inputs[j].dist) continue;
+    Eigen::MatrixXd Xj = A;
+    Xj.col(static_cast<Eigen::Index>(j)) = B.col(static_cast<Eigen::Index>(j));
+    yAB[j] = run(model, Xj, q, ("Sobol A_B '" + inputs[j].name + "'").c_str());
+  }
+}
+
+// The PDF-area index e of each input for output o (y: its base-sample values) and its share ne.
+void pdf_area_indices(const std::vector<propagate::Input>& inputs, const Eigen::VectorXd& y,
+                      const std::vector<Eigen::MatrixXd>& yfix, std::size_t o, const Options& opt, Result& res) {
+  const std::size_t k = inputs.size();
+  // Common §0 grid over every sample involved, with the largest bandwidth.
+  const double hy = bandwidth_normal_reference(y);
+  double h_max = hy, lo = y.minCoeff(), hi = y.maxCoeff();
+  std::vector<double> hk(k, 0.0);
+  for (std::size_t j = 0; j < k; ++j) {
+    if (!inputs[j].dist) continue;
+    const Eigen::VectorXd yk = yfix[j].col(static_cast<Eigen::Index>(o));
+    if (!spread(yk)) continue;
+    hk[j] = bandwidth_normal_reference(yk);
+    h_max = std::max(h_max, hk[j]), lo = std::min(lo, yk.minCoeff()), hi = std::max(hi, yk.maxCoeff());
+  }
+  const Grid g = Grid::covering(lo, hi, h_max, opt.grid);
+  const Eigen::VectorXd fg = kde_pdf_grid(y, hy, g);
+  double total = 0;
+  for (std::size_t j = 0; j < k; ++j) {
+    Row& r = res.rows[j];
+    if (!inputs[j].dist) continue;  // a constant: e = 0
+    const Eigen::VectorXd yk = yfix[j].col(static_cast<Eigen::Index>(o));
+    if ((yk.array() == y.array()).all())
+      r.e = 0;  // CRN: an input the model ignores gives exactly 0
+    else if (!spread(yk))
+      r.e = 2;  // a point mass against a continuous PDF (spec §3)
+    else
+      r.e = l1_area_on_grid(kde_pdf_grid(yk, hk[j], g), fg, g);
+    total += r.e;
+  }
+  for (auto& r : res.rows) r.ne = total > 0 ? r.e / total : 0;
+}
+
+// Rows sorted by normalised index, largest first, ranked from 1.
+void rank_rows(Result& res) {
+  std::vector<Row> sorted = res.rows;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Row& a, const Row& b) { return a.ne > b.ne; });
+  for (std::size_t i = 0; i < sorted.size(); ++i) sorted[i].rank = static_cast<int>(i + 1);
+  res.rows = std::move(sorted);
+}
+
 }  // namespace
 
 std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const propagate::MatrixModel& model,
@@ -45,29 +114,10 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
   const std::size_t q = outputs.size();
   if (q == 0) throw InvalidArgument("no outputs to screen");
   const Eigen::MatrixXd yA = run([&](const Eigen::MatrixXd&) { return yA0; }, A, q, "base");
-
-  // y with input j fixed (same base sample: CRN), for each random input.
-  std::vector<Eigen::MatrixXd> yfix(k);
-  for (std::size_t j = 0; j < k; ++j) {
-    if (!inputs[j].dist) continue;
-    Eigen::MatrixXd Xj = A;
-    const double c = opt.fix == "mean" ? inputs[j].dist->mean() : inputs[j].dist->quantile(0.5);
-    Xj.col(static_cast<Eigen::Index>(j)).setConstant(c);
-    yfix[j] = run(model, Xj, q, ("fixed '" + inputs[j].name + "'").c_str());
-  }
-  // Sobol': B and A_B^(j).
+  const std::vector<Eigen::MatrixXd> yfix = fixed_input_runs(inputs, model, A, q, opt);
   Eigen::MatrixXd yB;
   std::vector<Eigen::MatrixXd> yAB(k);
-  if (opt.sobol) {
-    const Eigen::MatrixXd B = propagate::crn_sample(inputs, opt.n, opt.seed, "sobol-B");
-    yB = run(model, B, q, "Sobol B");
-    for (std::size_t j = 0; j < k; ++j) {
-      if (!inputs[j].dist) continue;
-      Eigen::MatrixXd Xj = A;
-      Xj.col(static_cast<Eigen::Index>(j)) = B.col(static_cast<Eigen::Index>(j));
-      yAB[j] = run(model, Xj, q, ("Sobol A_B '" + inputs[j].name + "'").c_str());
-    }
-  }
+  if (opt.sobol) sobol_runs(inputs, model, A, q, opt, yB, yAB);
 
   std::vector<Result> results(q);
   for (std::size_t o = 0; o < q; ++o) {
@@ -80,33 +130,7 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
     if (!spread(y)) {
       res.warnings.push_back("output '" + outputs[o] + "' is constant over the sample: all indices are 0");
     } else {
-      // Common §0 grid over every sample involved, with the largest bandwidth.
-      const double hy = bandwidth_normal_reference(y);
-      double h_max = hy, lo = y.minCoeff(), hi = y.maxCoeff();
-      std::vector<double> hk(k, 0.0);
-      for (std::size_t j = 0; j < k; ++j) {
-        if (!inputs[j].dist) continue;
-        const Eigen::VectorXd yk = yfix[j].col(static_cast<Eigen::Index>(o));
-        if (!spread(yk)) continue;
-        hk[j] = bandwidth_normal_reference(yk);
-        h_max = std::max(h_max, hk[j]), lo = std::min(lo, yk.minCoeff()), hi = std::max(hi, yk.maxCoeff());
-      }
-      const Grid g = Grid::covering(lo, hi, h_max, opt.grid);
-      const Eigen::VectorXd fg = kde_pdf_grid(y, hy, g);
-      double total = 0;
-      for (std::size_t j = 0; j < k; ++j) {
-        Row& r = res.rows[j];
-        if (!inputs[j].dist) continue;  // a constant: e = 0
-        const Eigen::VectorXd yk = yfix[j].col(static_cast<Eigen::Index>(o));
-        if ((yk.array() == y.array()).all())
-          r.e = 0;  // CRN: an input the model ignores gives exactly 0
-        else if (!spread(yk))
-          r.e = 2;  // a point mass against a continuous PDF (spec §3)
-        else
-          r.e = l1_area_on_grid(kde_pdf_grid(yk, hk[j], g), fg, g);
-        total += r.e;
-      }
-      for (auto& r : res.rows) r.ne = total > 0 ? r.e / total : 0;
+      pdf_area_indices(inputs, y, yfix, o, opt, res);
       if (opt.sobol) {
         Eigen::MatrixXd fAB(opt.n, static_cast<Eigen::Index>(k));
         for (std::size_t j = 0; j < k; ++j)
@@ -114,10 +138,7 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
         sobol_indices(y, yB.col(static_cast<Eigen::Index>(o)), fAB, opt.bootstrap, opt.level, opt.seed, res.rows);
       }
     }
-    std::vector<Row> sorted = res.rows;
-    std::stable_sort(sorted.begin(), sorted.end(), [](const Row& a, const Row& b) { return a.ne > b.ne; });
-    for (std::size_t i = 0; i < sorted.size(); ++i) sorted[i].rank = static_cast<int>(i + 1);
-    res.rows = std::move(sorted);
+    rank_rows(res);
   }
   return results;
 }

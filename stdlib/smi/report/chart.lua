@@ -398,35 +398,10 @@ local function legend(self, o, L, T, pw, ph, X, Y, ax)
   return table.concat(out)
 end
 
-doc.add[==[
-@ smi.report.chart:render() -> svg
-The chart as an SVG string (axes with readable ticks, legend, notes).
-returns: a string starting with <svg
-errors: none (values a log axis cannot show are skipped, and a note says how many)
-example:
-  local c = require("smi.report").svg.chart{title = "t"}
-  c:line({1, 2}, {3, 4})
-  print(c:render():sub(1, 4))
-]==]
-function Chart:render()
-  local o = self.opts
-  chart_count = chart_count + 1
-  local id = "smi-chart-" .. chart_count
-  local W, H = self.width, self.height
-  local xr, yr, empty = self:_ranges()
-  local ax = { x = make_axis(xr, o.xlog, o.xlim ~= nil), y = make_axis(yr, o.ylog, o.ylim ~= nil) }
-  -- left margin from the widest y tick label
-  local ylabels, wmax = {}, 0
-  for i, t in ipairs(ax.y.ticks) do
-    ylabels[i] = axis.label(t, ax.y)
-    wmax = math.max(wmax, text_width(ylabels[i], 11))
-  end
-  local notes = {}
-  local L = math.floor(wmax + 14 + (o.ylabel and 22 or 0) + 0.5)
-  local T = o.title and 34 or 14
-  local R = 18
-  local pw = W - L - R
-  -- the notes (skipped points first) decide the bottom margin
+-- Notes on what a chart leaves out: points a series cannot show (non-finite, or not positive
+-- on a log axis) and scatter points beyond the axis limits.
+local function dropped_notes(self, ax)
+  local o, notes = self.opts, {}
   for k, s in ipairs(self.series) do
     local skipped = 0
     for i = 1, s.n do
@@ -448,18 +423,39 @@ function Chart:render()
       end
     end
   end
+  return notes
+end
+
+-- The frame of a chart: axes, tick labels, notes, margins (L, T: left and top; pw, ph: the plot
+-- area's size) and the scales X, Y from data to pixels.
+local function chart_frame(self)
+  local o = self.opts
+  local W, H = self.width, self.height
+  local xr, yr, empty = self:_ranges()
+  local ax = { x = make_axis(xr, o.xlog, o.xlim ~= nil), y = make_axis(yr, o.ylog, o.ylim ~= nil) }
+  -- left margin from the widest y tick label
+  local ylabels, wmax = {}, 0
+  for i, t in ipairs(ax.y.ticks) do
+    ylabels[i] = axis.label(t, ax.y)
+    wmax = math.max(wmax, text_width(ylabels[i], 11))
+  end
+  local L = math.floor(wmax + 14 + (o.ylabel and 22 or 0) + 0.5)
+  local T = o.title and 34 or 14
+  local R = 18
+  local pw = W - L - R
+  -- the notes (skipped points first) decide the bottom margin
+  local notes = dropped_notes(self, ax)
   if empty then notes[#notes + 1] = "no finite data to plot" end
   for _, n in ipairs(self.notes) do notes[#notes + 1] = n end
   local B = 44 + 14 * #notes
   local ph = H - T - B
-  local X = axis.scale(ax.x, L, L + pw)
-  local Y = axis.scale(ax.y, T + ph, T)
+  return { o = o, W = W, H = H, ax = ax, ylabels = ylabels, notes = notes, L = L, T = T, pw = pw, ph = ph,
+           X = axis.scale(ax.x, L, L + pw), Y = axis.scale(ax.y, T + ph, T) }
+end
 
-  local out = {}
-  out[#out + 1] = draw.open(W, H, o.title or "chart")
-  out[#out + 1] = ('<defs><clipPath id="%s-clip"><rect x="%s" y="%s" width="%s" height="%s"/></clipPath></defs>')
-    :format(id, n2(L), n2(T), n2(pw), n2(ph))
-  -- grid and ticks
+-- Grid lines, the plot frame, the ticks with their labels, the title and the axis labels.
+local function axes_svg(f, out)
+  local o, ax, L, T, pw, ph, X, Y = f.o, f.ax, f.L, f.T, f.pw, f.ph, f.X, f.Y
   local g = { '<g class="grid" stroke="#e3e6ea" stroke-width="1">' }
   for _, t in ipairs(ax.x.ticks) do g[#g + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(n2(X(t)), n2(T), n2(X(t)), n2(T + ph)) end
   for _, t in ipairs(ax.y.ticks) do g[#g + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(n2(L), n2(Y(t)), n2(L + pw), n2(Y(t))) end
@@ -476,42 +472,46 @@ function Chart:render()
   tk = { '<g class="yticks" text-anchor="end" fill="#333333">' }
   for i, t in ipairs(ax.y.ticks) do
     tk[#tk + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s" stroke="#9aa3ad"/>'):format(n2(L - 4), n2(Y(t)), n2(L), n2(Y(t)))
-    tk[#tk + 1] = text(L - 7, Y(t) + 4, ylabels[i], { class = "tick" })
+    tk[#tk + 1] = text(L - 7, Y(t) + 4, f.ylabels[i], { class = "tick" })
   end
   tk[#tk + 1] = "</g>"
   out[#out + 1] = table.concat(tk)
   -- titles and axis labels
-  if o.title then out[#out + 1] = draw.title(W, o.title) end
+  if o.title then out[#out + 1] = draw.title(f.W, o.title) end
   if o.xlabel then out[#out + 1] = text(L + pw / 2, T + ph + 36, o.xlabel, { ["text-anchor"] = "middle", ["font-size"] = 12, fill = "#1f2933", class = "xlabel" }) end
   if o.ylabel then
     out[#out + 1] = text(0, 0, o.ylabel, { ["text-anchor"] = "middle", ["font-size"] = 12, fill = "#1f2933", class = "ylabel",
       transform = ("translate(%s,%s) rotate(-90)"):format(n2(15), n2(T + ph / 2)) })
   end
-  -- data, clipped to the plot area
-  out[#out + 1] = ('<g clip-path="url(#%s-clip)">'):format(id)
-  for k, s in ipairs(self.series) do
-    if s.kind == "band" then
-      -- one closed polygon per run of finite points: along the lower curve, back along the upper
-      local polys, run = {}, {}
-      local function flush()
-        if #run >= 2 then
-          local d = {}
-          for j, i in ipairs(run) do d[#d + 1] = (j == 1 and "M" or "L") .. n2(X(s.x[i])) .. "," .. n2(Y(s.y[i])) end
-          for j = #run, 1, -1 do d[#d + 1] = "L" .. n2(X(s.x[run[j]])) .. "," .. n2(Y(s.y2[run[j]])) end
-          polys[#polys + 1] = table.concat(d) .. "Z"
-        end
-        run = {}
-      end
-      for i = 1, s.n do
-        if usable(s.x[i], o.xlog) and usable(s.y[i], o.ylog) and usable(s.y2[i], o.ylog) then run[#run + 1] = i else flush() end
-      end
-      flush()
-      if #polys > 0 then
-        out[#out + 1] = xml.el("path", { class = "series band", ["data-series"] = k, d = table.concat(polys), fill = s.color,
-          ["fill-opacity"] = s.opts.opacity or 0.18, stroke = "none" })
-      end
+end
+
+-- A band series: one closed polygon per run of finite points, along the lower curve and back
+-- along the upper.
+local function band_svg(f, k, s, out)
+  local o, X, Y = f.o, f.X, f.Y
+  local polys, run = {}, {}
+  local function flush()
+    if #run >= 2 then
+      local d = {}
+      for j, i in ipairs(run) do d[#d + 1] = (j == 1 and "M" or "L") .. n2(X(s.x[i])) .. "," .. n2(Y(s.y[i])) end
+      for j = #run, 1, -1 do d[#d + 1] = "L" .. n2(X(s.x[run[j]])) .. "," .. n2(Y(s.y2[run[j]])) end
+      polys[#polys + 1] = table.concat(d) .. "Z"
     end
+    run = {}
   end
+  for i = 1, s.n do
+    if usable(s.x[i], o.xlog) and usable(s.y[i], o.ylog) and usable(s.y2[i], o.ylog) then run[#run + 1] = i else flush() end
+  end
+  flush()
+  if #polys > 0 then
+    out[#out + 1] = xml.el("path", { class = "series band", ["data-series"] = k, d = table.concat(polys), fill = s.color,
+      ["fill-opacity"] = s.opts.opacity or 0.18, stroke = "none" })
+  end
+end
+
+-- The marks: the diagonal y = x, horizontal and vertical lines with their labels.
+local function marks_svg(self, f, out)
+  local ax, L, T, pw, ph, X, Y = f.ax, f.L, f.T, f.pw, f.ph, f.X, f.Y
   for _, m in ipairs(self.marks) do
     local mo = m.opts
     local color = mo.color or (m.kind == "diagonal" and "#7b8794" or "#b42318")
@@ -532,19 +532,33 @@ function Chart:render()
       if mo.label then out[#out + 1] = text(X(m.value) + 4, T + 14, mo.label, { fill = color, class = "mark-label", stroke = "#ffffff", ["stroke-width"] = 3, ["paint-order"] = "stroke" }) end
     end
   end
+end
+
+-- A rug series: one short tick per point on the x axis.
+local function rug_svg(f, k, s, out)
+  local ticks = { ('<g class="series rug" data-series="%d" stroke="%s" stroke-width="1.5">'):format(k, s.color) }
+  for i = 1, s.n do
+    local x = s.x[i]
+    if usable(x, f.o.xlog) then
+      ticks[#ticks + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(n2(f.X(x)), n2(f.T + f.ph), n2(f.X(x)), n2(f.T + f.ph - 10))
+    end
+  end
+  ticks[#ticks + 1] = "</g>"
+  out[#out + 1] = table.concat(ticks)
+end
+
+-- The data drawn inside the plot area, clipped to it: bands below the marks, lines and rugs above.
+local function clipped_data_svg(self, f, id, out)
+  out[#out + 1] = ('<g clip-path="url(#%s-clip)">'):format(id)
+  for k, s in ipairs(self.series) do
+    if s.kind == "band" then band_svg(f, k, s, out) end
+  end
+  marks_svg(self, f, out)
   for k, s in ipairs(self.series) do
     if s.kind == "rug" then
-      local ticks = { ('<g class="series rug" data-series="%d" stroke="%s" stroke-width="1.5">'):format(k, s.color) }
-      for i = 1, s.n do
-        local x = s.x[i]
-        if usable(x, o.xlog) then
-          ticks[#ticks + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(n2(X(x)), n2(T + ph), n2(X(x)), n2(T + ph - 10))
-        end
-      end
-      ticks[#ticks + 1] = "</g>"
-      out[#out + 1] = table.concat(ticks)
+      rug_svg(f, k, s, out)
     elseif s.kind ~= "scatter" and s.kind ~= "band" then
-      local d = series_path(s, X, Y, o, ax)
+      local d = series_path(s, f.X, f.Y, f.o, f.ax)
       if d ~= "" then
         out[#out + 1] = xml.el("path", { class = "series " .. s.kind, ["data-series"] = k, d = d, fill = "none", stroke = s.color,
           ["stroke-width"] = s.opts.width or 2, ["stroke-dasharray"] = s.dash, ["stroke-linejoin"] = "round" })
@@ -552,28 +566,51 @@ function Chart:render()
     end
   end
   out[#out + 1] = "</g>"
-  -- markers are not clipped (a point on the frame stays whole); points beyond limits set by
-  -- the caller are left out and noted
+end
+
+-- Scatter markers are not clipped (a point on the frame stays whole); points beyond limits set
+-- by the caller are left out (chart_frame's notes count them).
+local function scatter_svg(self, f, out)
+  local o, ax = f.o, f.ax
   for k, s in ipairs(self.series) do
     if s.kind == "scatter" then
-      local pts, outside = { ('<g class="series scatter" data-series="%d" fill-opacity="0.85">'):format(k) }, 0
+      local pts = { ('<g class="series scatter" data-series="%d" fill-opacity="0.85">'):format(k) }
       for i = 1, s.n do
         local x, y = s.x[i], s.y[i]
-        if usable(x, o.xlog) and usable(y, o.ylog) then
-          if x < ax.x.lo or x > ax.x.hi or y < ax.y.lo or y > ax.y.hi then
-            outside = outside + 1
-          else
-            pts[#pts + 1] = marker_svg(s.marker, X(x), Y(y), s.opts.size or 3.5, s.color)
-          end
+        if usable(x, o.xlog) and usable(y, o.ylog) and not (x < ax.x.lo or x > ax.x.hi or y < ax.y.lo or y > ax.y.hi) then
+          pts[#pts + 1] = marker_svg(s.marker, f.X(x), f.Y(y), s.opts.size or 3.5, s.color)
         end
       end
       pts[#pts + 1] = "</g>"
       out[#out + 1] = table.concat(pts)
     end
   end
-  out[#out + 1] = legend(self, o, L, T, pw, ph, X, Y, ax)
-  for i, n in ipairs(notes) do
-    out[#out + 1] = draw.note(8, T + ph + 52 + 14 * (i - 1), n)
+end
+
+doc.add[==[
+@ smi.report.chart:render() -> svg
+The chart as an SVG string (axes with readable ticks, legend, notes).
+returns: a string starting with <svg
+errors: none (values a log axis cannot show are skipped, and a note says how many)
+example:
+  local c = require("smi.report").svg.chart{title = "t"}
+  c:line({1, 2}, {3, 4})
+  print(c:render():sub(1, 4))
+]==]
+function Chart:render()
+  chart_count = chart_count + 1
+  local id = "smi-chart-" .. chart_count
+  local f = chart_frame(self)
+  local out = {}
+  out[#out + 1] = draw.open(f.W, f.H, self.opts.title or "chart")
+  out[#out + 1] = ('<defs><clipPath id="%s-clip"><rect x="%s" y="%s" width="%s" height="%s"/></clipPath></defs>')
+    :format(id, n2(f.L), n2(f.T), n2(f.pw), n2(f.ph))
+  axes_svg(f, out)
+  clipped_data_svg(self, f, id, out)
+  scatter_svg(self, f, out)
+  out[#out + 1] = legend(self, f.o, f.L, f.T, f.pw, f.ph, f.X, f.Y, f.ax)
+  for i, n in ipairs(f.notes) do
+    out[#out + 1] = draw.note(8, f.T + f.ph + 52 + 14 * (i - 1), n)
   end
   out[#out + 1] = "</svg>"
   return table.concat(out, "\n")

@@ -37,6 +37,32 @@ local function text_of(s, i, j)
   end))
 end
 
+-- The start tag at s[i] ("<name attr='v' ...>" or ".../>"): the element (name, attrs, empty,
+-- pos) and the index just past the tag.
+local function start_tag(s, i)
+  local name = s:match(NAME, i + 1) or fail(s, i, "bad start tag (a raw '<' in text?)")
+  local el = { name = name, attrs = {}, children = {}, pos = i }
+  local j = i + 1 + #name
+  while true do
+    local ws, after = s:match("^(%s*)()", j)
+    j = after
+    local c = s:sub(j, j)
+    if c == ">" then j = j + 1 break end
+    if s:sub(j, j + 1) == "/>" then el.empty = true j = j + 2 break end
+    if c == "" then fail(s, i, "unterminated start tag <" .. name) end
+    if ws == "" then fail(s, j, "attributes of <" .. name .. "> must be separated by spaces") end
+    local an = s:match(NAME, j) or fail(s, j, "bad attribute in <" .. name .. ">")
+    j = j + #an
+    local q, vstart = s:match("^%s*=%s*([\"'])()", j)
+    if not q then fail(s, j, ("attribute %s of <%s> needs a quoted value"):format(an, name)) end
+    local vend = s:find(q, vstart, true) or fail(s, j, "unterminated attribute value")
+    if el.attrs[an] ~= nil then fail(s, j, ("duplicate attribute %s in <%s>"):format(an, name)) end
+    el.attrs[an] = text_of(s, vstart, vend - 1)
+    j = vend + 1
+  end
+  return el, j
+end
+
 --- Parses `s` and returns the root element; raises "line N: problem" when not well-formed.
 -- An HTML5 "<!DOCTYPE html>" prologue is accepted.
 function M.parse(s)
@@ -85,26 +111,8 @@ function M.parse(s)
       stack[#stack] = nil
       i = e
     else
-      local name = s:match(NAME, i + 1) or fail(s, i, "bad start tag (a raw '<' in text?)")
-      local el = { name = name, attrs = {}, children = {}, pos = i }
-      local j = i + 1 + #name
-      while true do
-        local ws, after = s:match("^(%s*)()", j)
-        j = after
-        local c = s:sub(j, j)
-        if c == ">" then j = j + 1 break end
-        if s:sub(j, j + 1) == "/>" then el.empty = true j = j + 2 break end
-        if c == "" then fail(s, i, "unterminated start tag <" .. name) end
-        if ws == "" then fail(s, j, "attributes of <" .. name .. "> must be separated by spaces") end
-        local an = s:match(NAME, j) or fail(s, j, "bad attribute in <" .. name .. ">")
-        j = j + #an
-        local q, vstart = s:match("^%s*=%s*([\"'])()", j)
-        if not q then fail(s, j, ("attribute %s of <%s> needs a quoted value"):format(an, name)) end
-        local vend = s:find(q, vstart, true) or fail(s, j, "unterminated attribute value")
-        if el.attrs[an] ~= nil then fail(s, j, ("duplicate attribute %s in <%s>"):format(an, name)) end
-        el.attrs[an] = text_of(s, vstart, vend - 1)
-        j = vend + 1
-      end
+      local el, j = start_tag(s, i)
+      local name = el.name
       if root and #stack == 0 then fail(s, i, "a second root element <" .. name .. ">") end
       local parent = top()
       parent.children[#parent.children + 1] = el
