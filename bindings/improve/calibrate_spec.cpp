@@ -395,12 +395,12 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
 OptimizerOptions read_optimizer(lua::Options& o, std::uint64_t seed) {
   OptimizerOptions opt;
   opt.method = parse_method(o.string("method", "slsqp"));
-  opt.multistart = static_cast<int>(o.integer("multistart", 1));
-  opt.maxeval = static_cast<int>(o.integer("maxeval", 500));
-  opt.xtol_rel = o.number("xtol_rel", 1e-6);
-  opt.ftol_abs = o.number("ftol_abs", 1e-8);
-  opt.fd_step = o.number("fd_step", 1e-4);
-  opt.initial_step = o.number("initial_step", 0.1);
+  opt.multistart = static_cast<int>(o.integer("multistart", opt.multistart));
+  opt.maxeval = static_cast<int>(o.integer("maxeval", opt.maxeval));
+  opt.xtol_rel = o.number("xtol_rel", opt.xtol_rel);
+  opt.ftol_abs = o.number("ftol_abs", opt.ftol_abs);
+  opt.fd_step = o.number("fd_step", opt.fd_step);
+  opt.initial_step = o.number("initial_step", opt.initial_step);
   opt.seed = seed;
   return opt;
 }
@@ -443,15 +443,15 @@ void read_model_form(lua_State* L, int idx, lua::Options& o, CalibrateSpec& s, s
   if (o.has("parameters"))
     throw InvalidArgument("with a model, the calibrated parameters are the input ranges: give mean/std as {lower, upper, start}");
   s.statistical = true;
-  s.stat.n = static_cast<Eigen::Index>(o.integer("n", 2000));
+  s.stat.n = static_cast<Eigen::Index>(o.integer("n", s.stat.n));
   s.stat.seed = seed;
   const std::string crn = o.string("crn", "random");
   if (crn == "random") s.stat.crn = CrnKind::random;
   else if (crn == "quantiles") s.stat.crn = CrnKind::quantiles;
   else throw InvalidArgument(fmt::format("crn must be \"random\" or \"quantiles\", got \"{}\"", crn));
-  s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", 4001));
-  s.stat.bandwidth = o.string("bandwidth", "silverman");
-  s.stat.threads = static_cast<int>(o.integer("threads", 1));
+  s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", s.stat.grid_nodes));
+  s.stat.bandwidth = o.string("bandwidth", s.stat.bandwidth);
+  s.stat.threads = static_cast<int>(o.integer("threads", s.stat.threads));
   read_model(L, idx, s);
   read_inputs(L, idx, s);
   read_data(L, idx, s);
@@ -472,15 +472,16 @@ void read_identifiability(lua_State* L, int idx, CalibrateSpec& s) {
   } else if (it == LUA_TTABLE) {
     lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
     io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step", "directions"});
-    s.identifiability_directions = io.boolean("directions", true);
-    s.ident.points = static_cast<int>(io.integer("points", 11));
+    s.identifiability_directions = io.boolean("directions", s.identifiability_directions);
+    s.ident.points = static_cast<int>(io.integer("points", s.ident.points));
     s.directions.points = s.ident.points;
-    s.directions_tolerance = io.number("tolerance", 0.0);
+    s.directions_tolerance = io.number("tolerance", s.directions_tolerance);
     if (io.has("tolerance") && !(s.directions_tolerance > 0.0))
       throw InvalidArgument(fmt::format("identifiability.tolerance must be > 0, got {}", s.directions_tolerance));
-    s.directions.step = io.number("step", 1e-3);
-    s.ident.rel_tol = io.number("rel_tol", 0.01);
-    s.ident.abs_tol = io.number("abs_tol", 0.0);
+    // the kernel's step whether identifiability is true or a table (a table's own 1e-3 differed)
+    s.directions.step = io.number("step", s.directions.step);
+    s.ident.rel_tol = io.number("rel_tol", s.ident.rel_tol);
+    s.ident.abs_tol = io.number("abs_tol", s.ident.abs_tol);
   } else if (it != LUA_TNIL) {
     throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
@@ -501,9 +502,9 @@ void read_bootstrap(lua_State* L, int idx, CalibrateSpec& s, std::uint64_t seed)
     } else {
       lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
       bo.check_known({"replicates", "level", "seed", "maxeval", "warm", "multistart"});
-      b.warm_start = bo.boolean("warm", false);
-      b.replicates = static_cast<int>(bo.integer("replicates", 100));
-      b.level = bo.number("level", 0.95);
+      b.warm_start = bo.boolean("warm", b.warm_start);
+      b.replicates = static_cast<int>(bo.integer("replicates", b.replicates));
+      b.level = bo.number("level", b.level);
       b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
       b.optimizer = s.optimizer;
       b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
@@ -538,7 +539,7 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
         throw InvalidArgument(fmt::format("intervals.observations (the number of data of the likelihood) must be an integer >= 1 and goes with "
                                           "level, not delta; got {}", observations));
       if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
-      s.interval_level = io.number("level", 0.9);
+      s.interval_level = io.number("level", s.interval_level);
       has_delta = io.has("delta");
       if (has_delta) {
         po.delta = io.number("delta", 1.0);
@@ -581,12 +582,12 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   else read_model_form(L, idx, o, s, seed);
 
   read_priors(L, idx, s);
-  s.overlap_start = o.boolean("overlap_start", true);
-  s.moment_start = o.boolean("moment_start", false);
-  s.gradient = o.string("gradient", "auto");
+  s.overlap_start = o.boolean("overlap_start", s.overlap_start);
+  s.moment_start = o.boolean("moment_start", s.moment_start);
+  s.gradient = o.string("gradient", s.gradient);
   if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
     throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
-  s.prior_weight = o.number("prior_weight", 1.0);
+  s.prior_weight = o.number("prior_weight", s.prior_weight);
   if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
     throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
 
