@@ -97,78 +97,112 @@ void report(const char* key, const Run& run) {
   std::printf("\n");
 }
 
-}  // namespace
+/// Part 1's problem: a ~ N(5, 0.3), b ~ N(2, 0.2) observed through y1 = a + b², y2 = 3a − b
+/// (60 data each), 4 parameters, the analytic model and its Jacobian (counted).
+struct AnalyticProblem {
+  ResponseSpec r1, r2;
+  std::vector<Parameter> p{{"a.mean", 3, 7, 4.2}, {"a.std", 0.05, 1, 0.6}, {"b.mean", 1, 3, 2.4}, {"b.std", 0.05, 1, 0.5}};
+  std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::normal, 0, 0, 2, 3}};
+  StatisticalOptions so;
 
-int main(int argc, char** argv) {
-  const std::string dir = argc > 1 ? argv[1] : ".";
-  // ---- 1. analytic model, 4 parameters
-  if (!(argc > 2 && std::string(argv[2]) == "profile")) {
+  AnalyticProblem() {
     smi::Rng g(2026);
     const Eigen::VectorXd a = g.normal(60, 5.0, 0.3), b = g.normal(60, 2.0, 0.2);
-    ResponseSpec r1, r2;
     r1.name = "y1";
     r1.data = (a.array() + b.array().square()).matrix();
     r2.name = "y2";
     r2.data = (3 * a.array() - b.array()).matrix();
-    std::vector<Parameter> p{{"a.mean", 3, 7, 4.2}, {"a.std", 0.05, 1, 0.6}, {"b.mean", 1, 3, 2.4}, {"b.std", 0.05, 1, 0.5}};
-    std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::normal, 0, 0, 2, 3}};
-    StatisticalOptions so;
     so.n = 1000;
     so.grid_nodes = 2001;
     so.seed = 1;
-    auto model = [](const Eigen::MatrixXd& X) {
-      Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = (X.col(0).array() + X.col(1).array().square()).matrix();
-      Y.col(1) = (3 * X.col(0).array() - X.col(1).array()).matrix();
-      return Y;
-    };
-    StatisticalObjective obj(in, {r1, r2}, p, model, so);
-    obj.set_model_jacobian([](const Eigen::MatrixXd& X) {
-      ++g_jacobian_runs;
-      Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(X.rows(), 2), J2 = J1;
-      J1.col(0).setOnes();
-      J1.col(1) = 2 * X.col(1);
-      J2.col(0).setConstant(3);
-      J2.col(1).setConstant(-1);
-      return std::vector<Eigen::MatrixXd>{J1, J2};
-    });
-    Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
-    OptimizerOptions o;
-    o.xtol_rel = 1e-10;
-    o.ftol_abs = 1e-12;
-    o.maxeval = 2000;
-    OptimizerOptions oa = o;
-    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) {
-      ++g_gradient_calls;
-      return obj.value_and_gradient(t, gr);
-    };
-    report("analytic4", timed(3, p, f, oa, obj));
-    report("differences4", timed(1, p, f, o, obj));
-    // The default tolerances of smi.calibrate (xtol_rel 1e-6, ftol_abs 1e-8).
-    OptimizerOptions od;
-    od.gradient = oa.gradient;
-    report("analytic4default", timed(3, p, f, od, obj));
-    // A moment-matching start (Levenberg-Marquardt on the responses' means and sds) first.
-    od.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
-    report("analytic4moments", timed(3, p, f, od, obj));
-    OptimizerOptions ol = od;  // and a looser xtol_rel (1e-4 of the scaled box)
-    ol.xtol_rel = 1e-4;
-    report("analytic4momentsloose", timed(3, p, f, ol, obj));
-    od.gradient = {};
-    od.prepare_start = {};
-    report("differences4default", timed(1, p, f, od, obj));
-    write(dir + "/z.txt", obj.crn());
-    write(dir + "/y1.txt", r1.data);
-    write(dir + "/y2.txt", r2.data);
-    Eigen::MatrixXd grids(2, 3), box(4, 3);
-    for (int j = 0; j < 2; ++j) grids.row(j) << obj.responses()[j].grid->lo, obj.responses()[j].grid->hi, static_cast<double>(obj.responses()[j].grid->n);
-    for (int i = 0; i < 4; ++i) box.row(i) << p[i].lower, p[i].upper, p[i].start;
-    write(dir + "/grids.txt", grids);
-    write(dir + "/box.txt", box);
   }
-  // ---- 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
-  if (!(argc > 2 && std::string(argv[2]) == "quick")) {  // "profile": part 2's evaluation cost only
-    const int k = 5;
+
+  static Eigen::MatrixXd model(const Eigen::MatrixXd& X) {
+    Eigen::MatrixXd Y(X.rows(), 2);
+    Y.col(0) = (X.col(0).array() + X.col(1).array().square()).matrix();
+    Y.col(1) = (3 * X.col(0).array() - X.col(1).array()).matrix();
+    return Y;
+  }
+
+  static std::vector<Eigen::MatrixXd> jacobian(const Eigen::MatrixXd& X) {
+    ++g_jacobian_runs;
+    Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(X.rows(), 2), J2 = J1;
+    J1.col(0).setOnes();
+    J1.col(1) = 2 * X.col(1);
+    J2.col(0).setConstant(3);
+    J2.col(1).setConstant(-1);
+    return std::vector<Eigen::MatrixXd>{J1, J2};
+  }
+};
+
+/// The objective's value and analytic gradient as the optimiser's gradient, counting its calls.
+ObjectiveGradient counted_gradient(const StatisticalObjective& obj) {
+  return [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) {
+    ++g_gradient_calls;
+    return obj.value_and_gradient(t, gr);
+  };
+}
+
+/// Part 1's runs: tight tolerances (analytic, differences), then smi.calibrate's defaults
+/// (xtol_rel 1e-6, ftol_abs 1e-8) analytic, with the moment-matching start (Levenberg-Marquardt
+/// on the responses' means and sds), with that start and a looser xtol_rel (1e-4 of the scaled
+/// box), and by differences.
+void run_analytic_problem(const AnalyticProblem& ap, const StatisticalObjective& obj) {
+  const std::vector<Parameter>& p = ap.p;
+  Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+  OptimizerOptions o;
+  o.xtol_rel = 1e-10;
+  o.ftol_abs = 1e-12;
+  o.maxeval = 2000;
+  OptimizerOptions oa = o;
+  oa.gradient = counted_gradient(obj);
+  report("analytic4", timed(3, p, f, oa, obj));
+  report("differences4", timed(1, p, f, o, obj));
+  OptimizerOptions od;
+  od.gradient = oa.gradient;
+  report("analytic4default", timed(3, p, f, od, obj));
+  od.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+  report("analytic4moments", timed(3, p, f, od, obj));
+  OptimizerOptions ol = od;
+  ol.xtol_rel = 1e-4;
+  report("analytic4momentsloose", timed(3, p, f, ol, obj));
+  od.gradient = {};
+  od.prepare_start = {};
+  report("differences4default", timed(1, p, f, od, obj));
+}
+
+/// What the SciPy peer reads: the CRN matrix, the data, the grids (lo, hi, nodes) and the box
+/// (lower, upper, start per parameter).
+void write_peer_files(const std::string& dir, const AnalyticProblem& ap, const StatisticalObjective& obj) {
+  write(dir + "/z.txt", obj.crn());
+  write(dir + "/y1.txt", ap.r1.data);
+  write(dir + "/y2.txt", ap.r2.data);
+  Eigen::MatrixXd grids(2, 3), box(4, 3);
+  for (int j = 0; j < 2; ++j) grids.row(j) << obj.responses()[j].grid->lo, obj.responses()[j].grid->hi, static_cast<double>(obj.responses()[j].grid->n);
+  for (int i = 0; i < 4; ++i) box.row(i) << ap.p[i].lower, ap.p[i].upper, ap.p[i].start;
+  write(dir + "/grids.txt", grids);
+  write(dir + "/box.txt", box);
+}
+
+/// Part 2's problem: 5 inputs in a box, two smooth responses with Kriging surrogates fitted on a
+/// 150-point random design, 40 synthetic data from the true functions at the true distributions,
+/// and 10 parameters (each input's mean and std) with starts off the truth.
+struct TrialProblem {
+  static constexpr int k = 5;
+  smi::kriging::Model k1, k2;
+  ResponseSpec r1, r2;
+  std::vector<Parameter> p;
+  std::vector<InputSpec> in;
+  StatisticalOptions so;
+
+  static Eigen::VectorXd f1(const Eigen::MatrixXd& X) {
+    return Eigen::VectorXd((X.col(0).array() * X.col(1).array() + X.col(2).array().sqrt() * 2 + X.col(3).array() * X.col(4).array()).matrix());
+  }
+  static Eigen::VectorXd f2(const Eigen::MatrixXd& X) {
+    return Eigen::VectorXd((X.col(1).array() / X.col(2).array() * 10 + X.col(4).array().log() * 3 - X.col(0).array() * X.col(3).array()).matrix());
+  }
+
+  TrialProblem() {
     Eigen::MatrixXd lo(1, k), hi(1, k);
     lo << 0.5, 1.0, 2.0, 0.2, 3.0;
     hi << 1.5, 3.0, 4.0, 0.8, 7.0;
@@ -176,115 +210,130 @@ int main(int argc, char** argv) {
     const Eigen::MatrixXd U = g.uniform_matrix(150, k);
     Eigen::MatrixXd D(150, k);
     for (int j = 0; j < k; ++j) D.col(j) = (lo(0, j) + (hi(0, j) - lo(0, j)) * U.col(j).array()).matrix();
-    auto f1 = [](const Eigen::MatrixXd& X) {
-      return Eigen::VectorXd((X.col(0).array() * X.col(1).array() + X.col(2).array().sqrt() * 2 + X.col(3).array() * X.col(4).array()).matrix());
-    };
-    auto f2 = [](const Eigen::MatrixXd& X) {
-      return Eigen::VectorXd((X.col(1).array() / X.col(2).array() * 10 + X.col(4).array().log() * 3 - X.col(0).array() * X.col(3).array()).matrix());
-    };
     smi::kriging::FitOptions fo;
-    const smi::kriging::Model k1 = smi::kriging::fit(D, f1(D), fo), k2 = smi::kriging::fit(D, f2(D), fo);
+    k1 = smi::kriging::fit(D, f1(D), fo);
+    k2 = smi::kriging::fit(D, f2(D), fo);
     // Truth and synthetic data (the true functions, not the surrogates).
     Eigen::VectorXd mu(k), sd(k);
     mu << 1.0, 2.0, 3.0, 0.5, 5.0;
     sd << 0.08, 0.15, 0.2, 0.04, 0.4;
     Eigen::MatrixXd Xd(40, k);
     for (int j = 0; j < k; ++j) Xd.col(j) = g.normal(40, mu[j], sd[j]);
-    ResponseSpec r1, r2;
     r1.name = "mode1";
     r1.data = f1(Xd);
     r2.name = "mode4";
     r2.data = f2(Xd);
-    std::vector<Parameter> p;
-    std::vector<InputSpec> in;
     for (int j = 0; j < k; ++j) {
       const double span = hi(0, j) - lo(0, j);
       p.push_back({fmt::format("x{}.mean", j + 1), lo(0, j) + 0.2 * span, hi(0, j) - 0.2 * span, mu[j] + 0.1 * span});
       p.push_back({fmt::format("x{}.std", j + 1), 0.01 * span, 0.25 * span, 0.1 * span});
       in.push_back({fmt::format("x{}", j + 1), InputFamily::normal, 0, 0, 2 * j, 2 * j + 1});
     }
-    StatisticalOptions so;
     so.n = 2000;
     so.grid_nodes = 4001;
     so.seed = 3;
-    // One thread per evaluation: the starts run side by side instead (profile: timed in the
-    // thread's CPU time, steadier than wall time on a shared machine).
-    const bool profile = argc > 2 && std::string(argv[2]) == "profile";
-    const int nt = 1;
-    so.threads = nt;
-    auto model = [&](const Eigen::MatrixXd& X) {
+    so.threads = 1;  // one thread per evaluation: the starts run side by side instead
+  }
+};
+
+/// Cost of one evaluation's parts at the start, CPU seconds of one thread (best of 30 each;
+/// the thread's CPU time is steadier than wall time on a shared machine).
+void profile_evaluation(const TrialProblem& tp, const StatisticalObjective& obj, const Model& model) {
+  Eigen::VectorXd t0(static_cast<Eigen::Index>(tp.p.size()));
+  for (std::size_t i = 0; i < tp.p.size(); ++i) t0[static_cast<Eigen::Index>(i)] = tp.p[i].start;
+  auto best = [](auto&& fn) {
+    double b = 1e300;
+    for (int r = 0; r < 30; ++r) {
+      const double a = cpu_now();
+      fn();
+      b = std::min(b, cpu_now() - a);
+    }
+    return b;
+  };
+  const Eigen::MatrixXd X = obj.inputs_at(t0);
+  std::printf("profile_inputs %.6f\n", best([&] { (void)obj.inputs_at(t0); }));
+  std::printf("profile_model %.6f\n", best([&] { (void)model(X); }));
+  std::printf("profile_jacobian %.6f\n", best([&] {
+    (void)smi::kriging::predict_gradient(tp.k1, X, 1);
+    (void)smi::kriging::predict_gradient(tp.k2, X, 1);
+  }));
+  std::printf("profile_value %.6f\n", best([&] { (void)obj(t0); }));
+  Eigen::VectorXd gr;
+  std::printf("profile_value_and_gradient %.6f\n", best([&] { (void)obj.value_and_gradient(t0, gr); }));
+}
+
+/// A multistart run's report plus agreement where the data can tell: the starts whose objective
+/// is within the near-optimal tolerance of the best (smi.calibrate's PR default, 0.01 per
+/// response) and the largest difference of their predicted responses' summaries (four
+/// standardised Hermite moments per response, unit variance per datum: differences far below
+/// 1/sqrt(40) are invisible to the data).
+void report_agreement(const char* key, const Run& run, const StatisticalObjective& obj) {
+  report(key, run);
+  std::printf("%s_agree %d\n%s_optima %zu\n%s_converged_starts", key, run.r.starts_agree ? 1 : 0, key, run.r.optima.size(), key);
+  for (const auto& st : run.r.starts) std::printf(" %s", st.status.c_str());
+  std::printf("\n%s_start_values", key);
+  for (const auto& st : run.r.starts) std::printf(" %.8f", st.value);
+  const Eigen::VectorXd best = obj.summaries(run.r.theta);
+  int near = 0;
+  double gap = 0.0, dsum = 0.0;
+  for (const auto& st : run.r.starts) {
+    if (st.value - run.r.value > 0.02) continue;
+    ++near;
+    gap = std::max(gap, st.value - run.r.value);
+    dsum = std::max(dsum, (obj.summaries(st.theta) - best).cwiseAbs().maxCoeff());
+  }
+  std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
+}
+
+/// Part 2's runs: 4 starts (the study's budget of 300 each) side by side on 2 threads (model,
+/// KDE and Jacobian on one thread each), analytic, analytic with the moment start, differences.
+void run_trial_problem(const TrialProblem& tp, const StatisticalObjective& obj) {
+  Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+  OptimizerOptions o;
+  o.multistart = 4;
+  o.seed = 11;
+  o.maxeval = 300;
+  o.start_threads = 2;
+  OptimizerOptions oa = o;
+  oa.gradient = counted_gradient(obj);
+  OptimizerOptions om = oa;
+  om.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+  report_agreement("trial_analytic", timed(1, tp.p, f, oa, obj), obj);
+  report_agreement("trial_moments", timed(1, tp.p, f, om, obj), obj);
+  report_agreement("trial_differences", timed(1, tp.p, f, o, obj), obj);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string dir = argc > 1 ? argv[1] : ".";
+  const std::string mode = argc > 2 ? argv[2] : "";
+  if (mode != "profile") {  // 1. analytic model, 4 parameters
+    const AnalyticProblem ap;
+    StatisticalObjective obj(ap.in, {ap.r1, ap.r2}, ap.p, &AnalyticProblem::model, ap.so);
+    obj.set_model_jacobian(&AnalyticProblem::jacobian);
+    run_analytic_problem(ap, obj);
+    write_peer_files(dir, ap, obj);
+  }
+  if (mode != "quick") {  // 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
+    const TrialProblem tp;
+    const int nt = tp.so.threads;
+    const Model model = [&tp, nt](const Eigen::MatrixXd& X) {
       Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::kriging::predict_mean(k1, X, nt);
-      Y.col(1) = smi::kriging::predict_mean(k2, X, nt);
+      Y.col(0) = smi::kriging::predict_mean(tp.k1, X, nt);
+      Y.col(1) = smi::kriging::predict_mean(tp.k2, X, nt);
       return Y;
     };
-    StatisticalObjective obj(in, {r1, r2}, p, model, so);
-    obj.set_model_jacobian([&](const Eigen::MatrixXd& X) {
+    StatisticalObjective obj(tp.in, {tp.r1, tp.r2}, tp.p, model, tp.so);
+    obj.set_model_jacobian([&tp, nt](const Eigen::MatrixXd& X) {
       ++g_jacobian_runs;
-      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, nt), smi::kriging::predict_gradient(k2, X, nt)};
+      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(tp.k1, X, nt), smi::kriging::predict_gradient(tp.k2, X, nt)};
     });
-    if (profile) {
-      // Cost of one evaluation's parts at the start, CPU seconds of one thread (best of 30 each).
-      Eigen::VectorXd t0(static_cast<Eigen::Index>(p.size()));
-      for (std::size_t i = 0; i < p.size(); ++i) t0[static_cast<Eigen::Index>(i)] = p[i].start;
-      auto best = [](auto&& fn) {
-        double b = 1e300;
-        for (int r = 0; r < 30; ++r) {
-          const double a = cpu_now();
-          fn();
-          b = std::min(b, cpu_now() - a);
-        }
-        return b;
-      };
-      const Eigen::MatrixXd X = obj.inputs_at(t0);
-      std::printf("profile_inputs %.6f\n", best([&] { (void)obj.inputs_at(t0); }));
-      std::printf("profile_model %.6f\n", best([&] { (void)model(X); }));
-      std::printf("profile_jacobian %.6f\n", best([&] {
-        (void)smi::kriging::predict_gradient(k1, X, 1);
-        (void)smi::kriging::predict_gradient(k2, X, 1);
-      }));
-      std::printf("profile_value %.6f\n", best([&] { (void)obj(t0); }));
-      Eigen::VectorXd gr;
-      std::printf("profile_value_and_gradient %.6f\n", best([&] { (void)obj.value_and_gradient(t0, gr); }));
+    if (mode == "profile") {
+      profile_evaluation(tp, obj, model);
       return 0;
     }
-    Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
-    OptimizerOptions o;
-    o.multistart = 4;
-    o.seed = 11;
-    o.maxeval = 300;  // the study's budget per start
-    o.start_threads = 2;  // the starts side by side (model, KDE and Jacobian on one thread each)
-    OptimizerOptions oa = o;
-    oa.gradient = [&obj](const Eigen::VectorXd& t, Eigen::VectorXd& gr) {
-      ++g_gradient_calls;
-      return obj.value_and_gradient(t, gr);
-    };
-    OptimizerOptions om = oa;
-    om.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
-    // Agreement where the data can tell: the starts whose objective is within the near-optimal
-    // tolerance of the best (smi.calibrate's PR default, 0.01 per response) and the largest
-    // difference of their predicted responses' summaries (four standardised Hermite moments per
-    // response, unit variance per datum: differences far below 1/sqrt(40) are invisible to the data).
-    auto agreement = [&](const char* key, const Run& run) {
-      report(key, run);
-      std::printf("%s_agree %d\n%s_optima %zu\n%s_converged_starts", key, run.r.starts_agree ? 1 : 0, key, run.r.optima.size(), key);
-      for (const auto& st : run.r.starts) std::printf(" %s", st.status.c_str());
-      std::printf("\n%s_start_values", key);
-      for (const auto& st : run.r.starts) std::printf(" %.8f", st.value);
-      const Eigen::VectorXd best = obj.summaries(run.r.theta);
-      int near = 0;
-      double gap = 0.0, dsum = 0.0;
-      for (const auto& st : run.r.starts) {
-        if (st.value - run.r.value > 0.02) continue;
-        ++near;
-        gap = std::max(gap, st.value - run.r.value);
-        dsum = std::max(dsum, (obj.summaries(st.theta) - best).cwiseAbs().maxCoeff());
-      }
-      std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
-    };
-    agreement("trial_analytic", timed(1, p, f, oa, obj));
-    agreement("trial_moments", timed(1, p, f, om, obj));
-    agreement("trial_differences", timed(1, p, f, o, obj));
+    run_trial_problem(tp, obj);
   }
   return 0;
 }

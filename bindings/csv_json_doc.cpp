@@ -3,6 +3,8 @@
 
 namespace smi::bind {
 
+// long: one raw string of reference text (data, no logic), split into entries by doc.lua; cutting it
+// into several functions would only scatter one module's reference page
 DocText doc_csv_json() {
   return {"bindings/csv_json_doc.cpp", R"DOC(
 @ module smi.csv

@@ -192,108 +192,131 @@ double default_tolerance(const CalibrateSpec& s, double optimum) {
   return 1e-6 * std::max(1.0, std::abs(optimum));
 }
 
+/// The objective form: the Lua objective (plus penalty and prior) minimised; returns that
+/// objective for the analyses after the optimum.
+Objective minimize_lua_objective(lua_State* L, const CalibrateSpec& s, const OptimizerOptions& oo, CalibrationOutcome& out) {
+  std::vector<std::string> names;
+  for (const auto& p : s.params) names.push_back(p.name);
+  auto obj = std::make_shared<LuaObjective>(L, s.objective_slot, names);
+  Objective f = with_extras(L, s, [obj](const Eigen::VectorXd& t) { return (*obj)(t); });
+  out.opt = minimize(s.params, f, oo);
+  out.part_names = part_labels(s, obj->part_names(), out.opt.parts.size(), "objective");
+  return f;
+}
+
+/// The statistical form: builds the CRN objective in out.stat (the model in C++ when it is made
+/// of surrogates, else through Lua), chooses threads, gradient and start preparation, and
+/// minimises it; returns the objective (plus extras) for the analyses after the optimum. oo
+/// receives the gradient, which the profile intervals reuse.
+Objective minimize_statistical(lua_State* L, const CalibrateSpec& s, OptimizerOptions& oo, CalibrationOutcome& out) {
+  std::vector<std::string> responses;
+  for (const auto& r : s.responses) responses.push_back(r.name);
+  // Surrogate models run without Lua; then, when nothing else in an evaluation calls Lua (a
+  // custom metric, a penalty, a prior function, a progress function), the starts run side by
+  // side on `threads` threads (the same result as one after another), each evaluation on one.
+  StatisticalOptions so = s.stat;
+  const bool lua_free_extras = !s.metric_slot && !s.penalty_slot && !s.progress_slot &&
+                               std::none_of(s.priors.begin(), s.priors.end(), [](const PriorSpec& p) { return p.fn_slot != 0; });
+  const int start_threads = std::min(s.stat.threads, s.optimizer.multistart);
+  Model cpp = kriging_model(L, s, responses, start_threads > 1 ? 1 : 2);
+  if (cpp && lua_free_extras && start_threads > 1) {
+    oo.start_threads = start_threads;
+    so.threads = 1;
+  }
+  Model model = cpp ? cpp : Model(LuaModel(L, s.model_parts, s.input_names_slot, responses));
+  CustomMetric metric;
+  if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
+  out.stat.emplace(s.inputs, s.responses, s.params, model, so, metric);
+  if (s.gradient != "differences") out.stat->set_model_jacobian(model_jacobian(L, s, responses));
+  const StatisticalObjective& obj = *out.stat;
+  Objective f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
+  if (s.gradient == "analytic" && !obj.has_gradient())
+    throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", a bandwidth rule with a derivative (silverman, "
+                          "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+  if (obj.has_gradient()) {
+    oo.gradient = gradient_with_extras(L, s, obj);
+    out.analytic_gradient = true;
+  }
+  if (s.moment_start)
+    oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
+  else if (s.overlap_start)
+    oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
+  out.opt = minimize(s.params, f, oo);
+  // per-response parts, or one "metric" part when a custom metric returned a bare number
+  out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");
+  return f;
+}
+
+void append(std::vector<std::string>& to, const std::vector<std::string>& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+/// Identifiability at the optimum (the Hessian's spans), and when asked the directions that fit
+/// as well as the optimum (with the predicted responses' summaries in the statistical form).
+void add_identifiability(const CalibrateSpec& s, const Objective& f, CalibrationOutcome& out) {
+  out.ident = identifiability(s.params, f, out.opt.theta, s.ident);
+  append(out.warnings, out.ident->warnings);
+  if (!s.identifiability_directions) return;
+  DirectionsOptions d = s.directions;
+  d.tolerance = default_tolerance(s, out.opt.value);
+  Summaries summ;
+  if (out.stat) summ = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
+  out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
+  append(out.warnings, out.directions->warnings);
+}
+
+/// Warns when the calibrated inputs' samples leave the surrogates' design bounds.
+void add_design_bound_warnings(const CalibrateSpec& s, const StatisticalObjective& obj, CalibrationOutcome& out) {
+  std::vector<std::string> names;
+  std::vector<double> means;
+  const auto m = obj.input_moments(out.opt.theta);
+  for (std::size_t j = 0; j < s.inputs.size(); ++j) {
+    names.push_back(s.inputs[j].name);
+    means.push_back(m[j].first);
+  }
+  for (auto& w : design_bound_warnings(names, obj.inputs_at(out.opt.theta), means, s.design)) out.warnings.push_back(w);
+}
+
+/// Bootstrap of the statistical calibration: each replicate recalibrates an objective on
+/// resampled data, built the same way as the original (gradient, start preparation, extras).
+void add_bootstrap(lua_State* L, const CalibrateSpec& s, const StatisticalObjective& obj, CalibrationOutcome& out) {
+  std::vector<Eigen::VectorXd> data;
+  for (const auto& r : obj.responses()) data.push_back(r.data);
+  ReplicateFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) {
+    auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
+    Replicate rep;
+    rep.f = with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
+    if (o->has_gradient()) rep.gradient = gradient_with_extras(L, s, *o);
+    if (s.moment_start)
+      rep.prepare_start = [o](const Eigen::VectorXd& t) { return moment_start(*o, t); };
+    else if (s.overlap_start)
+      rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
+    rep.keep = o;
+    return rep;
+  };
+  const BootstrapOptions& bo = *s.bootstrap;
+  out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, bo);
+  append(out.warnings, out.boot->warnings);
+}
+
 }  // namespace
 
 CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   CalibrationOutcome out;
   OptimizerOptions oo = s.optimizer;
   oo.observer = progress_observer(L, s);
-  Objective f;
-  if (!s.statistical) {
-    std::vector<std::string> names;
-    for (const auto& p : s.params) names.push_back(p.name);
-    auto obj = std::make_shared<LuaObjective>(L, s.objective_slot, names);
-    f = with_extras(L, s, [obj](const Eigen::VectorXd& t) { return (*obj)(t); });
-    out.opt = minimize(s.params, f, oo);
-    out.part_names = part_labels(s, obj->part_names(), out.opt.parts.size(), "objective");
-  } else {
-    std::vector<std::string> responses;
-    for (const auto& r : s.responses) responses.push_back(r.name);
-    // Surrogate models run without Lua; then, when nothing else in an evaluation calls Lua (a
-    // custom metric, a penalty, a prior function, a progress function), the starts run side by
-    // side on `threads` threads (the same result as one after another), each evaluation on one.
-    StatisticalOptions so = s.stat;
-    const bool lua_free_extras = !s.metric_slot && !s.penalty_slot && !s.progress_slot &&
-                                 std::none_of(s.priors.begin(), s.priors.end(), [](const PriorSpec& p) { return p.fn_slot != 0; });
-    const int start_threads = std::min(s.stat.threads, s.optimizer.multistart);
-    Model cpp = kriging_model(L, s, responses, start_threads > 1 ? 1 : 2);
-    if (cpp && lua_free_extras && start_threads > 1) {
-      oo.start_threads = start_threads;
-      so.threads = 1;
-    }
-    Model model = cpp ? cpp : Model(LuaModel(L, s.model_parts, s.input_names_slot, responses));
-    CustomMetric metric;
-    if (s.metric_slot) metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
-    out.stat.emplace(s.inputs, s.responses, s.params, model, so, metric);
-    if (s.gradient != "differences") out.stat->set_model_jacobian(model_jacobian(L, s, responses));
-    const StatisticalObjective& obj = *out.stat;
-    f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
-    if (s.gradient == "analytic" && !obj.has_gradient())
-      throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", a bandwidth rule with a derivative (silverman, "
-                            "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
-    if (obj.has_gradient()) {
-      oo.gradient = gradient_with_extras(L, s, obj);
-      out.analytic_gradient = true;
-    }
-    if (s.moment_start)
-      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
-    else if (s.overlap_start)
-      oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return overlap_start(obj, t); };
-    out.opt = minimize(s.params, f, oo);
-    // per-response parts, or one "metric" part when a custom metric returned a bare number
-    out.part_names = part_labels(s, responses, out.opt.parts.size(), "metric");
-  }
+  const Objective f = s.statistical ? minimize_statistical(L, s, oo, out) : minimize_lua_objective(L, s, oo, out);
   out.warnings = out.opt.warnings;
-
-  if (s.identifiability) {
-    out.ident = identifiability(s.params, f, out.opt.theta, s.ident);
-    out.warnings.insert(out.warnings.end(), out.ident->warnings.begin(), out.ident->warnings.end());
-    if (s.identifiability_directions) {
-      DirectionsOptions d = s.directions;
-      d.tolerance = default_tolerance(s, out.opt.value);
-      Summaries summ;
-      if (out.stat) summ = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
-      out.directions = identifiability_directions(s.params, f, out.opt.theta, out.opt.value, d, summ);
-      out.warnings.insert(out.warnings.end(), out.directions->warnings.begin(), out.directions->warnings.end());
-    }
-  }
+  // The analyses at the optimum, in this order (their warnings follow the optimiser's).
+  if (s.identifiability) add_identifiability(s, f, out);
   if (s.intervals) {
     ProfileOptions po = *s.intervals;
     po.optimizer.observer = {};
     out.profile = profile_intervals(s.params, f, out.opt.theta, out.opt.value, po, oo.gradient);
-    out.warnings.insert(out.warnings.end(), out.profile->warnings.begin(), out.profile->warnings.end());
+    append(out.warnings, out.profile->warnings);
   }
   if (out.stat) {
     const StatisticalObjective& obj = *out.stat;
-    if (!s.design.empty()) {
-      std::vector<std::string> names;
-      std::vector<double> means;
-      const auto m = obj.input_moments(out.opt.theta);
-      for (std::size_t j = 0; j < s.inputs.size(); ++j) {
-        names.push_back(s.inputs[j].name);
-        means.push_back(m[j].first);
-      }
-      for (auto& w : design_bound_warnings(names, obj.inputs_at(out.opt.theta), means, s.design)) out.warnings.push_back(w);
-    }
-    if (s.bootstrap) {
-      std::vector<Eigen::VectorXd> data;
-      for (const auto& r : obj.responses()) data.push_back(r.data);
-      ReplicateFactory make = [&obj, &s, L](const std::vector<Eigen::VectorXd>& d) {
-        auto o = std::make_shared<StatisticalObjective>(obj.with_data(d));
-        Replicate rep;
-        rep.f = with_extras(L, s, [o](const Eigen::VectorXd& t) { return (*o)(t); });
-        if (o->has_gradient()) rep.gradient = gradient_with_extras(L, s, *o);
-        if (s.moment_start)
-          rep.prepare_start = [o](const Eigen::VectorXd& t) { return moment_start(*o, t); };
-        else if (s.overlap_start)
-          rep.prepare_start = [o](const Eigen::VectorXd& t) { return overlap_start(*o, t); };
-        rep.keep = o;
-        return rep;
-      };
-      const BootstrapOptions& bo = *s.bootstrap;
-      out.boot = bootstrap_calibration(s.params, out.opt.theta, data, make, bo);
-      out.warnings.insert(out.warnings.end(), out.boot->warnings.begin(), out.boot->warnings.end());
-    }
+    if (!s.design.empty()) add_design_bound_warnings(s, obj, out);
+    if (s.bootstrap) add_bootstrap(L, s, obj, out);
     if (obj.floored() > 0)
       out.warnings.push_back(fmt::format("loglik: {} predicted densities were below 1e-300 and floored (data outside the prediction)",
                                          obj.floored()));

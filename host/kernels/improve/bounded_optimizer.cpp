@@ -241,17 +241,20 @@ Eigen::VectorXd central_gradient(const Objective& f, const Eigen::VectorXd& thet
   return g;
 }
 
-OptimizationResult minimize(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt) {
-  validate_parameters(params);
+namespace {
+
+void validate_options(const OptimizerOptions& opt) {
   if (opt.multistart < 1) throw InvalidArgument(fmt::format("multistart must be >= 1, got {}", opt.multistart));
   if (opt.maxeval < 1) throw InvalidArgument(fmt::format("maxeval must be >= 1, got {}", opt.maxeval));
   if (!(opt.fd_step > 0.0 && opt.fd_step <= 0.1))
     throw InvalidArgument(fmt::format("fd_step must be in (0, 0.1] (scaled units), got {}", opt.fd_step));
   if (!(opt.xtol_rel >= 0.0) || !(opt.ftol_abs >= 0.0)) throw InvalidArgument("xtol_rel and ftol_abs must be >= 0");
+}
 
+/// The starts in scaled units [0, 1]^k: the given start first, then uniform draws in order from
+/// one stream (the same points whatever start_threads is).
+std::vector<Eigen::VectorXd> draw_starts(const std::vector<Parameter>& params, const OptimizerOptions& opt) {
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
-  OptimizationResult res;
-  // The starts, drawn in order from one stream (the same points whatever start_threads is).
   Rng rng(opt.seed, hash_label("multistart"));
   std::vector<Eigen::VectorXd> u0s;
   for (int s = 0; s < opt.multistart; ++s) {
@@ -262,44 +265,46 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
     }
     u0s.push_back(std::move(u0));
   }
-  // Each start keeps its own history and warnings, merged in start order afterwards, so the
-  // result is the same whether the starts run one after another or side by side.
-  struct StartRun {
-    StartResult sr;
-    std::vector<HistoryEntry> history;
-    std::vector<std::string> warnings;
-    int prepare_evaluations = 0;
-  };
-  std::vector<StartRun> runs(static_cast<std::size_t>(opt.multistart));
-  auto run_one = [&](int s) {
-    StartRun& out = runs[static_cast<std::size_t>(s)];
-    Eigen::VectorXd u0 = u0s[static_cast<std::size_t>(s)];
-    Eigen::VectorXd given(k);
+  return u0s;
+}
+
+/// One start's outcome. Each start keeps its own history and warnings, merged in start order
+/// afterwards, so the result is the same whether the starts run one after another or side by side.
+struct StartRun {
+  StartResult sr;
+  std::vector<HistoryEntry> history;
+  std::vector<std::string> warnings;
+  int prepare_evaluations = 0;
+};
+
+/// Start s from the scaled point u0: moved first by opt.prepare_start when there is one (its
+/// point clamped into the box), then optimised by run_start.
+void run_one_start(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt, Eigen::VectorXd u0, int s,
+                   StartRun& out) {
+  const Eigen::Index k = static_cast<Eigen::Index>(params.size());
+  Eigen::VectorXd given(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Parameter& p = params[static_cast<std::size_t>(i)];
+    given[i] = p.lower + u0[i] * (p.upper - p.lower);
+  }
+  if (opt.prepare_start) {
+    const PreparedStart ps = opt.prepare_start(given);
+    out.prepare_evaluations = ps.evaluations;
+    if (!ps.note.empty()) out.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
     for (Eigen::Index i = 0; i < k; ++i) {
       const Parameter& p = params[static_cast<std::size_t>(i)];
-      given[i] = p.lower + u0[i] * (p.upper - p.lower);
+      u0[i] = std::clamp((ps.theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
     }
-    if (opt.prepare_start) {
-      const PreparedStart ps = opt.prepare_start(given);
-      out.prepare_evaluations = ps.evaluations;
-      if (!ps.note.empty()) out.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
-      for (Eigen::Index i = 0; i < k; ++i) {
-        const Parameter& p = params[static_cast<std::size_t>(i)];
-        u0[i] = std::clamp((ps.theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
-      }
-    }
-    out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
-    out.sr.given = given;
-  };
-  if (opt.start_threads > 1 && opt.multistart > 1) {
-    // One task per start; a start's exception reaches this thread (the pool rethrows it).
-    pool::parallel_for(opt.multistart, std::min(opt.start_threads, opt.multistart),
-                       [&](long s) { run_one(static_cast<int>(s)); });
-  } else {
-    for (int s = 0; s < opt.multistart; ++s) run_one(s);
   }
-  for (int s = 0; s < opt.multistart; ++s) {
-    StartRun& r = runs[static_cast<std::size_t>(s)];
+  out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
+  out.sr.given = given;
+}
+
+/// The starts' runs into res in start order: counts, history and warnings appended, the best
+/// start's point, value and status (the first on ties), and the objective's parts at that point.
+void merge_starts(std::vector<StartRun>& runs, OptimizationResult& res) {
+  for (std::size_t s = 0; s < runs.size(); ++s) {
+    StartRun& r = runs[s];
     res.start_evaluations += r.prepare_evaluations;
     res.history.insert(res.history.end(), std::make_move_iterator(r.history.begin()), std::make_move_iterator(r.history.end()));
     res.warnings.insert(res.warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -317,7 +322,11 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
       res.parts = h.parts;
       break;
     }
-  for (Eigen::Index i = 0; i < k; ++i) {
+}
+
+/// Names (and warns of) the parameters whose optimum sits within 1e-6 of its range of a bound.
+void flag_parameters_at_bounds(const std::vector<Parameter>& params, OptimizationResult& res) {
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(params.size()); ++i) {
     const Parameter& p = params[static_cast<std::size_t>(i)];
     const double tol = 1e-6 * (p.upper - p.lower);
     if (res.theta[i] - p.lower <= tol || p.upper - res.theta[i] <= tol) {
@@ -326,7 +335,12 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
                                          p.name, res.theta[i], p.lower, p.upper));
     }
   }
-  // Distinct optima: starts clustered by objective and by scaled distance.
+}
+
+/// Distinct optima: the starts, best first, clustered by objective and by scaled distance (one
+/// index per cluster in res.optima); warns when the starts did not all reach one optimum.
+void cluster_optima(const std::vector<Parameter>& params, const OptimizerOptions& opt, OptimizationResult& res) {
+  const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   std::vector<int> order(res.starts.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return res.starts[static_cast<std::size_t>(a)].value < res.starts[static_cast<std::size_t>(b)].value; });
@@ -352,6 +366,27 @@ OptimizationResult minimize(const std::vector<Parameter>& params, const Objectiv
                                        "multimodal or flat along some direction; see optima and identifiability.directions",
                                        opt.multistart, res.optima.size(), agree, res.value));
   }
+}
+
+}  // namespace
+
+OptimizationResult minimize(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt) {
+  validate_parameters(params);
+  validate_options(opt);
+  const std::vector<Eigen::VectorXd> u0s = draw_starts(params, opt);
+  std::vector<StartRun> runs(static_cast<std::size_t>(opt.multistart));
+  auto run_one = [&](int s) { run_one_start(params, f, opt, u0s[static_cast<std::size_t>(s)], s, runs[static_cast<std::size_t>(s)]); };
+  if (opt.start_threads > 1 && opt.multistart > 1) {
+    // One task per start; a start's exception reaches this thread (the pool rethrows it).
+    pool::parallel_for(opt.multistart, std::min(opt.start_threads, opt.multistart),
+                       [&](long s) { run_one(static_cast<int>(s)); });
+  } else {
+    for (int s = 0; s < opt.multistart; ++s) run_one(s);
+  }
+  OptimizationResult res;
+  merge_starts(runs, res);
+  flag_parameters_at_bounds(params, res);
+  cluster_optima(params, opt, res);
   return res;
 }
 

@@ -207,6 +207,88 @@ void kernel_sums_uniform(const Eigen::VectorXd& y, double h, double lo, double d
   for (double v : ghs) gh += norm * v;
 }
 
+/// PR's outside-mass terms F(lo) + 1 − F(hi) (each only where it is positive, as the value
+/// clamps them) added to gy and gh: F(x) = 1/N Σ Φ((x − y_i)/h), so ∂F/∂y_i = −φ(t)/(N h) and
+/// ∂F/∂h = −Σ φ(t) t/(N h). `F` holds the KDE's CDF at lo and hi.
+void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const Grid& g, const Eigen::VectorXd& F, Eigen::VectorXd& gy, double& gh) {
+  const Eigen::Index N = y.size();
+  const double n = static_cast<double>(N);
+  for (Eigen::Index i = 0; i < N; ++i) {
+    const double tl = (g.lo - y[i]) / h, th = (g.hi - y[i]) / h;
+    const double pl = normal_pdf(tl), ph = normal_pdf(th);
+    if (F[0] > 0.0) {
+      gy[i] += -pl / (n * h);
+      gh += -pl * tl / (n * h);
+    }
+    if (1.0 - F[1] > 0.0) {
+      gy[i] += ph / (n * h);
+      gh += ph * th / (n * h);
+    }
+  }
+}
+
+/// One response's PR (L1 area between f_exp `fe` and the KDE of y on grid g, plus both
+/// densities' mass outside the grid; `exp_outside` is f_exp's, a constant) and its gradient in
+/// y (set in gy) and in the bandwidth h (added to gh).
+double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const Grid& g, const Eigen::VectorXd& fe, double exp_outside, int threads,
+                            Eigen::VectorXd& gy, double& gh) {
+  const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, threads);
+  Eigen::VectorXd ends(2);
+  ends << g.lo, g.hi;
+  const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
+  const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
+  const double part = l1_area_on_grid(fe, fp, g) + outside + exp_outside;
+  // ∂PR/∂fp_g = −w_g sign(fe_g − fp_g), trapezoid weights w_g.
+  Eigen::VectorXd a(g.n);
+  for (Eigen::Index k = 0; k < g.n; ++k) {
+    const double d = fe[k] - fp[k];
+    a[k] = -(d > 0.0 ? 1.0 : d < 0.0 ? -1.0 : 0.0) * g.step() * (k == 0 || k == g.n - 1 ? 0.5 : 1.0);
+  }
+  if (g.step() <= h / 64.0)
+    kernel_sums_uniform(y, h, g.lo, g.step(), g.n, a, gy, gh, threads);
+  else
+    kernel_sums(y, h, g.nodes(), a, true, gy, gh, threads);
+  add_outside_mass_gradient(y, h, g, F, gy, gh);
+  return part;
+}
+
+/// One response's negative log-likelihood of its data under the KDE of y (densities below
+/// `floor` are floored, counted in `floored`, and contribute no gradient) and its gradient in y
+/// (set in gy) and in the bandwidth h (added to gh).
+double loglik_part_and_gradient(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& data, double floor, std::atomic<long>& floored,
+                                int threads, Eigen::VectorXd& gy, double& gh) {
+  const Eigen::VectorXd f = kde_pdf(y, h, data, 1);
+  double s = 0.0;
+  Eigen::VectorXd a(f.size());
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    if (!(f[i] > floor)) ++floored;
+    s += std::log(std::max(f[i], floor));
+    a[i] = f[i] > floor ? -1.0 / f[i] : 0.0;  // ∂(−ln f)/∂f; floored: constant
+  }
+  kernel_sums(y, h, data, a, false, gy, gh, threads);
+  return -s;
+}
+
+/// The chain rule's last links: from ∂objective/∂y (GY, samples × responses) through the model's
+/// Jacobian J (one samples × inputs matrix per response) to ∂objective/∂x, then through each
+/// input's quantile function (its derivatives in the mean and std at the CRN column z) to θ.
+/// `moments` are the inputs' (mean, std) at θ; grad is set to the gradient, `n_params` long.
+void chain_to_parameters(const std::vector<InputSpec>& inputs, const Eigen::MatrixXd& z, const std::vector<std::pair<double, double>>& moments,
+                         const Eigen::MatrixXd& GY, const std::vector<Eigen::MatrixXd>& J, Eigen::Index n_params, Eigen::VectorXd& grad) {
+  grad = Eigen::VectorXd::Zero(n_params);
+  const Eigen::Index N = GY.rows();
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    const InputSpec& in = inputs[k];
+    if (in.mean_param < 0 && in.std_param < 0) continue;
+    const Eigen::Index col = static_cast<Eigen::Index>(k);
+    Eigen::VectorXd s = Eigen::VectorXd::Zero(N);  // ∂objective/∂x_ik
+    for (std::size_t r = 0; r < J.size(); ++r) s += GY.col(static_cast<Eigen::Index>(r)).cwiseProduct(J[r].col(col));
+    const InputDerivatives d = input_derivatives(in.family, moments[k].first, moments[k].second, z.col(col));
+    if (in.mean_param >= 0) grad[in.mean_param] += s.dot(d.dmean);
+    if (in.std_param >= 0) grad[in.std_param] += s.dot(d.dstd);
+  }
+}
+
 }  // namespace
 
 bool StatisticalObjective::has_gradient() const {
@@ -250,68 +332,17 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
     const double h = bandwidth_by_name(y, opt_.bandwidth);
     Eigen::VectorXd gy;
     double gh = 0.0;
-    if (opt_.metric == MetricKind::pr) {
-      const Grid& g = *r.grid;
-      const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, opt_.threads);
-      const Eigen::VectorXd& fe = f_exp_grid_[static_cast<std::size_t>(j)];
-      Eigen::VectorXd ends(2);
-      ends << g.lo, g.hi;
-      const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
-      const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
-      e.parts[j] = l1_area_on_grid(fe, fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
-      // ∂PR/∂fp_g = −w_g sign(fe_g − fp_g), trapezoid weights w_g.
-      Eigen::VectorXd a(g.n);
-      for (Eigen::Index k = 0; k < g.n; ++k) {
-        const double d = fe[k] - fp[k];
-        a[k] = -(d > 0.0 ? 1.0 : d < 0.0 ? -1.0 : 0.0) * g.step() * (k == 0 || k == g.n - 1 ? 0.5 : 1.0);
-      }
-      if (g.step() <= h / 64.0)
-        kernel_sums_uniform(y, h, g.lo, g.step(), g.n, a, gy, gh, opt_.threads);
-      else
-        kernel_sums(y, h, g.nodes(), a, true, gy, gh, opt_.threads);
-      // Outside mass: F(x) = 1/N Σ Φ((x − y_i)/h); ∂F/∂y_i = −φ(t)/(N h), ∂F/∂h = −Σ φ(t) t/(N h).
-      const double n = static_cast<double>(N);
-      for (Eigen::Index i = 0; i < N; ++i) {
-        const double tl = (g.lo - y[i]) / h, th = (g.hi - y[i]) / h;
-        const double pl = normal_pdf(tl), ph = normal_pdf(th);
-        if (F[0] > 0.0) {
-          gy[i] += -pl / (n * h);
-          gh += -pl * tl / (n * h);
-        }
-        if (1.0 - F[1] > 0.0) {
-          gy[i] += ph / (n * h);
-          gh += ph * th / (n * h);
-        }
-      }
-    } else {
-      const Eigen::VectorXd f = kde_pdf(y, h, r.data, 1);
-      double s = 0.0;
-      Eigen::VectorXd a(f.size());
-      for (Eigen::Index i = 0; i < f.size(); ++i) {
-        if (!(f[i] > opt_.density_floor)) ++*floored_;
-        s += std::log(std::max(f[i], opt_.density_floor));
-        a[i] = f[i] > opt_.density_floor ? -1.0 / f[i] : 0.0;  // ∂(−ln f)/∂f; floored: constant
-      }
-      e.parts[j] = -s;
-      kernel_sums(y, h, r.data, a, false, gy, gh, opt_.threads);
-    }
+    if (opt_.metric == MetricKind::pr)
+      e.parts[j] = pr_part_and_gradient(y, h, *r.grid, f_exp_grid_[static_cast<std::size_t>(j)], exp_outside_[static_cast<std::size_t>(j)],
+                                        opt_.threads, gy, gh);
+    else
+      e.parts[j] = loglik_part_and_gradient(y, h, r.data, opt_.density_floor, *floored_, opt_.threads, gy, gh);
     // Through the bandwidth: ∂objective/∂y_i += ∂objective/∂h · ∂h/∂y_i.
     GY.col(j) = gy + gh * bandwidth_gradient(y, opt_.bandwidth, h);
   }
   e.value = e.parts.sum();
   // Through the model and the inputs' quantile functions.
-  grad = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(params_.size()));
-  const auto m = input_moments(theta);
-  for (std::size_t k = 0; k < inputs_.size(); ++k) {
-    const InputSpec& in = inputs_[k];
-    if (in.mean_param < 0 && in.std_param < 0) continue;
-    const Eigen::Index col = static_cast<Eigen::Index>(k);
-    Eigen::VectorXd s = Eigen::VectorXd::Zero(N);  // ∂objective/∂x_ik
-    for (std::size_t r = 0; r < J.size(); ++r) s += GY.col(static_cast<Eigen::Index>(r)).cwiseProduct(J[r].col(col));
-    const InputDerivatives d = input_derivatives(in.family, m[k].first, m[k].second, z_.col(col));
-    if (in.mean_param >= 0) grad[in.mean_param] += s.dot(d.dmean);
-    if (in.std_param >= 0) grad[in.std_param] += s.dot(d.dstd);
-  }
+  chain_to_parameters(inputs_, z_, input_moments(theta), GY, J, static_cast<Eigen::Index>(params_.size()), grad);
   return e;
 }
 
