@@ -429,14 +429,13 @@ function M.validate(t)
   local k, dists = t.kriging, M.distributions(t.calibration)
   local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
   local out = { n = t.n, n_solver = t.n_solver, modes = {} }
-  local Xs = {}
-  for i = 1, t.n_solver do Xs[i] = X[i] end
+  local Xs = require("steering_column.check_points")(dists, t.n_solver, t.seed + 7)
   local base = solver.write_deck(smi.out(t.name .. "_base.deck"), t.model.airbag, t.model.fixed)
   local names = {}
   for i, d in ipairs(dists) do names[i] = d[1] end
   local bm = solver.batch{ solver = t.solver, airbag = t.model.airbag, vary = names, name = t.name .. "-check", base = base,
                            batch_size = math.ceil(t.n_solver / 2), concurrency = 2 }
-  local Ysol = bm:evaluate(smi.mat(Xs))
+  local Ysol = bm:evaluate(Xs)
   local used = {}
   for _, m in ipairs(M.calibration_modes) do used[m] = true end
   for _, m in ipairs(M.modes) do
