@@ -21,7 +21,7 @@ w("scripts/steering_column.lua on the committed data, each path in a fresh outpu
 w("column-fe on 2 cores%s. Written by bench/run_study_budget.sh on %s.", extra ~= "" and (", extra options `" .. extra .. "`") or "",
   os.date("!%Y-%m-%d %H:%M UTC"))
 w("Economical (the default): surrogate screening of 300 runs, 20 Kriging test points, a 40-point stratified solver check.")
-w("Full: `--screening full --test-points 50 --solver-check 300` (the study before issue 16).")
+w("Full: `--screening full --design fixed --test-points 50 --solver-check 300` (the study before issue 16); both with `--design fixed`.")
 w("")
 w("## Solver runs (column-fe solutions) per step")
 w("")
