@@ -105,9 +105,10 @@ example:
   local Y, info = m:evaluate{x = smi.vec{1, 2}}
   print(Y.y, info.status[1])
 
-@ smi.Model:plan(X) -> {points =, unique =, reused =, runs =, eta =}
+@ smi.Model:plan(X) -> {points =, unique =, reused =, runs =, eta =, mean_seconds =}
 What evaluate(X) would launch, launching nothing (the evaluation store is read).
-returns: a table of counts and the estimated seconds (eta, when known)
+returns: a table of counts, the estimated seconds (eta) and the stored mean seconds of one run
+  (mean_seconds), each when the store has timings of this program and version
 errors: as evaluate, for X
 example:
   local m = smi.model.lua{inputs = {"x"}, outputs = {"y"}, fn = function(X) return {y = X:col(1)} end}

@@ -43,7 +43,7 @@ int model_evaluate(lua_State* L) {
   return evaluate_solver(L, m);
 }
 
-/// m:plan(X) -> {points, unique, reused, runs, eta} without running anything.
+/// m:plan(X) -> {points, unique, reused, runs, eta, mean_seconds} without running anything.
 int model_plan(lua_State* L) {
   Model& m = self(L);
   const Eigen::MatrixXd X = design_of(L, 2, m);
@@ -63,6 +63,8 @@ int model_plan(lua_State* L) {
     lua::set_integer(L, "reused", static_cast<lua_Integer>(p.reused));
     lua::set_integer(L, "runs", static_cast<lua_Integer>(p.runs));
     if (p.eta_seconds >= 0) lua::set_number(L, "eta", p.eta_seconds);
+    // the stored mean run time of this program and version (a study's cost plan, issue 16)
+    if (p.timing.count > 0) lua::set_number(L, "mean_seconds", p.timing.mean);
     return 1;
   });
 }

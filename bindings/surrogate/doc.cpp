@@ -91,6 +91,35 @@ example:
   k:save(smi.out("doc_k.model"))
   print(smi.kriging.load(smi.out("doc_k.model")).n)
 
+@ smi.kriging.sequential{model =, design =, candidates =} -> {X =, Y =, kriging =, history =, reached =, stop =}
+A sequential Kriging design: the model runs on `design`, a Kriging is fitted per output, and
+while an output misses its leave-one-out target a batch of candidate rows is added, each the
+candidate with the largest weight x Kriging variance given the design and the batch so far (the
+variance needs no response, so the whole batch goes to the model, and a parallel evaluator, in
+one call). Weights say where the input distributions put their mass.
+options:
+  model = (required)      -- an smi.Model, a function of the sample matrix, or a model object
+  design = (required)     -- the initial points (mat, columns = the model's inputs)
+  candidates = (required) -- the points it may add (mat, same columns)
+  weights = 1             -- a vec, one per candidate (> 0; 0: never chosen)
+  batch = 10              -- points per model call
+  max = 100               -- the design never grows past this
+  q2 = 0.999              -- leave-one-out Q2 every output must reach
+  rmse = {}               -- {output = target}: leave-one-out RMSE in the output's units
+  trend = "constant"      -- the Krigings' trend
+  corr = "gauss"          -- the Krigings' correlation family
+  seed = smi.seed         -- the Krigings' multistart seed
+  inputs = (the model's)  -- input names the Krigings carry
+returns: the design X, the outputs Y {output = vec}, the last Kriging per output, the history
+  ({points, q2 = {output = x}, rmse = {...}} per round), reached (the targets were met) and stop
+  (why it stopped)
+errors: sizes that do not match; weights not finite or none positive; max below the design's size
+example:
+  local f = function(X) return {y = (X:col(1) * 6):map(math.sin)} end
+  local r = smi.kriging.sequential{model = f, design = smi.doe.lhs(5, {{0, 1}}, {seed = 1}),
+    candidates = smi.doe.lhs(200, {{0, 1}}, {seed = 2}), batch = 3, max = 30, q2 = 0.9999}
+  print(r.reached, r.X:rows() <= 30)
+
 @ smi.Kriging:predict(X [, opts]) -> mean, mse
 Predictions at the rows of X, on both cores for large X.
 options:

@@ -217,7 +217,8 @@ function M.validation_intro(res, n, cfg)
     .. " computed over every near-optimal calibration (%d samples each) and it is valid or invalid only when that"
     .. " whole range lies on one side of the threshold, else inconclusive. The trial is valid when every calibrated"
     .. " mode is valid and its calibration converged; an undecided mode 2 is then listed as undetermined, not"
-    .. " hidden. As a check of the surrogate, %d samples were also run through column-fe itself."):format(
+    .. " hidden. As a check of the surrogate, %d points of the calibrated distributions, stratified (a Latin"
+    .. " hypercube in probability space), were also run through column-fe itself."):format(
     res.n, res.modes.mode1.threshold, n, cfg.near_n, res.n_solver)
 end
 

@@ -33,15 +33,24 @@ local function col_table(v)
 end
 
 --- Design, solver runs, Kriging per mode, leave-one-out and an independent test set.
--- t: {name, airbag, fixed, unknowns, specs, trend, n_design, n_test, seed, solver}
+-- t: {name, airbag, fixed, unknowns, specs, trend, n_design (the fixed design's size, the
+-- sequential one's limit), design = "sequential"|"fixed", n_test, seed, solver}
 function M.surrogate(t)
   local box = {}
   for i, n in ipairs(t.unknowns) do box[i] = inputs.design_box(t.specs[n]) end
-  local X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
-  local Xt = smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" })
   local model = solver.command{ solver = t.solver, airbag = t.airbag, fixed = t.fixed, vary = t.unknowns, name = t.name .. "-design" }
-  local Y = model:evaluate(X)
-  local Yt = model:evaluate(Xt)
+  -- sequential (design.lua: start small, add batches, stop on the leave-one-out target) or the
+  -- fixed maximin hypercube of n_design points
+  local X, Y, seq
+  if t.design == "sequential" then
+    X, Y, seq = require("steering_column.design").sequential{ box = box, unknowns = t.unknowns, specs = t.specs, model = model,
+                                                              max = t.n_design, seed = t.seed, trend = t.trend }
+  else
+    X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
+    Y = model:evaluate(X)
+  end
+  local Xt = smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" })
+  local Yt = t.n_test > 0 and model:evaluate(Xt) or nil
   local k, diag = {}, {}
   for _, m in ipairs(M.modes) do
     k[m] = smi.kriging.fit(X, Y[m], { trend = t.trend, corr = "gauss", inputs = t.unknowns, output = m, seed = t.seed })
@@ -49,7 +58,7 @@ function M.surrogate(t)
     local file = smi.out(("%s_%s.kriging"):format(t.name, m))
     k[m]:save(file)
     local loo = k[m]:loo()
-    local pred = k[m]:predict(Xt)
+    local pred = Yt and k[m]:predict(Xt) or {}
     local se, ymin, ymax = 0, math.huge, -math.huge
     for i = 1, #pred do
       se = se + (pred[i] - Yt[m][i]) ^ 2
@@ -57,7 +66,7 @@ function M.surrogate(t)
     end
     local loo_pred = {}
     for i = 1, #loo.residuals do loo_pred[i] = Y[m][i] - loo.residuals[i] end
-    diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = math.sqrt(se / #pred), test_range = { ymin, ymax },
+    diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = #pred > 0 and math.sqrt(se / #pred) or nil, test_range = { ymin, ymax },
                 theta = col_table(k[m].theta), observed = col_table(Y[m]), loo_predicted = loo_pred, model_file = file,
                 warnings = k[m].warnings }
   end
@@ -65,8 +74,8 @@ function M.surrogate(t)
   for i = 1, X:rows() do design[i] = col_table(X[i]) end
   local bounds = {}
   for i, n in ipairs(t.unknowns) do bounds[n] = box[i] end
-  return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = t.n_design, n_test = t.n_test,
-           trend = t.trend, unknowns = t.unknowns }
+  return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = X:rows(), n_test = t.n_test,
+           trend = t.trend, unknowns = t.unknowns, sequential = seq }
 end
 
 --- The Kriging models of a surrogate step's results: the live objects or, when the step ran in
@@ -172,14 +181,13 @@ function M.validate(t)
   local k, dists = t.kriging, M.distributions(t.calibration)
   local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
   local out = { n = t.n, n_solver = t.n_solver, modes = {} }
-  local Xs = {}
-  for i = 1, t.n_solver do Xs[i] = X[i] end
+  local Xs = require("steering_column.check_points")(dists, t.n_solver, t.seed + 7)
   local base = solver.write_deck(smi.out(t.name .. "_base.deck"), t.model.airbag, t.model.fixed)
   local names = {}
   for i, d in ipairs(dists) do names[i] = d[1] end
   local bm = solver.batch{ solver = t.solver, airbag = t.model.airbag, vary = names, name = t.name .. "-check", base = base,
                            batch_size = math.ceil(t.n_solver / 2), concurrency = 2 }
-  local Ysol = bm:evaluate(smi.mat(Xs))
+  local Ysol = bm:evaluate(Xs)
   local used = {}
   for _, m in ipairs(M.calibration_modes) do used[m] = true end
   for _, m in ipairs(M.modes) do

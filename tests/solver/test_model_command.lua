@@ -36,6 +36,10 @@ T.case("command model: outputs in row order, equal to the closed form; second ca
   T.eq(info2.launched, 0); T.eq(info2.reused[4], 1); T.eq(Y2.f[4], Y.f[4])
   local plan = m:plan(smi.mat{{0.1, 1}, {9, 9}})
   T.eq(plan.reused, 1); T.eq(plan.runs, 1)
+  -- the stored mean run time (a study's cost plan): the mean of the four runs' durations
+  local d = 0
+  for i = 1, 4 do d = d + info.duration[i] / 4 end
+  T.near(plan.mean_seconds, d, 1e-6, "mean_seconds")
 end)
 
 T.case("concurrency 2 gives identical numbers to concurrency 1", function()

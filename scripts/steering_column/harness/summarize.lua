@@ -103,6 +103,7 @@ end
 local LINE = "%-4s %-6s %-6s %-74s %-5s %-9s %s"
 local confusion, order, lines, all_ok = {}, {}, {}, true
 local totals = { launched = 0, points = 0, reused = 0 }
+local per_study = {} -- each study's solver runs as if it ran alone (results.json `cost`, issue 16)
 print(LINE:format("exp", "truth", "noise", "conclusion", "right", "converged",
   "calibrated mean / true mean - 1 (last trial)"))
 for _, r in ipairs(rows) do
@@ -121,6 +122,7 @@ for _, r in ipairs(rows) do
     errs, conv = errors(r, R, c)
     local s = R.steps.summary and R.steps.summary.result.solver_totals
     if s then for k in pairs(totals) do totals[k] = totals[k] + (s[k] or 0) end end
+    if R.cost then per_study[#per_study + 1] = R.cost.solver_runs end
   end
   print(LINE:format(r.id, r.truth, r.noise, o, ok and "yes" or "NO", conv, errs))
   if not ok then lines[#lines + 1] = ("experiment %s: %s"):format(r.id, why) end
@@ -133,6 +135,11 @@ for _, o in ipairs(order) do
 end
 print(("Solver runs over these experiments (one shared store): %d points, %d processes launched, %d points"
   .. " reused."):format(totals.points, totals.launched, totals.reused))
+if #per_study > 0 then
+  table.sort(per_study)
+  print(("Solver runs per study as if run alone (issue 16's budget: 1,000): %d to %d."):format(per_study[1],
+    per_study[#per_study]))
+end
 for _, l in ipairs(lines) do print("WRONG " .. l) end
 print(("%d experiment(s), %d right"):format(#rows, #rows - #lines))
 if check and not all_ok then os.exit(1) end
