@@ -15,10 +15,10 @@
 
 #include <string>
 
-#include "core/rng.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/statistical_objective.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/statistical_objective.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::improve;
 

@@ -8,12 +8,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/families.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "stats/pdf_overlap.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 namespace {
 template <class F>

@@ -6,10 +6,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/upool.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/upool.hpp"
 
 namespace {
 

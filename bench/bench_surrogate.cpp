@@ -11,14 +11,14 @@
 #include <fstream>
 #include <string>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/families.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 namespace {
 

@@ -15,8 +15,8 @@
 #include <cstring>
 #include <vector>
 
-#include "stats/upool.hpp"
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/stats/upool.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
 namespace {
 

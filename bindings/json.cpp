@@ -20,7 +20,7 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "modules.hpp"
+#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

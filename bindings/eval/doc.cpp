@@ -1,8 +1,8 @@
 // Reference texts of smi.model.* and the model methods (this folder). Defaults are read from
 // the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
 // "solver" (smi-lua doc allows it for them), so they run anywhere.
-#include "doc.hpp"
-#include "eval/evaluator.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/eval/evaluator.hpp"
 
 namespace smi::bind {
 namespace {

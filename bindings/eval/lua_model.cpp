@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "luax/luax.hpp"
-#include "model.hpp"
+#include "bindings/eval/model.hpp"
 
 namespace smi::bind::eval {
 

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "luax/luax.hpp"
-#include "model.hpp"
+#include "bindings/eval/model.hpp"
 
 namespace smi::bind::eval {
 namespace {

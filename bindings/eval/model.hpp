@@ -9,7 +9,7 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "eval/evaluator.hpp"
+#include "kernels/eval/evaluator.hpp"
 
 namespace smi::bind::eval {
 

@@ -38,8 +38,8 @@
 //                 paper = {[n] = {mode, direction, hz}}, paper_hz}
 // smi.model.planned() -> totals of the --dry-run so far {runs, points, reused, eta}.
 #include "luax/luax.hpp"
-#include "modules.hpp"
-#include "eval/model.hpp"
+#include "bindings/modules.hpp"
+#include "bindings/eval/model.hpp"
 
 namespace smi::bind {
 

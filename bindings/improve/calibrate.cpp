@@ -28,7 +28,7 @@
 //         identifiability (span, weak, profiles; directions, tolerance), near_optimal, bootstrap;
 //         statistical form also inputs, distributions (smi.dist per input), grids, model_runs, n,
 //         seed, metric.
-#include "improve/calibrate.hpp"
+#include "bindings/improve/calibrate.hpp"
 
 #include <fmt/format.h>
 
@@ -36,11 +36,11 @@
 #include <cmath>
 #include <memory>
 
-#include "core/errors.hpp"
-#include "improve/design_bounds.hpp"
-#include "improve/lua_callbacks.hpp"
-#include "improve/model_gradient.hpp"
-#include "improve/overlap_start.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/design_bounds.hpp"
+#include "bindings/improve/lua_callbacks.hpp"
+#include "bindings/improve/model_gradient.hpp"
+#include "kernels/improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

@@ -1,15 +1,15 @@
-#include "improve/calibrate_spec.hpp"
+#include "bindings/improve/calibrate_spec.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
+#include "bindings/improve/lua_values.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/dist_box.hpp"
+#include "bindings/stats/dist_box.hpp"
 
 namespace smi::bind::improve {
 

@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "improve/calibrate.hpp"
+#include "bindings/improve/calibrate.hpp"
 #include "luax/luax.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/families.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/stats/families.hpp"
 
 namespace smi::bind::improve {
 

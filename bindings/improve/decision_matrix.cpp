@@ -1,15 +1,15 @@
 // smi.refine.decision_matrix{candidates = {...}, criteria = {{name =, weight =, magnitude = ...}}}
 // The weighted decision matrix of spec §6 with criteria written by the analyst: a magnitude is a
 // Lua function(candidate, j) or a list of values (or a table keyed by candidate name).
-#include "improve/decision_matrix_binding.hpp"
+#include "bindings/improve/decision_matrix_binding.hpp"
 
 #include <fmt/format.h>
 
 #include <numeric>
 
-#include "core/errors.hpp"
-#include "improve/decision_matrix.hpp"
-#include "improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/decision_matrix.hpp"
+#include "bindings/improve/lua_values.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

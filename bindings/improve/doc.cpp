@@ -1,11 +1,11 @@
 // Reference texts of smi.calibrate and smi.refine.decision_matrix (this folder). Defaults are
 // read from the kernels' option structs (improve/bounded_optimizer.hpp, statistical_objective.hpp,
 // bootstrap.hpp, identifiability.hpp).
-#include "doc.hpp"
-#include "improve/bootstrap.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/identifiability.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind {
 namespace {

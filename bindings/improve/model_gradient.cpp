@@ -1,13 +1,13 @@
-#include "improve/model_gradient.hpp"
+#include "bindings/improve/model_gradient.hpp"
 
 #include <fmt/format.h>
 
 #include <memory>
 
-#include "core/errors.hpp"
-#include "improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
+#include "bindings/improve/lua_values.hpp"
 #include "luax/luax.hpp"
-#include "surrogate/kriging_box.hpp"
+#include "bindings/surrogate/kriging_box.hpp"
 
 namespace smi::bind::improve {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "improve/calibrate_spec.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/improve/calibrate_spec.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
 

@@ -1,11 +1,11 @@
 // smi.dist: the common Lua object of every distribution and density estimate.
-#include "stats/dist_box.hpp"
+#include "bindings/stats/dist_box.hpp"
 
 #include <cmath>
 
 #include "luax/luax.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
 
 namespace smi::bind {
 namespace {

@@ -4,7 +4,7 @@
 // Other areas (propagation, calibration) read distributions through to_distribution().
 #include <lua.hpp>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi::bind {
 

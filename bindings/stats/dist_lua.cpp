@@ -2,11 +2,11 @@
 #include <fmt/format.h>
 
 #include "luax/luax.hpp"
-#include "stats/args.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/families.hpp"
-#include "stats/fit.hpp"
-#include "stats/open_parts.hpp"
+#include "bindings/stats/args.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/fit.hpp"
+#include "bindings/stats/open_parts.hpp"
 
 namespace smi::bind::stats {
 namespace {

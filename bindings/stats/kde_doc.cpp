@@ -1,8 +1,8 @@
 // Reference texts of smi.kde, smi.kde_bd, smi.kde_ebd, smi.ecdf, smi.bandwidth (kde_lua.cpp).
 // Defaults are read from the kernels' option structs (stats/kde.hpp, stats/kde_bounded.hpp).
-#include "doc.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_bounded.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 namespace smi::bind {
 namespace {

@@ -3,13 +3,13 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/args.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_bounded.hpp"
-#include "stats/open_parts.hpp"
+#include "bindings/stats/args.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_bounded.hpp"
+#include "bindings/stats/open_parts.hpp"
 
 namespace smi::bind::stats {
 namespace {

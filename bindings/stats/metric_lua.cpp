@@ -9,15 +9,15 @@
 #include <memory>
 #include <mutex>
 
-#include "eval/progress_line.hpp"
+#include "kernels/eval/progress_line.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/args.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "stats/open_parts.hpp"
-#include "stats/upool.hpp"
+#include "bindings/stats/args.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/stats/upool.hpp"
 
 namespace smi::bind::stats {
 namespace {

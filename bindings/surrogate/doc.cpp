@@ -1,9 +1,9 @@
 // Reference texts of smi.doe, smi.kriging, smi.propagate and smi.screen (this folder). Defaults
 // are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp).
-#include "doc.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/screen.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 namespace smi::bind {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/dist_box.hpp"
-#include "surrogate/doe.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/surrogate/doe.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/kriging_box.hpp"
+#include "bindings/surrogate/kriging_box.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

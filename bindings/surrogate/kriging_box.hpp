@@ -6,7 +6,7 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 namespace smi::bind::surrogate {
 

@@ -1,15 +1,15 @@
 // Adapters from Lua model values to propagate::MatrixModel.
-#include "surrogate/model_arg.hpp"
+#include "bindings/surrogate/model_arg.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
-#include "stats/dist_box.hpp"
-#include "surrogate/kriging_box.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/surrogate/kriging_box.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

@@ -8,7 +8,7 @@
 #include <lua.hpp>
 
 #include "luax/luax.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 namespace smi::bind::surrogate {
 

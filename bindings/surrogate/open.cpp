@@ -1,6 +1,6 @@
 // Entry point of the surrogate binding area (see modules.hpp): smi.doe, smi.kriging,
 // smi.propagate, smi.screen.
-#include "modules.hpp"
+#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace surrogate {

@@ -3,7 +3,7 @@
 // (surrogate/propagate.hpp), and the model gets the whole sample in one call.
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/model_arg.hpp"
+#include "bindings/surrogate/model_arg.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -13,9 +13,9 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/model_arg.hpp"
-#include "surrogate/screen.hpp"
-#include "surrogate/screen_surrogate.hpp"
+#include "bindings/surrogate/model_arg.hpp"
+#include "kernels/surrogate/screen.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

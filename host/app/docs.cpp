@@ -7,10 +7,10 @@
 #include <exception>
 #include <string>
 
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 #include "luax/luax.hpp"
-#include "vm/docs.hpp"
-#include "vm/runtime.hpp"
+#include "app/docs.hpp"
+#include "app/runtime.hpp"
 
 namespace smi::vm {
 namespace {

@@ -1,5 +1,5 @@
-#include "vm/runtime.hpp"
-#include "vm/docs.hpp"
+#include "app/runtime.hpp"
+#include "app/docs.hpp"
 
 #include <cctype>
 #include <chrono>
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/atomic_file.hpp"
-#include "core/cancel.hpp"
-#include "eval/folder_lock.hpp"
-#include "modules.hpp"
+#include "kernels/core/atomic_file.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/eval/folder_lock.hpp"
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
 #include "vm/library_lua.hpp"

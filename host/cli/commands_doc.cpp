@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "vm/runtime.hpp"
+#include "kernels/core/errors.hpp"
+#include "app/runtime.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

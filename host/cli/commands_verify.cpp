@@ -11,9 +11,9 @@
 #include <lua.hpp>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "core/sha256.hpp"
-#include "modules.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/sha256.hpp"
+#include "bindings/modules.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

@@ -11,9 +11,9 @@
 
 #include "cli/args.hpp"
 #include "cli/commands.hpp"
-#include "eval/process.hpp"
+#include "kernels/eval/process.hpp"
 #include "repl/repl.hpp"
-#include "vm/runtime.hpp"
+#include "app/runtime.hpp"
 
 namespace {
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <lua.hpp>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::lua {
 

@@ -9,8 +9,8 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "core/errors.hpp"
-#include "core/path_walk.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/path_walk.hpp"
 
 namespace smi {
 

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "core/cancel.hpp"
+#include "kernels/core/cancel.hpp"
 
 namespace smi::vm {
 namespace {

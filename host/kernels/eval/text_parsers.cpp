@@ -1,4 +1,4 @@
-#include "eval/text_parsers.hpp"
+#include "kernels/eval/text_parsers.hpp"
 
 #include <algorithm>
 #include <cerrno>

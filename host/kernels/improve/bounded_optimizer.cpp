@@ -1,4 +1,4 @@
-#include "improve/bounded_optimizer.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
 
 #include <fmt/format.h>
 
@@ -8,8 +8,8 @@
 #include <limits>
 #include <nlopt.hpp>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
 
 namespace smi::improve {
 

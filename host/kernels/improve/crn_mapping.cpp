@@ -1,4 +1,4 @@
-#include "improve/crn_mapping.hpp"
+#include "kernels/improve/crn_mapping.hpp"
 
 #include <fmt/format.h>
 
@@ -7,10 +7,10 @@
 #include <numeric>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/families.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
 
 namespace smi::improve {
 

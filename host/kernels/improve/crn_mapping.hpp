@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi::improve {
 

@@ -13,16 +13,16 @@
 
 #include <cmath>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "improve/input_derivatives.hpp"
-#include "improve/statistical_objective.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "surrogate/fast_exp.hpp"
-#include "surrogate/parallel.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/improve/input_derivatives.hpp"
+#include "kernels/improve/statistical_objective.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
+#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::improve {
 

@@ -1,10 +1,10 @@
-#include "improve/overlap_start.hpp"
+#include "kernels/improve/overlap_start.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi::improve {
 

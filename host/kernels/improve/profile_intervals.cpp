@@ -1,4 +1,4 @@
-#include "improve/profile_intervals.hpp"
+#include "kernels/improve/profile_intervals.hpp"
 
 #include <fmt/format.h>
 
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <map>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
 
 namespace smi::improve {
 

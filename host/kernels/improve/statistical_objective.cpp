@@ -1,15 +1,15 @@
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
 namespace smi::improve {
 

@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/crn_mapping.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/crn_mapping.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
 
 namespace smi::improve {
 

@@ -1,11 +1,11 @@
-#include "stats/bandwidth.hpp"
+#include "kernels/stats/bandwidth.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/pair_sums.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/pair_sums.hpp"
 
 namespace smi {
 namespace {

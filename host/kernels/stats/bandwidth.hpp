@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi {
 

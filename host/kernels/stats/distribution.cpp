@@ -1,4 +1,4 @@
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 #include <cmath>
 

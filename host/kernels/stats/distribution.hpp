@@ -9,7 +9,7 @@
 #include <string_view>
 #include <utility>
 
-#include "core/rng.hpp"
+#include "kernels/core/rng.hpp"
 
 namespace smi {
 

@@ -1,11 +1,11 @@
-#include "stats/ecdf.hpp"
+#include "kernels/stats/ecdf.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi {
 

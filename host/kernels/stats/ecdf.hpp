@@ -2,7 +2,7 @@
 // The empirical distribution of a sample: CDF steps i/n (right-continuous), quantile the
 // smallest x with S_n(x) >= p (type 1), sampling = bootstrap. It has no density: pdf() throws
 // (use a KDE for densities).
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi {
 

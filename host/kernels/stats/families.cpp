@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/families.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/special.hpp"
 
 namespace smi {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi {
 

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/families.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/special.hpp"
 
 namespace smi {
 namespace {

@@ -1,8 +1,8 @@
-#include "stats/fast_normal.hpp"
+#include "kernels/stats/fast_normal.hpp"
 
 #include <vector>
 
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
 namespace smi::detail {
 

@@ -1,14 +1,14 @@
-#include "stats/fit.hpp"
+#include "kernels/stats/fit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/families.hpp"
-#include "stats/metrics.hpp"
-#include "stats/nelder_mead.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/nelder_mead.hpp"
 
 namespace smi {
 namespace {

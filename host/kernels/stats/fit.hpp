@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi {
 

@@ -1,9 +1,9 @@
-#include "stats/grid.hpp"
+#include "kernels/stats/grid.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi {
 

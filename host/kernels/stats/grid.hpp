@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <initializer_list>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi {
 

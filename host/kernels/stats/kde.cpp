@@ -1,13 +1,13 @@
 // The Kde distribution object (sums in kde_sums.cpp).
-#include "stats/kde.hpp"
+#include "kernels/stats/kde.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/bandwidth.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/bandwidth.hpp"
 
 namespace smi {
 

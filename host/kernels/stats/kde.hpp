@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
 
 namespace smi {
 

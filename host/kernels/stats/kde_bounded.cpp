@@ -1,12 +1,12 @@
-#include "stats/kde_bounded.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/metrics.hpp"
 
 namespace smi {
 namespace {

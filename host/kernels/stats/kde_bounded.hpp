@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "stats/kde.hpp"
+#include "kernels/stats/kde.hpp"
 
 namespace smi {
 

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/fast_normal.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_uniform_grid.hpp"
-#include "stats/parallel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/fast_normal.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_uniform_grid.hpp"
+#include "kernels/stats/parallel.hpp"
 
 namespace smi {
 namespace {

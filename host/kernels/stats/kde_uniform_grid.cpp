@@ -1,13 +1,13 @@
-#include "stats/kde_uniform_grid.hpp"
+#include "kernels/stats/kde_uniform_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "stats/fast_normal.hpp"
-#include "stats/kde.hpp"
-#include "stats/parallel.hpp"
+#include "kernels/stats/fast_normal.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/parallel.hpp"
 
 namespace smi::detail {
 namespace {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi::detail {
 

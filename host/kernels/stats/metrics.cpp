@@ -1,14 +1,14 @@
-#include "stats/metrics.hpp"
+#include "kernels/stats/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
-#include "stats/quadrature.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/quadrature.hpp"
 
 namespace smi {
 namespace {

@@ -7,10 +7,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
-#include "stats/pdf_overlap.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 namespace smi {
 

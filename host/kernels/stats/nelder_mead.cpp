@@ -1,4 +1,4 @@
-#include "stats/nelder_mead.hpp"
+#include "kernels/stats/nelder_mead.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "stats/pair_sums.hpp"
+#include "kernels/stats/pair_sums.hpp"
 
 #include <cmath>
 

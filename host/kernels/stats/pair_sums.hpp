@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi::detail {
 

@@ -1,11 +1,11 @@
-#include "stats/pdf_overlap.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "stats/kde.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/kde.hpp"
 
 namespace smi {
 namespace {

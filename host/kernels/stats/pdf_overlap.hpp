@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi {
 

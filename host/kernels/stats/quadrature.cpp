@@ -1,4 +1,4 @@
-#include "stats/quadrature.hpp"
+#include "kernels/stats/quadrature.hpp"
 
 #include <cmath>
 #include <queue>

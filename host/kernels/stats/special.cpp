@@ -1,10 +1,10 @@
-#include "stats/special.hpp"
+#include "kernels/stats/special.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
 namespace smi {
 namespace {

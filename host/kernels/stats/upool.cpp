@@ -1,4 +1,4 @@
-#include "stats/upool.hpp"
+#include "kernels/stats/upool.hpp"
 
 #include <atomic>
 
@@ -10,12 +10,12 @@
 #include <thread>
 #include <tuple>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "stats/parallel.hpp"
-#include "stats/quadrature.hpp"
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/parallel.hpp"
+#include "kernels/stats/quadrature.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
 namespace smi {
 namespace {

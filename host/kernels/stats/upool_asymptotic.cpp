@@ -1,4 +1,4 @@
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@ struct Row {
 
 // Made by `bench_upool_fit fit` (see the header); do not edit by hand.
 constexpr Row kTable[] = {
-#include "stats/upool_asymptotic_table.inc"
+#include "kernels/stats/upool_asymptotic_table.inc"
 };
 constexpr int kRows = static_cast<int>(sizeof kTable / sizeof kTable[0]);
 

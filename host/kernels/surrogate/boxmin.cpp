@@ -1,11 +1,11 @@
 // boxmin: start, then kmax rounds of explore + move (spec §4 lists the comparisons).
-#include "surrogate/boxmin.hpp"
+#include "kernels/surrogate/boxmin.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::kriging {
 namespace {

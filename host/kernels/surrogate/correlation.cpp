@@ -1,10 +1,10 @@
 // Correlation families and their slopes; cross correlations on whole blocks of points.
-#include "surrogate/correlation.hpp"
+#include "kernels/surrogate/correlation.hpp"
 
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "surrogate/fast_exp.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
 
 namespace smi::kriging {
 

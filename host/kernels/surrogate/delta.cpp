@@ -1,17 +1,17 @@
 // Given-data Borgonovo delta (see delta.hpp).
-#include "surrogate/delta.hpp"
+#include "kernels/surrogate/delta.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
 namespace smi::delta {
 namespace {

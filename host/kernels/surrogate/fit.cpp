@@ -7,12 +7,12 @@
 #include <numeric>
 #include <sstream>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/boxmin.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/likelihood.hpp"
-#include "surrogate/ml_search.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/boxmin.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/likelihood.hpp"
+#include "kernels/surrogate/ml_search.hpp"
 
 namespace smi::kriging {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "surrogate/correlation.hpp"
-#include "surrogate/regression.hpp"
+#include "kernels/surrogate/correlation.hpp"
+#include "kernels/surrogate/regression.hpp"
 
 namespace smi::kriging {
 

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/doe.hpp"
 
 namespace smi::doe {
 namespace {

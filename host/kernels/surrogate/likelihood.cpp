@@ -2,14 +2,14 @@
 // With W = R^-1 - gamma gamma^T / sigma2 (normalised units), the envelope theorem for the GLS
 // beta gives d(m ln sigma2 + ln|R|)/d theta_k = sum_ij W_ij dR_ij/dtheta_k, and every family
 // has dR_ij/dtheta_k = g'(s_ij) D_k,ij, so the whole gradient is one GEMV over the pairs.
-#include "surrogate/likelihood.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::kriging::detail {
 namespace {

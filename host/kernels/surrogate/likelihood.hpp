@@ -4,7 +4,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 namespace smi::kriging::detail {
 

@@ -3,7 +3,7 @@
 // is gamma_i / Qt_ii and its variance sigma2 / Qt_ii (normalised units).
 #include <cmath>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 namespace smi::kriging {
 

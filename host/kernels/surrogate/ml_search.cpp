@@ -1,6 +1,6 @@
 // Multistart L-BFGS on ln psi in log-parameters.
-#include "core/cancel.hpp"
-#include "surrogate/ml_search.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/surrogate/ml_search.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <numeric>
 #include <vector>
 
-#include "surrogate/doe.hpp"
-#include "surrogate/parallel.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging::detail {
 namespace {

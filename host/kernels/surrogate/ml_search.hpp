@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "surrogate/likelihood.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
 namespace smi::kriging::detail {
 

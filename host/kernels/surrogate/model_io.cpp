@@ -13,9 +13,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/likelihood.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
 namespace smi::kriging {
 namespace {

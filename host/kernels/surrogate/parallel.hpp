@@ -8,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/cancel.hpp"
-#include "core/machine.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/machine.hpp"
 
 namespace smi::detail {
 

@@ -1,12 +1,12 @@
 // Ridge polynomial with closed-form leave-one-out selection (see poly_ridge.hpp).
-#include "surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
 
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::polyfit {
 namespace {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "surrogate/fused_mean.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/parallel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/fused_mean.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging {
 namespace {

@@ -6,9 +6,9 @@
 // share GEMMs as in prediction.
 #include <algorithm>
 
-#include "core/errors.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/parallel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging {
 namespace {

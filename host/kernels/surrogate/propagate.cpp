@@ -1,12 +1,12 @@
 // Common-random-number samples for propagation, screening and calibration.
-#include "surrogate/propagate.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/parallel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::propagate {
 

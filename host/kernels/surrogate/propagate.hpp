@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi::propagate {
 

@@ -1,7 +1,7 @@
 // Polynomial trend bases in DACE's column order.
-#include "surrogate/regression.hpp"
+#include "kernels/surrogate/regression.hpp"
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::kriging {
 

@@ -1,16 +1,16 @@
 // The PDF-area screening of spec §3 on one CRN base sample, plus Sobol' indices.
-#include "surrogate/screen.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
 namespace smi::screen {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "surrogate/propagate.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 namespace smi::screen {
 

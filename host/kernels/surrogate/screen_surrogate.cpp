@@ -1,12 +1,12 @@
 // Surrogate screening (see screen_surrogate.hpp).
-#include "surrogate/screen_surrogate.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/doe.hpp"
 
 namespace smi::screen {
 

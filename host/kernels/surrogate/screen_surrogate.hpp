@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "surrogate/delta.hpp"
-#include "surrogate/poly_ridge.hpp"
-#include "surrogate/screen.hpp"
+#include "kernels/surrogate/delta.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 namespace smi::screen {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/errors.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/doe.hpp"
 
 namespace smi::doe {
 namespace {

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/cancel.hpp"
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/screen.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 namespace smi::screen {
 namespace {

@@ -3,8 +3,8 @@
 // with 6501 nodes.
 #include <catch2/catch.hpp>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 using namespace smi::improve;
 

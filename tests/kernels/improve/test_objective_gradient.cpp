@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/input_derivatives.hpp"
-#include "improve/statistical_objective.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/input_derivatives.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 using namespace smi::improve;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "improve/profile_intervals.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/profile_intervals.hpp"
 
 using namespace smi::improve;
 

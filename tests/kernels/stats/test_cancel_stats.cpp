@@ -3,11 +3,11 @@
 // worker threads, instead of running on (49 s past --timeout 3 before).
 #include <catch2/catch.hpp>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "stats/kde.hpp"
-#include "stats/parallel.hpp"
-#include "stats/upool.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/parallel.hpp"
+#include "kernels/stats/upool.hpp"
 
 using namespace smi;
 

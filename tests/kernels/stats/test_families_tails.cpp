@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "stats/families.hpp"
-#include "stats/special.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/special.hpp"
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "stats/families.hpp"
-#include "stats/fit.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/fit.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

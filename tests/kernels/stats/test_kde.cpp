@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde_bounded.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 using Catch::Matchers::WithinAbs;
 

@@ -2,11 +2,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/normal.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "stats/quadrature.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/quadrature.hpp"
 
 using Catch::Matchers::WithinAbs;
 
@@ -80,8 +80,8 @@ TEST_CASE("log-likelihood (spec 8.2)") {
 #include <sstream>
 #include <string>
 
-#include "stats/families.hpp"
-#include "stats/pdf_overlap.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 namespace {
 using DPtr = std::shared_ptr<smi::Distribution>;

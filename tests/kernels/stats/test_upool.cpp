@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "stats/kde.hpp"
-#include "stats/upool.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/upool.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

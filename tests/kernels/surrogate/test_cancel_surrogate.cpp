@@ -2,10 +2,10 @@
 // the Kriging likelihood search and block prediction throw smi::Interrupted with the reason.
 #include <catch2/catch.hpp>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi;
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "surrogate/doe.hpp"
+#include "kernels/surrogate/doe.hpp"
 
 using namespace smi::doe;
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "surrogate/fast_exp.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
 
 TEST_CASE("exp_neg_inplace equals std::exp(-x) to 1e-15 relative over [0, 700]") {
   std::vector<double> x;

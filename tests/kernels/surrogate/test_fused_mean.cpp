@@ -3,11 +3,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "stats/families.hpp"
-#include "surrogate/fused_mean.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/surrogate/fused_mean.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 using namespace smi::kriging;
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::kriging;
 using Catch::Matchers::WithinAbs;

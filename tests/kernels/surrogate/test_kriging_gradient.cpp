@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "surrogate/likelihood.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
 using namespace smi::kriging;
 

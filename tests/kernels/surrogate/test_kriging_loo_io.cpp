@@ -6,8 +6,8 @@
 #include <iterator>
 #include <cstdio>
 
-#include "core/rng.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::kriging;
 

@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::kriging;
 

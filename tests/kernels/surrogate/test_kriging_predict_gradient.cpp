@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::kriging;
 

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <memory>
 
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/families.hpp"
-#include "surrogate/delta.hpp"
-#include "surrogate/poly_ridge.hpp"
-#include "surrogate/screen_surrogate.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/surrogate/delta.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 
 using namespace smi;
 
