@@ -304,18 +304,9 @@ int evaluate_solver(lua_State* L, Model& m) {
       se::show_progress(stderr, se::format_progress(m.name, p), final);
     };
 
-  // Ctrl-C (and the other aborts of the runtime) arm a count hook firing at every instruction;
-  // while we wait on solvers no Lua runs, so we look for that hook ourselves, and ask the
-  // runtime whether --timeout has passed (its own check lives in that hook).
-  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
-  lua_State* main = lua_tothread(L, -1);
-  lua_pop(L, 1);
-  m.ev->set_stop_check([L, main, stop = pol.stop_reason]() -> std::string {
-    if (std::string why = stop ? stop() : ""; !why.empty()) return why;
-    for (lua_State* s : {L, main})
-      if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return "interrupted";
-    return "";
-  });
+  // While we wait on solvers no Lua runs, so the runtime's hook cannot see Ctrl-C, --timeout,
+  // the memory ceiling or os.exit: we ask the runtime through the policy instead.
+  m.ev->set_stop_check([stop = pol.stop_reason]() -> std::string { return stop ? stop() : ""; });
 
   se::EvalResult r;
   std::string summary;

@@ -119,7 +119,7 @@ int smi_docs(lua_State* L) {
   std::vector<bind::DocText> texts;
   const int r = lua::protect(L, "smi._docs", [&] {
     texts = bind::binding_docs();
-    texts.push_back({"host/vm/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
+    texts.push_back({"host/app/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
     return 0;
   });
   lua_createtable(L, 0, 2);
