@@ -257,7 +257,7 @@ int evaluate_solver(lua_State* L, Model& m) {
   const Eigen::MatrixXd X = design_of(L, 2, m);
   const Policy& pol = lua::policy(L);
   const bool batch = m.kind == Model::Batch;
-  const char* fname = "smi.Model:evaluate";
+  const char* fname = "smi.model:evaluate";
   lua_getiuservalue(L, 1, 1);  // the parser
   const int fn = lua_gettop(L);
   lua_createtable(L, static_cast<int>(m.outputs.size()), 0);

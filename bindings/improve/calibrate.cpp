@@ -217,7 +217,7 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
     f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
     if (s.gradient == "analytic" && !obj.has_gradient())
       throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", an sd-based bandwidth (silverman, normal, 1.06, "
-                            "scott) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+                            "scott) and a model with a gradient (an smi.kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
     if (obj.has_gradient()) {
       oo.gradient = gradient_with_extras(L, s, obj);
       out.analytic_gradient = true;

@@ -20,7 +20,7 @@ metric. Objective form: parameters = {{name, lower, upper, start}, ...} and obje
 The optimizer works in scaled [0, 1] units (SLSQP with central differences, COBYLA, BOBYQA or
 Nelder-Mead), from the start and multistart - 1 seeded points.
 options:
-  model = nil                 -- model form: an smi.Model, an smi.Kriging (or a table of them by
+  model = nil                 -- model form: an smi.model, an smi.kriging (or a table of them by
                               -- output), or a function(X) returning {output = vec}
   inputs = nil                -- model form: {name = {dist = "normal", mean = m | {lo, hi, start},
                               -- std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =);

@@ -50,7 +50,7 @@ example:
 
 @ module smi.kriging
 Universal Kriging (DACE-compatible): smi.kriging.fit and smi.kriging.load give a model with the
-methods smi.Kriging:predict, :loo, :evaluate, :save.
+methods smi.kriging:predict, :loo, :evaluate, :save.
 
 @ smi.kriging.fit(X, y [, opts]) -> model
 Fits a Kriging model to the points X (rows) and responses y: regression trend plus a Gaussian
@@ -71,7 +71,7 @@ options:
   inputs = nil             -- input names (for smi.propagate, smi.screen and smi.calibrate)
   output = "y"             -- the response's name
   threads = ${threads}     -- worker threads
-returns: a model (smi.Kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
+returns: a model (smi.kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
   inputs, output, warnings, evaluations
 errors: X and y of different lengths; fewer points than trend terms; two identical points; an
   unknown trend, corr or option; inputs of the wrong count
@@ -84,14 +84,14 @@ example:
 
 @ smi.kriging.load(path) -> model
 Loads a model written by model:save (names of inputs and output included).
-returns: a model (smi.Kriging)
+returns: a model (smi.kriging)
 errors: the sandbox refuses the path; not a model file, or a newer format version
 example:
   local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
   k:save(smi.out("doc_k.model"))
   print(smi.kriging.load(smi.out("doc_k.model")).n)
 
-@ smi.Kriging:predict(X [, opts]) -> mean, mse
+@ smi.kriging:predict(X [, opts]) -> mean, mse
 Predictions at the rows of X, on both cores for large X.
 options:
   mse = true      -- also return the mean squared error (false: the mean only, faster)
@@ -102,7 +102,7 @@ example:
   local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
   print(k:predict(smi.mat{{0.25}}))
 
-@ smi.Kriging:loo() -> {residuals =, variance =, q2 =, rmse =}
+@ smi.kriging:loo() -> {residuals =, variance =, q2 =, rmse =}
 Closed-form leave-one-out cross-validation (no refit): residuals y_i - yhat_(-i), their variances,
 Q2 = 1 - PRESS / total sum of squares, and the RMSE.
 returns: a table of vecs and numbers
@@ -112,7 +112,7 @@ example:
   local k = smi.kriging.fit(X, X:col(1):map(math.sin))
   print(k:loo().q2 > 0.9)
 
-@ smi.Kriging:evaluate(X) -> {output = vec}
+@ smi.kriging:evaluate(X) -> {output = vec}
 The model's mean as a named model (the form smi.propagate and smi.calibrate call).
 returns: a table {<output name> = vec}
 errors: X with the wrong number of columns
@@ -120,7 +120,7 @@ example:
   local k = smi.kriging.fit(smi.mat{{0}, {1}}, smi.vec{1, 3}, {theta = 1, output = "f"})
   print(k:evaluate(smi.mat{{0}}).f)
 
-@ smi.Kriging:save(path)
+@ smi.kriging:save(path)
 Writes the model (text, version 2, with input and output names) for smi.kriging.load.
 returns: nothing
 errors: the sandbox refuses the path (smi.out(name) is always allowed); the file cannot be written
@@ -134,7 +134,7 @@ Monte Carlo propagation: n points drawn from the inputs pushed through the model
 matrices. The draws are common random numbers: the same seed gives the same points for any
 model, so two models (or two calibration steps) are compared without sampling noise.
 options:
-  model = (required)   -- an smi.Kriging, a table of them by output name, a function(X) returning
+  model = (required)   -- an smi.kriging, a table of them by output name, a function(X) returning
                        -- {name = vec}, or an smi.model.* model
   inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
   n = 10000            -- sample size, 1..2^28

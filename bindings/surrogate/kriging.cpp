@@ -1,4 +1,4 @@
-// smi.kriging.fit(X, y, opts) -> smi.Kriging;  smi.kriging.load(path) -> smi.Kriging
+// smi.kriging.fit(X, y, opts) -> smi.kriging;  smi.kriging.load(path) -> smi.kriging
 //   m:predict(X [, {mse = false}]) -> mean vec, mse vec   (whole matrix, both cores)
 //   m:loo() -> {residuals = vec, variance = vec, q2, rmse}
 //   m:save(path)                                           (sandbox: check_write)
@@ -160,7 +160,7 @@ int k_tostring(lua_State* L) {
   std::ostringstream os;
   os.precision(4);
   const auto& m = k.model;
-  os << "smi.Kriging(" << m.size() << " points, " << m.inputs() << " inputs, trend=" << kriging::trend_name(m.trend)
+  os << "smi.kriging(" << m.size() << " points, " << m.inputs() << " inputs, trend=" << kriging::trend_name(m.trend)
      << ", corr=" << kriging::corr_name(m.corr) << ", theta=[";
   for (Eigen::Index j = 0; j < m.theta.size(); ++j) os << (j ? ", " : "") << m.theta[j];
   os << "], sigma2=" << m.process_variance() << ", method=" << m.method << ")";

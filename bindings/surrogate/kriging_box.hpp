@@ -1,5 +1,5 @@
 #pragma once
-// The Lua type smi.Kriging: a fitted model plus the names of its inputs and output, shared by
+// The Lua type smi.kriging: a fitted model plus the names of its inputs and output, shared by
 // the kriging, propagation and screening bindings.
 #include <cstddef>
 #include <string>
@@ -10,7 +10,7 @@
 
 namespace smi::bind::surrogate {
 
-inline constexpr const char* kKrigingType = "smi.Kriging";
+inline constexpr const char* kKrigingType = "smi.kriging";
 
 struct KrigingBox {
   kriging::Model model;
@@ -27,7 +27,7 @@ inline std::size_t heap_bytes(const KrigingBox& k) {
   return static_cast<std::size_t>(doubles) * sizeof(double);
 }
 
-/// nullptr when the value at idx is not an smi.Kriging (or is closed).
+/// nullptr when the value at idx is not an smi.kriging (or is closed).
 KrigingBox* test_kriging(lua_State* L, int idx);
 void open_kriging(lua_State* L);  // smi.kriging.fit / .load and the type
 

@@ -128,7 +128,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
       while (lua_next(L, idx)) {
         KrigingBox* k = test_kriging(L, -1);
         if (lua_type(L, -2) != LUA_TSTRING || !k)
-          luaL_error(L, "%s: model table must map output names to smi.Kriging models (key %s)", fname,
+          luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname,
                      lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string");
         parts.emplace_back(lua_tostring(L, -2), k);
         lua_pop(L, 1);
@@ -146,7 +146,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
       return m;
     }
   }
-  luaL_error(L, "%s: model must be an smi.Kriging, a table of them by output name, a function(X) or an object "
+  luaL_error(L, "%s: model must be an smi.kriging, a table of them by output name, a function(X) or an object "
              "with :evaluate(X); got %s", fname, luaL_typename(L, idx));
   return m;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // What smi.propagate and smi.screen accept as `model`, turned into one C++ callable on whole
-// matrices: an smi.Kriging (mean prediction), a table of them by output name, a Lua function
+// matrices: an smi.kriging (mean prediction), a table of them by output name, a Lua function
 // taking the sample matrix (returning a vec, or {name = vec}), or any object with the model
 // interface m:evaluate(X) -> {name = vec} (smi.model objects).
 #include <string>

@@ -20,7 +20,7 @@
 namespace smi::bind::surrogate {
 namespace {
 
-constexpr const char* kScreenMeta = "smi.ScreenResult";
+constexpr const char* kScreenMeta = "smi.screen_result";
 
 int screen_tostring(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
