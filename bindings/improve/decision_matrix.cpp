@@ -165,12 +165,8 @@ int decision_matrix(lua_State* L) {
 }
 
 void register_decision_meta(lua_State* L) {
-  if (luaL_newmetatable(L, kDecisionMeta)) {
-    lua_pushcfunction(L, decision_tostring);
-    lua_setfield(L, -2, "__tostring");
-    lua::protect_metatable(L, -1, kDecisionMeta);
-  }
-  lua_pop(L, 1);
+  const luaL_Reg meta[] = {{"__tostring", decision_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kDecisionMeta, nullptr, meta);
 }
 
 }  // namespace smi::bind::improve

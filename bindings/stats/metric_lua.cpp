@@ -319,16 +319,9 @@ int m_upool(lua_State* L) {
 }  // namespace
 
 void open_metric(lua_State* L) {
-  if (luaL_newmetatable(L, kVerdictType)) {
-    const luaL_Reg meta[] = {{"__tostring", verdict_tostring}, {nullptr, nullptr}};
-    luaL_setfuncs(L, meta, 0);
-    lua_createtable(L, 0, 1);
-    lua_pushcfunction(L, verdict_curve);
-    lua_setfield(L, -2, "curve");
-    lua_setfield(L, -2, "__index");
-    lua::protect_metatable(L, -1, kVerdictType);
-  }
-  lua_pop(L, 1);
+  const luaL_Reg methods[] = {{"curve", verdict_curve}, {nullptr, nullptr}};
+  const luaL_Reg meta[] = {{"__tostring", verdict_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kVerdictType, methods, meta);
   const luaL_Reg fns[] = {{"pr", m_pr},
                           {"intersection", m_intersection},
                           {"area", m_area},

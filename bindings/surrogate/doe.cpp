@@ -12,6 +12,7 @@
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
 
 namespace smi::bind::surrogate {

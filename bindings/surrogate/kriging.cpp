@@ -15,6 +15,7 @@
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

@@ -4,6 +4,7 @@
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "bindings/surrogate/model_arg.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -14,6 +14,7 @@
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "bindings/surrogate/model_arg.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 
@@ -195,11 +196,8 @@ int screen_call(lua_State* L) {
 }  // namespace
 
 void open_screen(lua_State* L) {
-  luaL_newmetatable(L, kScreenMeta);
-  lua_pushcfunction(L, screen_tostring);
-  lua_setfield(L, -2, "__tostring");
-  lua::protect_metatable(L, -1, kScreenMeta);
-  lua_pop(L, 1);
+  const luaL_Reg meta[] = {{"__tostring", screen_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kScreenMeta, nullptr, meta);
   lua_pushcfunction(L, screen_call);
   lua_setfield(L, -2, "screen");
 }
