@@ -12,6 +12,7 @@ its target saw them) and rewritten from where the header really is. Headers move
 move_runtime.sh are followed through MOVED. Files outside host/ and bindings/ (tests, bench,
 scripts) keep their own local includes ("fe_test_util.hpp"); only project headers change.
 
+Each run of consecutive quoted includes is then sorted by path (the file's own header first).
 Idempotent: a prefixed include resolves to the same file and is written back unchanged. Run it
 from anywhere: python3 tools/migrate/prefix_includes.py [repo root]. Prints each file changed
 and any include it cannot resolve (left as is) or finds ambiguous (first match taken).
@@ -98,10 +99,42 @@ def rewrite(rel_file):
         if new != inc:
             lines[i] = f'{m.group(1)}"{new}"{m.group(3)}'
             changed = True
+    if in_scope(rel_file) and sort_blocks(rel_file, lines):
+        changed = True
     if changed:
         with open(path, "w", encoding="utf-8") as f:
             f.write("\n".join(lines))
         print(rel_file)
+
+
+def in_scope(rel_file):
+    return rel_file.startswith(("host/", "bindings/", "tests/", "bench/"))
+
+
+def sort_blocks(rel_file, lines):
+    """Sorts each run of consecutive quoted includes by path (prefixing reorders the layers, so
+    "bindings/...", "kernels/...", "luax/..." end up interleaved otherwise). A .cpp file's own
+    header stays first in its run. Returns True if anything moved."""
+    own = os.path.splitext(os.path.basename(rel_file))[0] + ".hpp"
+    moved = False
+    i = 0
+    while i < len(lines):
+        if not INCLUDE.match(lines[i]):
+            i += 1
+            continue
+        j = i
+        while j < len(lines) and INCLUDE.match(lines[j]):
+            j += 1
+        block = lines[i:j]
+        head = []
+        if rel_file.endswith(".cpp") and os.path.basename(INCLUDE.match(block[0]).group(2)) == own:
+            head, block = block[:1], block[1:]
+        ordered = head + sorted(block, key=lambda l: INCLUDE.match(l).group(2))
+        if ordered != lines[i:j]:
+            lines[i:j] = ordered
+            moved = True
+        i = j
+    return moved
 
 
 def main():
