@@ -13,9 +13,9 @@
 
 #include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/families.hpp"
 #include "kernels/stats/grid.hpp"
 #include "kernels/stats/kde.hpp"
-#include "kernels/stats/families.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/propagate.hpp"

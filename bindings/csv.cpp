@@ -25,9 +25,9 @@
 #include <string_view>
 #include <vector>
 
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

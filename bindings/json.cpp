@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

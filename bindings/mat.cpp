@@ -2,10 +2,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "bindings/modules.hpp"
 #include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

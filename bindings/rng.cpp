@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "kernels/core/rng.hpp"
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

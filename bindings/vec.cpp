@@ -6,10 +6,10 @@
 #include <new>
 #include <unistd.h>
 
+#include "bindings/modules.hpp"
 #include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::bind {
 namespace {

@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 #include <set>
 
-#include "luax/luax.hpp"
 #include "bindings/eval/model.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::eval {
 namespace {

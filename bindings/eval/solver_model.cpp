@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "bindings/eval/model.hpp"
 #include "kernels/eval/folder_lock.hpp"
 #include "kernels/eval/process.hpp"
 #include "kernels/eval/progress_line.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "bindings/eval/model.hpp"
 
 namespace smi::bind::eval {
 namespace {

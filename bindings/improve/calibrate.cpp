@@ -36,10 +36,10 @@
 #include <cmath>
 #include <memory>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/improve/design_bounds.hpp"
 #include "bindings/improve/lua_callbacks.hpp"
 #include "bindings/improve/model_gradient.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/design_bounds.hpp"
 #include "kernels/improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 

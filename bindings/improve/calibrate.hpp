@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "bindings/improve/calibrate_spec.hpp"
 #include "kernels/improve/bootstrap.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
-#include "bindings/improve/calibrate_spec.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
 #include "kernels/improve/statistical_objective.hpp"

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
 #include "bindings/improve/lua_values.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "bindings/stats/dist_box.hpp"
 
 namespace smi::bind::improve {
 

@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "bindings/improve/lua_callbacks.hpp"
 #include "kernels/improve/bootstrap.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/design_bounds.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
-#include "bindings/improve/lua_callbacks.hpp"
 #include "kernels/improve/profile_intervals.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 

@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "bindings/improve/calibrate.hpp"
-#include "luax/luax.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "kernels/stats/families.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::improve {
 

@@ -7,9 +7,9 @@
 
 #include <numeric>
 
+#include "bindings/improve/lua_values.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/improve/decision_matrix.hpp"
-#include "bindings/improve/lua_values.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

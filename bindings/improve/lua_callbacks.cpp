@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
 #include "bindings/improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

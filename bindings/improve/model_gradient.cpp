@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "kernels/core/errors.hpp"
 #include "bindings/improve/lua_values.hpp"
-#include "luax/luax.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
+#include "kernels/core/errors.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::improve {
 

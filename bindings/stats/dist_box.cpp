@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "luax/luax.hpp"
 #include "kernels/stats/ecdf.hpp"
 #include "kernels/stats/kde.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind {
 namespace {

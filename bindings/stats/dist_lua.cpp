@@ -1,12 +1,12 @@
 // smi.dist.<family>{...} constructors and smi.dist.fit(data, {families}).
 #include <fmt/format.h>
 
-#include "luax/luax.hpp"
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/fit.hpp"
-#include "bindings/stats/open_parts.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::stats {
 namespace {

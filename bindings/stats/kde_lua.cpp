@@ -1,15 +1,15 @@
 // smi.kde(data, opts), smi.kde_bd(data, opts), smi.kde_ebd(data, opts), smi.ecdf(data).
 #include <fmt/format.h>
 
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/stats/args.hpp"
-#include "kernels/stats/bandwidth.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/ecdf.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/kde_bounded.hpp"
-#include "bindings/stats/open_parts.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::bind::stats {
 namespace {

@@ -9,15 +9,15 @@
 #include <memory>
 #include <mutex>
 
-#include "kernels/eval/progress_line.hpp"
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/eval/progress_line.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
-#include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/upool.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::bind::stats {
 namespace {

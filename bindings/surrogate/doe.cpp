@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <variant>
 
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

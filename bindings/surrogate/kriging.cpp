@@ -12,10 +12,10 @@
 #include <fmt/format.h>
 #include <sstream>
 
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
 #include "bindings/surrogate/open_parts.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

@@ -6,10 +6,10 @@
 #include <map>
 #include <memory>
 
-#include "kernels/core/errors.hpp"
-#include "luax/luax.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
+#include "kernels/core/errors.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "luax/luax.hpp"
 #include "kernels/surrogate/propagate.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::bind::surrogate {
 

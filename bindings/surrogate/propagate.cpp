@@ -1,10 +1,10 @@
 // smi.propagate{model =, inputs =, n =, seed = [, order =]} -> {output = vec, ...}, X
 // Common random numbers: each input's column is its quantile of a fixed uniform column
 // (surrogate/propagate.hpp), and the model gets the whole sample in one call.
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

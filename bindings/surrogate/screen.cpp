@@ -11,12 +11,12 @@
 #include <cstdio>
 #include <string>
 
-#include "luax/luax.hpp"
-#include "luax/policy.hpp"
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
+#include "luax/luax.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

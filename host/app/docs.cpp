@@ -7,10 +7,10 @@
 #include <exception>
 #include <string>
 
-#include "bindings/doc.hpp"
-#include "luax/luax.hpp"
 #include "app/docs.hpp"
 #include "app/runtime.hpp"
+#include "bindings/doc.hpp"
+#include "luax/luax.hpp"
 
 namespace smi::vm {
 namespace {

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "bindings/modules.hpp"
 #include "kernels/core/atomic_file.hpp"
 #include "kernels/core/cancel.hpp"
 #include "kernels/eval/folder_lock.hpp"
-#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
 #include "vm/library_lua.hpp"

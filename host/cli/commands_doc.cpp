@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "app/runtime.hpp"
 #include "cli/commands.hpp"
 #include "kernels/core/errors.hpp"
-#include "app/runtime.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

@@ -10,10 +10,10 @@
 #include <string>
 #include <lua.hpp>
 
+#include "bindings/modules.hpp"
 #include "cli/commands.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/sha256.hpp"
-#include "bindings/modules.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

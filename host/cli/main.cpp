@@ -9,11 +9,11 @@
 #include <unistd.h>
 #include <vector>
 
+#include "app/runtime.hpp"
 #include "cli/args.hpp"
 #include "cli/commands.hpp"
 #include "kernels/eval/process.hpp"
 #include "repl/repl.hpp"
-#include "app/runtime.hpp"
 
 namespace {
 

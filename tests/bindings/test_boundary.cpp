@@ -6,9 +6,9 @@
 
 #include <string>
 
+#include "app/runtime.hpp"
 #include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
-#include "app/runtime.hpp"
 
 namespace {
 

@@ -7,10 +7,10 @@
 #include <set>
 #include <unordered_map>
 
+#include "kernels/core/sha256.hpp"
 #include "kernels/eval/pending.hpp"
 #include "kernels/eval/process.hpp"
 #include "kernels/eval/scheduler.hpp"
-#include "kernels/core/sha256.hpp"
 #include "kernels/eval/text_parsers.hpp"
 #include "kernels/eval/work_dir.hpp"
 

@@ -7,10 +7,10 @@
 
 #include "kernels/eval/executor.hpp"
 #include "kernels/eval/pending.hpp"
-#include "kernels/eval/store.hpp"
 #include "kernels/eval/process.hpp"
 #include "kernels/eval/slurm_cli.hpp"
 #include "kernels/eval/slurm_executor.hpp"
+#include "kernels/eval/store.hpp"
 
 using namespace smi::eval;
 
