@@ -8,97 +8,27 @@
 //   smi.csv.write(path, t [, {header = {...}, sep = ","}])
 //       t.<column> a vec or a table of numbers/strings, all the same length; the header row
 //       follows opts.header, else the column names sorted.
-// Both go through the sandbox policy (read / write). A bad number is reported with the file,
+// The text is read and written by the one CSV codec (core/csv.hpp, RFC 4180); here only the
+// table logic. Both go through the sandbox policy (read / write). A bad number is reported with the file,
 // line and column; numbers are written so that they read back exactly (shortest round trip).
-#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
-#include <fstream>
 #include <fmt/format.h>
 #include <set>
-#include <sstream>
 #include <string>
 #include <variant>
 #include <map>
-#include <string_view>
 #include <vector>
 
+#include "kernels/core/csv.hpp"
 #include "bindings/modules.hpp"
+#include "kernels/core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 
 namespace smi::bind {
 namespace {
-
-struct Record {
-  std::vector<std::string> fields;
-  long line = 0;  // line where the record starts
-};
-
-/// Splits text into records (RFC 4180: quoted fields may hold sep, quotes as "", newlines).
-std::vector<Record> split_records(const std::string& text, char sep, const std::string& file) {
-  std::vector<Record> out;
-  long line = 1;
-  std::size_t i = 0;
-  const std::size_t n = text.size();
-  while (i < n) {
-    Record rec;
-    rec.line = line;
-    std::string field;
-    bool any = false;
-    for (;;) {
-      if (i < n && text[i] == '"') {
-        const long start_line = line;
-        ++i;
-        for (;;) {
-          if (i >= n) throw Error(fmt::format("{}:{}: a quoted field never ends (missing '\"')", file, start_line));
-          if (text[i] == '"') {
-            if (i + 1 < n && text[i + 1] == '"') {
-              field += '"';
-              i += 2;
-              continue;
-            }
-            ++i;
-            break;
-          }
-          if (text[i] == '\n') ++line;
-          field += text[i++];
-        }
-      }
-      while (i < n && text[i] != sep && text[i] != '\n' && text[i] != '\r') field += text[i++];
-      any = any || !field.empty();
-      rec.fields.push_back(std::move(field));
-      field.clear();
-      if (i < n && text[i] == sep) {
-        ++i;
-        any = true;
-        continue;
-      }
-      break;
-    }
-    if (i < n && text[i] == '\r') ++i;
-    if (i < n && text[i] == '\n') ++i;
-    ++line;
-    if (any) out.push_back(std::move(rec));  // blank lines are skipped
-  }
-  return out;
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-bool parse_number(const std::string& cell, double& out) {
-  const std::string t = trim(cell);
-  if (t.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(t.c_str(), &end);
-  return *end == '\0';
-}
 
 using Column = std::variant<std::vector<double>, std::vector<std::string>>;
 
@@ -109,14 +39,13 @@ struct Table {
 };
 
 Table parse_table(const std::string& raw, char sep, const std::string& file, const std::set<std::string>& strings) {
-  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
-  const std::string_view bom = "\xEF\xBB\xBF";
-  const std::string text = raw.compare(0, bom.size(), bom) == 0 ? raw.substr(bom.size()) : raw;
-  std::vector<Record> recs = split_records(text, sep, file);
+  csv::ReadOptions ro;
+  ro.sep = sep;
+  const std::vector<csv::Record> recs = csv::read(raw, file, ro);
   if (recs.empty()) throw Error(fmt::format("{}: the file is empty (a header row is needed)", file));
   Table t;
   for (std::size_t j = 0; j < recs[0].fields.size(); ++j) {
-    std::string name = trim(recs[0].fields[j]);
+    std::string name = csv::trim(recs[0].fields[j]);
     if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, recs[0].line, j + 1));
     for (const auto& h : t.header)
       if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, recs[0].line, name));
@@ -139,9 +68,9 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
     bool numeric = false;
     if (!strings.count(t.header[j]))
       for (std::size_t r = 1; r < recs.size(); ++r) {
-        if (trim(recs[r].fields[j]).empty()) continue;
+        if (csv::trim(recs[r].fields[j]).empty()) continue;
         double v;
-        numeric = parse_number(recs[r].fields[j], v);
+        numeric = csv::parse_number(recs[r].fields[j], v);
         break;
       }
     if (numeric) {
@@ -149,7 +78,7 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
       col.reserve(recs.size() - 1);
       for (std::size_t r = 1; r < recs.size(); ++r) {
         double v = 0;
-        if (!parse_number(recs[r].fields[j], v))
+        if (!csv::parse_number(recs[r].fields[j], v))
           throw Error(fmt::format(
               "{}:{}: column {} ('{}'): bad number '{}' (the column holds numbers above; fix the cell, or "
               "read the column as text with {{strings = {{\"{}\"}}}})",
@@ -168,7 +97,7 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
   std::map<std::vector<std::string>, long> first_line;
   for (std::size_t r = 1; r < recs.size(); ++r) {
     std::vector<std::string> key;
-    for (const auto& f : recs[r].fields) key.push_back(trim(f));
+    for (const auto& f : recs[r].fields) key.push_back(csv::trim(f));
     const auto [it, fresh] = first_line.emplace(std::move(key), recs[r].line);
     if (!fresh) t.duplicates.emplace_back(it->second, recs[r].line);
   }
@@ -246,20 +175,7 @@ int csv_read(lua_State* L) {
 
 std::string format_number(lua_State* L, int idx) {
   if (lua_isinteger(L, idx)) return std::to_string(lua_tointeger(L, idx));
-  const double v = lua_tonumber(L, idx);
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back exactly
-  return std::string(buf, r.ptr);
-}
-
-std::string quote_cell(const std::string& s, char sep) {
-  if (s.find_first_of(std::string("\"\r\n") + sep) == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
+  return number_text(lua_tonumber(L, idx));  // shortest text that reads back exactly
 }
 
 /// smi.csv.write(path, t [, opts]): columns by name, header row first.
@@ -309,7 +225,7 @@ int csv_write(lua_State* L) {
         if (t == LUA_TNUMBER)
           cells.push_back(format_number(L, -1));
         else if (t == LUA_TSTRING)
-          cells.push_back(quote_cell(lua_tostring(L, -1), sep));
+          cells.push_back(lua_tostring(L, -1));
         else
           luaL_error(L, "smi.csv.write: column '%s'[%d] must be a number or a string, got %s", name.c_str(),
                      static_cast<int>(i), luaL_typename(L, -1));
@@ -327,15 +243,9 @@ int csv_write(lua_State* L) {
     cols.push_back(std::move(cells));
   }
   return lua::protect(L, "smi.csv.write", [&] {
-    std::ostringstream out;
-    for (std::size_t j = 0; j < header.size(); ++j) out << (j ? std::string(1, sep) : "") << quote_cell(header[j], sep);
-    out << '\n';
-    for (std::size_t r = 0; r < cols.front().size(); ++r) {
-      for (std::size_t j = 0; j < cols.size(); ++j) out << (j ? std::string(1, sep) : "") << cols[j][r];
-      out << '\n';
-    }
+    const std::string text = csv::write(header, cols, sep);
     const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
-    if (!pathwalk::write_all(f.fd.get(), out.str()))
+    if (!pathwalk::write_all(f.fd.get(), text))
       throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
   });

@@ -38,23 +38,31 @@ example:
   print(io.open(p):read("a"))
 
 @ module smi.json
-JSON text and files: numbers with 17 significant digits (they read back exactly), smi.json.null
-for null, vecs written as arrays.
+JSON text and files by the one JSON codec of smi-lua (the results writer and `smi-lua verify` use
+it too): numbers in the shortest text that reads back exactly, smi.json.null for null, vecs
+written as arrays. NaN and infinities: refused by default (JSON has none); with
+nonfinite = "encode", inf is written 1e999 (read back as inf) and NaN null (read back as NaN by
+decode/read with {null = 0/0}), the rule results.json follows.
 
-@ smi.json.encode(value [, opts]) -> string
+@ smi.json.encode(value [, opts]) -> string [, skipped]
 JSON text of a Lua value: tables with keys 1..n become arrays, other tables objects (keys sorted),
 vecs arrays, smi.json.null null.
 options:
-  indent = 0       -- spaces per level, 0..16; 0 writes one line
-returns: a string
-errors: a value JSON cannot hold (a function, a userdata other than vec, NaN or infinity, a
-  table mixing keys), named by its path in the value; a cycle
+  indent = 0            -- spaces per level, 0..16; 0 writes one line
+  nonfinite = "refuse"  -- or "encode": inf as 1e999, -inf as -1e999, NaN as null
+  skip = false          -- leave out what JSON cannot hold; their paths are the second result
+  root = "$"            -- the name of the value in error paths
+returns: a string (and, with skip, a list of the paths left out)
+errors: a value JSON cannot hold (a function, a userdata other than vec, NaN or infinity unless
+  nonfinite = "encode", a table mixing keys), named by its path in the value; a cycle
 example:
   print(smi.json.encode({name = "E", values = {1, 2.5}}))
 
-@ smi.json.decode(text) -> value
+@ smi.json.decode(text [, opts]) -> value
 The Lua value of a JSON text: objects and arrays as tables, null as smi.json.null, integers as
 Lua integers.
+options:
+  null = smi.json.null  -- what null reads as (0/0 for files written with nonfinite = "encode")
 returns: the value
 errors: invalid JSON, with the line and column of the problem
 example:
@@ -64,7 +72,8 @@ example:
 @ smi.json.write(path, value [, opts])
 Writes value as JSON to a file (with a final newline).
 options:
-  indent = 2       -- spaces per level, 0..16
+  indent = 2            -- spaces per level, 0..16
+  nonfinite = "refuse"  -- as smi.json.encode (also root)
 returns: nothing
 errors: the sandbox refuses the path; the value cannot be encoded (as smi.json.encode)
 example:
@@ -72,8 +81,8 @@ example:
   smi.json.write(p, {seed = smi.seed})
   print(smi.json.read(p).seed == smi.seed)
 
-@ smi.json.read(path) -> value
-Reads and decodes a JSON file.
+@ smi.json.read(path [, opts]) -> value
+Reads and decodes a JSON file (opts as smi.json.decode).
 returns: the value
 errors: the sandbox refuses the path; the file cannot be opened; invalid JSON (file, line, column)
 example:

@@ -102,11 +102,11 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   if (o.push("files") != LUA_TNIL) files = lua::to_strings(L, -1, "files");
   lua_pop(L, 1);
   c.version = o.string("version", "");
-  c.timeout = o.number("timeout", 0);
-  c.retries = static_cast<int>(o.integer("retries", 0));
-  c.concurrency = static_cast<int>(o.integer("concurrency", 1));
-  c.batch_size = static_cast<int>(o.integer("batch_size", 0));
-  c.reuse_failed = o.boolean("reuse_failed", false);
+  c.timeout = o.number("timeout", c.timeout);
+  c.retries = static_cast<int>(o.integer("retries", c.retries));
+  c.concurrency = static_cast<int>(o.integer("concurrency", c.concurrency));
+  c.batch_size = static_cast<int>(o.integer("batch_size", c.batch_size));
+  c.reuse_failed = o.boolean("reuse_failed", c.reuse_failed);
   const std::string on_failure = o.string("on_failure", "stop");
   // executor = {kind = "slurm", partition = "short", ...} overrides --executor/--slurm-opt key by key.
   std::vector<std::pair<std::string, std::string>> exec_opts;

@@ -25,7 +25,7 @@ KdeOptions kde_options(const Options& o) {
   else throw InvalidArgument(fmt::format("method must be \"auto\", \"exact\" or \"binned\", got \"{}\"", m));
   k.binned_tol = o.number("tol", k.binned_tol);
   if (!(k.binned_tol > 0.0 && k.binned_tol < 0.1)) throw InvalidArgument(fmt::format("tol must be in (0, 0.1), got {}", k.binned_tol));
-  k.threads = static_cast<int>(o.integer("threads", 2));
+  k.threads = static_cast<int>(o.integer("threads", k.threads));
   if (k.threads < 1 || k.threads > 64) throw InvalidArgument(fmt::format("threads must be in 1..64, got {}", k.threads));
   return k;
 }
@@ -62,7 +62,7 @@ BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
   b.max_added = static_cast<int>(o.integer("max_added", b.max_added));
   b.compare = o.string("compare", b.compare);
   b.bandwidth = o.string("bandwidth", b.bandwidth);
-  b.deterministic = o.boolean("deterministic", false);
+  b.deterministic = o.boolean("deterministic", b.deterministic);
   b.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   b.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", b.grid_nodes));
   return b;

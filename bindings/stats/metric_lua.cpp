@@ -44,12 +44,12 @@ std::optional<Grid> grid_option(lua_State* L, int idx, const char* fname) {
   if (o.push("grid") == LUA_TTABLE) {
     lua::Options g(L, lua_gettop(L), fname);
     g.check_known({"lower", "upper", "nodes"});
-    Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", 4001))};
+    Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", kDefaultGridNodes))};
     lua_pop(L, 1);
     return gr;
   }
   lua_pop(L, 1);
-  if (o.has("nodes")) return Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", 4001))};  // range filled later
+  if (o.has("nodes")) return Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", kDefaultGridNodes))};  // range filled later
   return std::nullopt;
 }
 

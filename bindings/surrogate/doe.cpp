@@ -90,9 +90,9 @@ int doe_lhs(lua_State* L) {
   doe::LhsOptions lo;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   lo.criterion = o.string("criterion", "maximin");
-  lo.p = o.number("p", 50.0);
-  lo.iterations = static_cast<int>(o.integer("iterations", 0));
-  lo.centered = o.boolean("centered", false);
+  lo.p = o.number("p", lo.p);
+  lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
+  lo.centered = o.boolean("centered", lo.centered);
   return lua::protect(L, "smi.doe.lhs", [&] {
     lua::push_mat(L, map_space(doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
     return 1;

@@ -61,12 +61,12 @@ int k_fit(lua_State* L) {
     lua_pop(L, 1);
   } else {
     lua_pop(L, 1);
-    fo.nugget = o.number("nugget", 0.0);
+    fo.nugget = o.number("nugget", fo.nugget);
   }
-  fo.starts = static_cast<int>(o.integer("starts", 0));
-  fo.seed = static_cast<std::uint64_t>(o.integer("seed", 1));
-  fo.normalize = o.boolean("normalize", true);
-  fo.threads = static_cast<int>(o.integer("threads", 2));
+  fo.starts = static_cast<int>(o.integer("starts", fo.starts));
+  fo.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(fo.seed)));
+  fo.normalize = o.boolean("normalize", fo.normalize);
+  fo.threads = static_cast<int>(o.integer("threads", fo.threads));
   if (o.has("inputs")) {
     o.push("inputs");
     box.inputs = lua::to_strings(L, -1, "inputs");
@@ -91,7 +91,7 @@ int k_predict(lua_State* L) {
   lua::Options o(L, 3, "predict");
   o.check_known({"mse", "threads"});
   const bool want_mse = o.boolean("mse", true);
-  const int threads = static_cast<int>(o.integer("threads", 2));
+  const int threads = static_cast<int>(o.integer("threads", kDefaultThreads));
   return lua::protect(L, "predict", [&] {
     if (!want_mse) {
       lua::push_vec(L, kriging::predict_mean(k.model, X, threads));

@@ -128,13 +128,13 @@ int screen_call(lua_State* L) {
                  "method", "runs", "basis", "q2_min", "delta", "classes"});
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   screen::Options so;
-  so.n = static_cast<Eigen::Index>(o.integer("n", 10000));
+  so.n = static_cast<Eigen::Index>(o.integer("n", so.n));
   so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   so.fix = o.string("fix", "mean");
-  so.sobol = o.boolean("sobol", true);
-  so.bootstrap = static_cast<int>(o.integer("bootstrap", 200));
-  so.level = o.number("level", 0.95);
-  so.grid = static_cast<Eigen::Index>(o.integer("grid", 4001));
+  so.sobol = o.boolean("sobol", so.sobol);
+  so.bootstrap = static_cast<int>(o.integer("bootstrap", so.bootstrap));
+  so.level = o.number("level", so.level);
+  so.grid = static_cast<Eigen::Index>(o.integer("grid", so.grid));
   const std::optional<std::string> want = o.string("output");
   const std::string method = o.string("method", "full");
   const bool surrogate = method == "surrogate";
@@ -146,11 +146,11 @@ int screen_call(lua_State* L) {
       lua_pop(L, 1);
     }
   screen::SurrogateOptions sso;
-  sso.runs = static_cast<Eigen::Index>(o.integer("runs", 300));
+  sso.runs = static_cast<Eigen::Index>(o.integer("runs", sso.runs));
   const std::string basis = o.string("basis", "quadratic");
   sso.q2_min = o.number("q2_min", 0.9);
-  sso.delta = o.boolean("delta", true);
-  sso.delta_classes = static_cast<Eigen::Index>(o.integer("classes", 0));
+  sso.delta = o.boolean("delta", sso.delta);
+  sso.delta_classes = static_cast<Eigen::Index>(o.integer("classes", sso.delta_classes));
   return lua::protect(L, fname, [&] {
     if (method != "full" && method != "surrogate")
       throw InvalidArgument("method must be \"full\" or \"surrogate\", got '" + method + "'");

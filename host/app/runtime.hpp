@@ -7,6 +7,7 @@
 #include <vector>
 #include <lua.hpp>
 
+#include "kernels/core/defaults.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 #include "vm/libraries.hpp"
@@ -16,7 +17,7 @@
 
 namespace smi::vm {
 
-inline constexpr std::uint64_t kDefaultSeed = 20200214;
+using smi::kDefaultSeed;  // core/defaults.hpp
 
 struct Config {
   std::uint64_t seed = kDefaultSeed;  // --seed; recorded in results as smi.seed

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
+
+#include "kernels/core/defaults.hpp"
 
 namespace smi::cli {
 namespace {
@@ -140,8 +143,17 @@ Args parse(int argc, char** argv) {
 
 const char* usage_line() { return "usage: smi-lua [options] [script [args]]   (smi-lua --help lists the options)"; }
 
+/// The help text with ${seed} replaced by the default seed.
+static std::string fill_defaults(std::string s) {
+  const std::string key = "${seed}";
+  for (std::size_t at = s.find(key); at != std::string::npos; at = s.find(key, at))
+    s.replace(at, key.size(), std::to_string(kDefaultSeed));
+  return s;
+}
+
 const char* help_text() {
-  return R"(usage: smi-lua [options] [script [args]]
+  // The defaults named in the text come from where they are defined (core/defaults.hpp).
+  static const std::string text = fill_defaults(R"(usage: smi-lua [options] [script [args]]
 
 Runs a study script (or stdin with '-') in a sandbox; with no script, starts the REPL on a
 terminal and runs stdin otherwise. The script gets its arguments as arg[1..n] and as '...'.
@@ -171,7 +183,7 @@ Modules:
 
 Run:
   --out DIR           output folder, created when first written (default smi-out/<script>/)
-  --seed N            seed of smi's and math.random's generators (default 20200214); smi.seed
+  --seed N            seed of smi's and math.random's generators (default ${seed}); smi.seed
   --quiet, -q         no progress output (automatic when stdout or stderr is not a terminal)
   --max-memory MB     stop the script when the Lua heap plus the data of smi.vec, smi.mat and
                       Kriging models would exceed MB megabytes
@@ -203,7 +215,8 @@ Commands (sharing libraries; options such as --lib go before or after them):
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
 stderr), 2 usage error; os.exit(n) exits with n.
-)";
+)");
+  return text.c_str();
 }
 
 }  // namespace smi::cli

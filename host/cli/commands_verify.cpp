@@ -8,11 +8,10 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <lua.hpp>
 
-#include "bindings/modules.hpp"
 #include "cli/commands.hpp"
 #include "kernels/core/errors.hpp"
+#include "kernels/core/json.hpp"
 #include "kernels/core/sha256.hpp"
 
 namespace smi::cli {
@@ -32,29 +31,9 @@ struct Recorded {
   std::vector<RecordedLib> libs;
 };
 
-/// A closed Lua state used only to decode JSON with smi.json (one JSON reader in the tree).
-struct JsonState {
-  lua_State* L = luaL_newstate();
-  ~JsonState() { lua_close(L); }
-};
-
-std::string field_string(lua_State* L, const char* key) {
-  lua_getfield(L, -1, key);
-  std::string v = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
-  lua_pop(L, 1);
-  return v;
-}
-
-int decode_chunk(lua_State* L) {
-  // stack: [text]; opens smi.json and decodes.
-  luaL_openlibs(L);
-  lua_newtable(L);
-  bind::open_json(L);  // [text, smi]
-  lua_getfield(L, -1, "json");
-  lua_getfield(L, -1, "decode");
-  lua_pushvalue(L, 1);
-  lua_call(L, 1, 1);
-  return 1;
+std::string field_string(const json::Value& o, const char* key) {
+  const json::Value* v = o.find(key);
+  return v ? v->string() : "";
 }
 
 Recorded read_recorded(const fs::path& file) {
@@ -62,59 +41,43 @@ Recorded read_recorded(const fs::path& file) {
   if (!in) throw Error("cannot read '" + file.string() + "'");
   std::ostringstream ss;
   ss << in.rdbuf();
-  const std::string text = ss.str();
-  JsonState js;
-  lua_State* L = js.L;
-  lua_pushcfunction(L, decode_chunk);
-  lua_pushlstring(L, text.data(), text.size());
-  if (lua_pcall(L, 1, 1, 0) != LUA_OK)
-    throw Error("'" + file.string() + "' is not valid JSON: " + (lua_tostring(L, -1) ? lua_tostring(L, -1) : "?"));
-  if (!lua_istable(L, -1)) throw Error("'" + file.string() + "' does not hold a JSON object");
-  lua_getfield(L, -1, "provenance");
-  if (!lua_istable(L, -1))
+  json::Value doc;
+  try {
+    doc = json::read(ss.str(), file.string());
+  } catch (const Error& e) {
+    throw Error("'" + file.string() + "' is not valid JSON: " + e.what());
+  }
+  if (!doc.is_object()) throw Error("'" + file.string() + "' does not hold a JSON object");
+  const json::Value* prov = doc.find("provenance");
+  if (!prov || !prov->is_object())
     throw Error("'" + file.string() +
                 "' has no 'provenance' object: it was not written by a study that records smi.provenance() "
                 "(smi.study does; a hand-written results file can add provenance = smi.provenance())");
   Recorded r;
-  r.smi_lua = field_string(L, "smi_lua");
-  lua_getfield(L, -1, "seed");
-  if (lua_isnumber(L, -1)) {
-    r.seed = static_cast<long long>(lua_tonumber(L, -1));
+  r.smi_lua = field_string(*prov, "smi_lua");
+  if (const json::Value* seed = prov->find("seed"); seed && seed->is_number()) {
+    r.seed = static_cast<long long>(seed->number());
     r.has_seed = true;
   }
-  lua_pop(L, 1);
-  lua_getfield(L, -1, "script");
-  if (lua_istable(L, -1)) {
-    r.script_path = field_string(L, "path");
-    r.script_hash = field_string(L, "hash");
+  if (const json::Value* script = prov->find("script"); script && script->is_object()) {
+    r.script_path = field_string(*script, "path");
+    r.script_hash = field_string(*script, "hash");
   }
-  lua_pop(L, 1);
-  lua_getfield(L, -1, "libraries");
-  if (lua_istable(L, -1)) {
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
-    for (lua_Integer i = 1; i <= n; ++i) {
-      lua_rawgeti(L, -1, i);
-      if (lua_istable(L, -1)) {
-        RecordedLib l;
-        l.name = field_string(L, "name");
-        l.version = field_string(L, "version");
-        l.path = field_string(L, "path");
-        l.hash = field_string(L, "hash");
-        l.commit = field_string(L, "commit");
-        lua_getfield(L, -1, "files");
-        if (lua_istable(L, -1)) {
-          l.has_files = true;
-          lua_pushnil(L);
-          while (lua_next(L, -2)) {
-            if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TSTRING)
-              l.files[lua_tostring(L, -2)] = lua_tostring(L, -1);
-            lua_pop(L, 1);
-          }
-        }
-        lua_pop(L, 1);
-        r.libs.push_back(std::move(l));
+  if (const json::Value* libs = prov->find("libraries")) {
+    for (const json::Value& lib : libs->array()) {
+      if (!lib.is_object()) continue;
+      RecordedLib l;
+      l.name = field_string(lib, "name");
+      l.version = field_string(lib, "version");
+      l.path = field_string(lib, "path");
+      l.hash = field_string(lib, "hash");
+      l.commit = field_string(lib, "commit");
+      if (const json::Value* files = lib.find("files"); files && files->is_object()) {
+        l.has_files = true;
+        for (const auto& [rel, digest] : files->object())
+          if (digest.is_string()) l.files[rel] = digest.string();
       }
-      lua_pop(L, 1);
+      r.libs.push_back(std::move(l));
     }
   }
   return r;

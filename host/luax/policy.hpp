@@ -9,6 +9,7 @@
 #include <vector>
 #include <lua.hpp>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/path_walk.hpp"
 
@@ -46,7 +47,7 @@ struct Policy {
   std::vector<std::filesystem::path> write_roots;  // --out dir, --allow-write
   std::vector<std::string> exec_allowed;           // --allow-exec: program names or paths
   std::filesystem::path out_dir;                   // --out (default smi-out/<script>/)
-  std::uint64_t seed = 20200214;                   // --seed
+  std::uint64_t seed = kDefaultSeed;               // --seed
   bool quiet = false;                              // --quiet or stdout/stderr not a terminal
   bool unrestricted = false;                       // no sandbox (tests of the kernels only)
   std::string store_path;                          // --store PATH: evaluation store to use (issue 5)

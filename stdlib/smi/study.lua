@@ -137,7 +137,7 @@ function Study:load()
   if not f then return nil, "cannot read " .. self.results_path .. ": " .. tostring(err) end
   local text = f:read("a")
   f:close()
-  local ok, data = pcall(json.lua_decode, text)
+  local ok, data = pcall(json.decode, text)
   if not ok then error(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data), 0) end
   if type(data) ~= "table" or type(data.steps) ~= "table" then
     error(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path), 0)
@@ -149,7 +149,7 @@ end
 -- rename): a full disk or a kill mid-write leaves the previous file, and the error says so.
 function Study:_save(saved)
   if type(smi) == "table" and smi.dry_run then return end -- a dry run's numbers are not results
-  local text = json.lua_encode(saved, { indent = "  ", root = "results" })
+  local text = json.encode(saved, { indent = "  ", root = "results" })
   require("smi.file").write(self.results_path, text .. "\n", ("study '%s'"):format(self.name))
 end
 
@@ -298,8 +298,8 @@ function Study:run(opts)
       live[st.name] = result
       -- keep only what JSON can hold in the file
       local skipped = {}
-      local text = json.lua_encode(result, { skip = true, skipped = skipped, root = st.name })
-      saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.lua_decode(text),
+      local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
+      saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.decode(text),
                                not_saved = #skipped > 0 and skipped or nil }
       self.timings[#self.timings + 1] = { st.name, "ok", dt }
       self:_save(saved)

@@ -93,13 +93,17 @@ if [ -e pwned ]; then bad "the manifest ran os.execute"; else ok; fi
 cat > study/study.lua <<'LUA'
 local study = require "smi.study"
 local s = study.new{name = "demo", out = smi.out_dir}
-s:step("score", function() return {area = require("refcrit.criteria.area").area(5, 2)} end)
+-- non-finite results (a diverged metric) are kept by the results-file rule and must not stop verify
+s:step("score", function() return {area = require("refcrit.criteria.area").area(5, 2), worst = math.huge,
+                                   best = -math.huge, ratio = 0 / 0} end)
 s:run()
 LUA
 run study 0 "$SMI" --quiet --lib team --seed 7 --out out study/study.lua
 results=out/results.json
 if grep -q '"provenance"' $results && grep -q "\"commit\": *\"$r_commit\"" $results && grep -q '"seed": *7' $results \
    && grep -q '"smi_lua"' $results && grep -q '"criteria/area.lua"' $results; then ok; else bad "provenance missing from $results: $(head -c 800 $results)"; fi
+if grep -q '"worst": 1e999' $results && grep -q '"best": -1e999' $results && grep -q '"ratio": null' $results; then ok
+else bad "non-finite results not kept as 1e999/-1e999/null in $results"; fi
 run verify-same 0 "$SMI" verify --lib team $results
 has_out "ok       refcrit 2.1.0"
 has_out "ok       kdetools 1.3.0"

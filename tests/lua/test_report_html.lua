@@ -143,7 +143,7 @@ T.case("write() and write_json(): files with the page and the numbers", function
   T.eq(text, r:html(), "file holds the page")
   local jpath = r:write_json(dir .. "/test_report_html.json")
   f = assert(io.open(jpath, "rb"))
-  local d = json.lua_decode(f:read("a"))
+  local d = json.decode(f:read("a"))
   f:close()
   T.eq(d.title, "Beam <study> & co", "title")
   T.eq(d.results.calibration.mean, 2.07e11, "recorded result")

@@ -9,7 +9,7 @@ local function results_path(name) return dir .. "/" .. name .. ".json" end
 
 local function read_json(path)
   local f = assert(io.open(path, "rb"))
-  local d = json.lua_decode(f:read("a"))
+  local d = json.decode(f:read("a"))
   f:close()
   return d
 end

@@ -26,7 +26,7 @@ local function read(path)
   return s
 end
 
-local R = json.lua_decode(read(arg[1]))
+local R = json.decode(read(arg[1]))
 local S = R.steps
 local C = R.conclusion
 local data = S.data.result

@@ -1,5 +1,6 @@
 #pragma once
-// SHA-256 (FIPS 180-4), written here so smi-lua needs no crypto library. The evaluation store
+// SHA-256 (FIPS 180-4) by nettle (Debian's nettle-dev): a maintained implementation behind the
+// small interface the tree uses (incremental update, length-framed fields, hex). The evaluation store
 // keys solver runs by content (rendered deck, program, version), and provenance hashes scripts
 // and libraries: a collision-resistant hash is what lets a store be shared between studies and
 // teammates without false hits, and what lets `smi-lua verify` catch a changed file.
@@ -7,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <nettle/sha2.h>
 
 namespace smi {
 
@@ -23,11 +25,8 @@ class Sha256 {
   std::string hex();
 
  private:
-  void block(const std::uint8_t* p);
-  std::uint32_t h_[8];
-  std::uint8_t buf_[64];
-  std::size_t used_ = 0;
-  std::uint64_t total_ = 0;
+  sha256_ctx ctx_;
+  std::array<std::uint8_t, 32> digest_{};
   bool done_ = false;
 };
 

@@ -1,5 +1,7 @@
 #include "kernels/eval/evaluator.hpp"
 
+#include "kernels/core/csv.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -59,15 +61,13 @@ std::string last_lines(std::string s, int n) {
   return r;
 }
 
+/// A batch deck: the points as CSV by the one CSV codec. Numbers keep fmt's text ("{}"): the
+/// deck's text is part of the store key, so existing stores stay valid.
 std::string csv_of(const std::vector<std::string>& names, const Eigen::MatrixXd& rows) {
-  std::string s;
-  for (std::size_t j = 0; j < names.size(); ++j) s += (j ? "," : "") + names[j];
-  s += '\n';
-  for (Eigen::Index i = 0; i < rows.rows(); ++i) {
-    for (Eigen::Index j = 0; j < rows.cols(); ++j) s += fmt::format("{}{}", j ? "," : "", rows(i, j));
-    s += '\n';
-  }
-  return s;
+  std::vector<std::vector<std::string>> columns(static_cast<std::size_t>(rows.cols()));
+  for (Eigen::Index j = 0; j < rows.cols(); ++j)
+    for (Eigen::Index i = 0; i < rows.rows(); ++i) columns[static_cast<std::size_t>(j)].push_back(fmt::format("{}", rows(i, j)));
+  return csv::write(names, columns);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // reported through a callback on that same thread, so the caller (the Lua binding) can parse
 // outputs and write the store without locks; results are placed by job id, so the order in
 // which processes finish never changes what a study computes.
+// No threads here: a solver slot is a child process waited for with poll/waitpid on the caller's
+// thread, a different job from the kernels' thread pool (core/thread_pool.hpp).
 #include <cstddef>
 #include <deque>
 #include <functional>

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <sstream>
 
+#include "kernels/core/csv.hpp"
+
 namespace smi::eval {
 namespace {
 
@@ -60,34 +62,7 @@ double match_number(const Match& m, const std::string& text, const std::string& 
   return v;
 }
 
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    std::string f = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const auto b = f.find_first_not_of(" \t\r\"");
-    const auto e = f.find_last_not_of(" \t\r\"");
-    out.push_back(b == std::string::npos ? "" : f.substr(b, e - b + 1));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
-}
-
 }  // namespace
-
-bool parse_number(const std::string& text, double& out) {
-  const char* s = text.c_str();
-  while (*s == ' ' || *s == '\t') ++s;
-  if (!*s) return false;
-  char* end = nullptr;
-  errno = 0;
-  out = std::strtod(s, &end);
-  if (end == s) return false;
-  while (*end == ' ' || *end == '\t' || *end == '\r') ++end;
-  return *end == '\0';
-}
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -117,39 +92,32 @@ Eigen::VectorXd regex_numbers(const std::string& text, const std::string& patter
 }
 
 Eigen::VectorXd csv_column(const std::string& text, const std::string& column, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  int lineno = 0;
+  csv::ReadOptions ro;
+  ro.comment = '#';
+  const std::vector<csv::Record> recs = csv::read(text, source, ro);
+  if (recs.empty()) throw ParseError(fmt::format("'{}': empty CSV file (no header line)", source));
   std::vector<std::string> header;
-  std::size_t col = 0;
+  for (const std::string& h : recs.front().fields) header.push_back(csv::trim(h));
+  const auto it = std::find(header.begin(), header.end(), column);
+  if (it == header.end()) {
+    std::string names;
+    for (const auto& h : header) names += (names.empty() ? "" : ", ") + h;
+    throw ParseError(fmt::format("'{}' line {}: no column '{}' in the header (columns: {})", source,
+                                 recs.front().line, column, names));
+  }
+  const std::size_t col = static_cast<std::size_t>(it - header.begin());
   std::vector<double> vals;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-    const auto fields = split_csv(line);
-    if (header.empty()) {
-      header = fields;
-      const auto it = std::find(header.begin(), header.end(), column);
-      if (it == header.end()) {
-        std::string names;
-        for (const auto& h : header) names += (names.empty() ? "" : ", ") + h;
-        throw ParseError(fmt::format("'{}' line {}: no column '{}' in the header (columns: {})", source, lineno,
-                                     column, names));
-      }
-      col = static_cast<std::size_t>(it - header.begin());
-      continue;
-    }
-    if (fields.size() != header.size())
-      throw ParseError(fmt::format("'{}' line {}: {} fields, the header has {}", source, lineno, fields.size(),
+  for (std::size_t r = 1; r < recs.size(); ++r) {
+    const csv::Record& rec = recs[r];
+    if (rec.fields.size() != header.size())
+      throw ParseError(fmt::format("'{}' line {}: {} fields, the header has {}", source, rec.line, rec.fields.size(),
                                    header.size()));
     double v = 0;
-    if (!parse_number(fields[col], v))
-      throw ParseError(fmt::format("'{}' line {} column '{}': '{}' is not a number", source, lineno, column,
-                                   fields[col]));
+    if (!parse_number(rec.fields[col], v))
+      throw ParseError(fmt::format("'{}' line {} column '{}': '{}' is not a number", source, rec.line, column,
+                                   csv::trim(rec.fields[col])));
     vals.push_back(v);
   }
-  if (header.empty()) throw ParseError(fmt::format("'{}': empty CSV file (no header line)", source));
   return Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/core/csv.hpp"
 #include "kernels/core/errors.hpp"
 
 namespace smi::eval {
@@ -24,12 +25,13 @@ double regex_number(const std::string& text, const std::string& pattern, const s
 /// Every match, in order.
 Eigen::VectorXd regex_numbers(const std::string& text, const std::string& pattern, const std::string& source);
 
-/// Column `column` (by header name) of a comma-separated table with one header line; blank
-/// lines and lines starting with '#' are skipped.
+/// Column `column` (by header name) of a comma-separated table with one header line, read by
+/// the one CSV codec (core/csv.hpp: quoted fields, CRLF, BOM); blank lines and lines starting
+/// with '#' are skipped.
 Eigen::VectorXd csv_column(const std::string& text, const std::string& column, const std::string& source);
 
-/// Parses a whole number from text (strtod over the trimmed string); nullopt-like false if the
-/// text is not entirely a number.
-bool parse_number(const std::string& text, double& out);
+/// A whole number from text (strtod over the trimmed text), false if the text is not entirely
+/// one: the CSV codec's rule, so a solver's numbers read the same from CSV and from a regex match.
+using csv::parse_number;
 
 }  // namespace smi::eval

@@ -16,13 +16,13 @@
 #include "kernels/core/descriptive.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/normal.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/improve/input_derivatives.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/surrogate/fast_exp.hpp"
-#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::improve {
 
@@ -46,7 +46,7 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
   const long nb = static_cast<long>((N + kBlock - 1) / kBlock);
   std::vector<double> ghs(static_cast<std::size_t>(nb), 0.0);
   const double lo = G > 0 ? x[0] : 0.0, step = G > 1 ? (x[G - 1] - x[0]) / static_cast<double>(G - 1) : 1.0;
-  smi::detail::parallel_for(nb, threads, [&](long b) {
+  pool::parallel_for(nb, threads, [&](long b) {
     double acc_h = 0.0;
     Eigen::ArrayXd t, e;  // per sample: the window's standardised distances and kernels
     for (Eigen::Index i = b * kBlock; i < std::min(N, (b + 1) * kBlock); ++i) {

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <initializer_list>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/core/descriptive.hpp"
 
 namespace smi {
@@ -12,7 +13,7 @@ namespace smi {
 struct Grid {
   double lo = 0.0;
   double hi = 1.0;
-  Eigen::Index n = 4001;  ///< number of nodes (>= 2001 by §0; 4001 recommended)
+  Eigen::Index n = kDefaultGridNodes;  ///< number of nodes (>= 2001 by §0; 4001 recommended)
 
   /// Node spacing (hi - lo) / (n - 1).
   double step() const { return (hi - lo) / static_cast<double>(n - 1); }

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
 #include "kernels/stats/grid.hpp"
@@ -36,7 +37,7 @@ struct KdeOptions {
   /// the bin width is chosen so that binned_error_bound() <= tol · φ(0)/h.
   double binned_tol = 1e-6;
   /// Worker threads for large evaluations (results identical for any count).
-  int threads = 2;
+  int threads = kDefaultThreads;
 };
 
 /// Exact Gaussian KDE density of `data` (any order) with bandwidth h at the points x.

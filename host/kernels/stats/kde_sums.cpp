@@ -5,10 +5,10 @@
 
 #include "kernels/core/errors.hpp"
 #include "kernels/core/normal.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/fast_normal.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/kde_uniform_grid.hpp"
-#include "kernels/stats/parallel.hpp"
 
 namespace smi {
 namespace {
@@ -107,7 +107,7 @@ Eigen::VectorXd kde_pdf(ConstVec data, double h, ConstVec x, int threads) {
     return;
   }
   const double work = static_cast<double>(x.size()) * static_cast<double>(std::min<Eigen::Index>(t.size(), 4000));
-  detail::parallel_blocks(x.size(), threads, work, [&](Eigen::Index b, Eigen::Index e) {
+  pool::parallel_blocks(x.size(), threads, work, [&](Eigen::Index b, Eigen::Index e) {
     if (t.size() <= kSmallN)
       pdf_small(t, h, x, out, b, e);
     else
@@ -128,7 +128,7 @@ Eigen::VectorXd kde_cdf(ConstVec data, double h, ConstVec x, int threads) {
     return;
   }
   const double work = static_cast<double>(x.size()) * static_cast<double>(std::min<Eigen::Index>(t.size(), 4000));
-  detail::parallel_blocks(x.size(), threads, work, [&](Eigen::Index b, Eigen::Index e) {
+  pool::parallel_blocks(x.size(), threads, work, [&](Eigen::Index b, Eigen::Index e) {
     if (t.size() <= kSmallN)
       cdf_small(t, h, x, out, b, e);
     else
@@ -158,7 +158,7 @@ Eigen::VectorXd kde_pdf_binned(ConstVec data, double h, ConstVec x, double bin, 
   }
   const double ih = 1.0 / h, w = kKdeCutoff * h;
   Eigen::VectorXd out(x.size());
-  detail::parallel_blocks(x.size(), threads, static_cast<double>(x.size()) * (2 * w / bin), [&](Eigen::Index b, Eigen::Index e) {
+  pool::parallel_blocks(x.size(), threads, static_cast<double>(x.size()) * (2 * w / bin), [&](Eigen::Index b, Eigen::Index e) {
     Eigen::ArrayXd z;
     for (Eigen::Index j = b; j < e; ++j) {
       const double xj = x[j];

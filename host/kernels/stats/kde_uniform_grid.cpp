@@ -5,9 +5,9 @@
 #include <limits>
 #include <vector>
 
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/fast_normal.hpp"
 #include "kernels/stats/kde.hpp"
-#include "kernels/stats/parallel.hpp"
 
 namespace smi::detail {
 namespace {
@@ -19,7 +19,7 @@ constexpr Eigen::Index kBlock = 64;
 template <class F>
 void over_blocks(Eigen::Index m, Eigen::Index n_data, int threads, F&& body) {
   const Eigen::Index nblocks = (m + kBlock - 1) / kBlock;
-  parallel_blocks(nblocks, threads, static_cast<double>(m) * static_cast<double>(std::min<Eigen::Index>(n_data, 4000)),
+  pool::parallel_blocks(nblocks, threads, static_cast<double>(m) * static_cast<double>(std::min<Eigen::Index>(n_data, 4000)),
                   [&](Eigen::Index b0, Eigen::Index b1) {
                     for (Eigen::Index b = b0; b < b1; ++b) body(b * kBlock, std::min(m, (b + 1) * kBlock));
                   });

@@ -13,7 +13,7 @@
 #include "kernels/core/cancel.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/rng.hpp"
-#include "kernels/stats/parallel.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/quadrature.hpp"
 #include "kernels/stats/upool_asymptotic.hpp"
 
@@ -114,9 +114,9 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
     }
   };
   // Chunks are seeded by their index, so the split over threads never changes the numbers;
-  // parallel_blocks caps the threads and carries a worker's exception (Interrupted) back here.
+  // pool::parallel_blocks caps the threads and carries a worker's exception (Interrupted) back here.
   const int nt = std::max(1, std::min<int>(s.threads, static_cast<int>(chunks)));
-  detail::parallel_blocks(static_cast<Eigen::Index>(chunks), nt, 1e12,
+  pool::parallel_blocks(static_cast<Eigen::Index>(chunks), nt, 1e12,
                           [&](Eigen::Index c0, Eigen::Index c1) { work(c0, c1); });
   return out;
 }

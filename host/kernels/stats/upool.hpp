@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
 
@@ -22,7 +23,7 @@ double upool_statistic(ConstVec u);
 struct UpoolMcSettings {
   std::int64_t replications = 1'000'000;
   std::uint64_t seed = 20200101;
-  int threads = 2;  ///< results are identical for any thread count (fixed chunking)
+  int threads = kDefaultThreads;  ///< results are identical for any thread count (fixed chunking)
   /// Called with the fraction of sets simulated after each chunk, from the worker threads (so it
   /// must be thread-safe), only while a sample is being made (a cached one calls nothing). Not
   /// part of the cached state: it changes no number.

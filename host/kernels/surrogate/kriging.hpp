@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/surrogate/correlation.hpp"
 #include "kernels/surrogate/regression.hpp"
 
@@ -32,7 +33,7 @@ struct FitOptions {
   int starts = 0;              // local searches of the ML multistart; 0 = automatic by size
   std::uint64_t seed = 1;      // candidate starting points of the multistart
   bool normalize = true;       // DACE normalisation of inputs and response
-  int threads = 2;
+  int threads = kDefaultThreads;
 };
 
 /// A fitted model: everything prediction needs, in normalised units unless stated.
@@ -70,12 +71,12 @@ struct Prediction {
 };
 /// Mean and MSE (with the trend-estimation term) at the rows of X; blocks of points share
 /// GEMMs; `threads` workers split the blocks (results do not depend on the split).
-Prediction predict(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
+Prediction predict(const Model& m, const Eigen::MatrixXd& X, int threads = kDefaultThreads);
 /// Mean only: the fast path used by propagation.
-Eigen::VectorXd predict_mean(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
+Eigen::VectorXd predict_mean(const Model& m, const Eigen::MatrixXd& X, int threads = kDefaultThreads);
 /// Gradient of the predicted mean with respect to the inputs at the rows of X (rows x inputs),
 /// in closed form (predict_gradient.cpp).
-Eigen::MatrixXd predict_gradient(const Model& m, const Eigen::MatrixXd& X, int threads = 2);
+Eigen::MatrixXd predict_gradient(const Model& m, const Eigen::MatrixXd& X, int threads = kDefaultThreads);
 
 /// Closed-form leave-one-out (Dubrule 1983) at the fitted theta: residual y_i - yhat_{-i}.
 struct LooResult {

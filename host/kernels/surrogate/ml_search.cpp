@@ -10,8 +10,8 @@
 #include <numeric>
 #include <vector>
 
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/surrogate/doe.hpp"
-#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging::detail {
 namespace {
@@ -76,7 +76,7 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   }
   std::vector<double> cval(ncand);
   std::vector<int> cevals(ncand, 0);
-  smi::detail::parallel_for(ncand, threads, [&](long c) {
+  pool::parallel_for(ncand, threads, [&](long c) {
     Local loc{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()};
     std::vector<double> nograd;
     cval[c] = loc.eval(cand[c], nograd);
@@ -129,7 +129,7 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   int done = 0;
   while (done < starts) {
     const int k = std::min(round, starts - done);
-    smi::detail::parallel_for(k, threads, [&](long r) { local(done + r); });
+    pool::parallel_for(k, threads, [&](long r) { local(done + r); });
     done += k;
     if (!confirm) continue;
     double fbest = std::numeric_limits<double>::infinity();

@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/surrogate/fused_mean.hpp"
 #include "kernels/surrogate/kriging.hpp"
-#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging {
 namespace {
@@ -35,7 +35,7 @@ void check_input(const Model& md, const Eigen::MatrixXd& X) {
 template <class Body>
 void blocks(const Eigen::MatrixXd& X, int threads, Body&& body) {
   const Eigen::Index nb = (X.rows() + kBlock - 1) / kBlock;
-  smi::detail::parallel_for(static_cast<long>(nb), threads, [&](long b) {
+  pool::parallel_for(static_cast<long>(nb), threads, [&](long b) {
     const Eigen::Index r0 = b * kBlock, nr = std::min(kBlock, X.rows() - r0);
     body(r0, nr);
   });

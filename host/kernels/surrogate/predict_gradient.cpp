@@ -7,8 +7,8 @@
 #include <algorithm>
 
 #include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/surrogate/kriging.hpp"
-#include "kernels/surrogate/parallel.hpp"
 
 namespace smi::kriging {
 namespace {
@@ -45,7 +45,7 @@ Eigen::MatrixXd predict_gradient(const Model& md, const Eigen::MatrixXd& X, int 
   const Eigen::VectorXd theta = md.theta.size() == 1 ? Eigen::VectorXd::Constant(n, md.theta[0]) : md.theta;
   Eigen::MatrixXd out(X.rows(), n);
   const Eigen::Index nb = (X.rows() + kBlock - 1) / kBlock;
-  smi::detail::parallel_for(static_cast<long>(nb), threads, [&](long b) {
+  pool::parallel_for(static_cast<long>(nb), threads, [&](long b) {
     const Eigen::Index r0 = b * kBlock, B = std::min(kBlock, X.rows() - r0);
     const Eigen::MatrixXd Xn = (X.middleRows(r0, B).rowwise() - md.mS).array().rowwise() / md.sS.array();
     // s (B x m) as in cross_correlation, then g'(s) weighted by gamma.

@@ -6,7 +6,7 @@
 
 #include "kernels/core/errors.hpp"
 #include "kernels/core/rng.hpp"
-#include "kernels/surrogate/parallel.hpp"
+#include "kernels/core/thread_pool.hpp"
 
 namespace smi::propagate {
 
@@ -27,7 +27,7 @@ Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std
   // costly part, are then split into chunks so that both workers stay busy whatever k is.
   // Every element is computed by exactly one task: the sample does not depend on `threads`.
   Eigen::MatrixXd X(n, k);
-  smi::detail::parallel_for(k, threads, [&](long c) {
+  pool::parallel_for(k, threads, [&](long c) {
     const Input& in = inputs[static_cast<std::size_t>(c)];
     if (in.dist)
       X.col(c) = crn_uniforms(in.name, n, seed, stream);
@@ -36,7 +36,7 @@ Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std
   });
   constexpr Eigen::Index kChunk = 1 << 15;
   const Eigen::Index per = (n + kChunk - 1) / kChunk;
-  smi::detail::parallel_for(k * per, threads, [&](long t) {
+  pool::parallel_for(k * per, threads, [&](long t) {
     const long c = t / per;
     const DistributionPtr& dist = inputs[static_cast<std::size_t>(c)].dist;
     if (!dist) return;

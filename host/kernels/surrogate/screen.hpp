@@ -8,18 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "kernels/core/defaults.hpp"
 #include "kernels/surrogate/propagate.hpp"
 
 namespace smi::screen {
 
 struct Options {
   Eigen::Index n = 10000;
-  std::uint64_t seed = 20200214;
+  std::uint64_t seed = kDefaultSeed;
   std::string fix = "mean";  // value an input is fixed at: "mean" | "median"
   bool sobol = true;
   int bootstrap = 200;       // resamples for the Sobol' CIs (0 = none)
   double level = 0.95;
-  Eigen::Index grid = 4001;  // §0 grid nodes
+  Eigen::Index grid = kDefaultGridNodes;  // §0 grid nodes
 };
 
 /// Indices of one input for one output.

@@ -67,7 +67,7 @@ local totals = { launched = 0, points = 0, reused = 0 }
 print(("%-4s %-6s %-6s %-58s %-5s %-9s %s"):format("exp", "truth", "noise", "conclusion", "right", "converged", "calibrated mean / true mean - 1 (last trial)"))
 for _, r in ipairs(rows) do
   local text = read(("%s/exp%s/study/results.json"):format(out, r.id))
-  local R = text and json.lua_decode(text)
+  local R = text and json.decode(text)
   local c = R and R.conclusion
   local ok, why = judge(r, c)
   all_ok = all_ok and ok

@@ -442,7 +442,7 @@ example:
 ]==]
 --- JSON text of r:data() (non-finite numbers: NaN -> null, inf -> 1e999).
 function Report:json()
-  return json.lua_encode(self:data(), { indent = "  ", root = "report", skip = true })
+  return json.encode(self:data(), { indent = "  ", root = "report", skip = true })
 end
 
 doc.add[==[

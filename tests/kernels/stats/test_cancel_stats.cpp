@@ -5,8 +5,8 @@
 
 #include "kernels/core/cancel.hpp"
 #include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/kde.hpp"
-#include "kernels/stats/parallel.hpp"
 #include "kernels/stats/upool.hpp"
 
 using namespace smi;
@@ -40,7 +40,7 @@ TEST_CASE("the u-pooling Monte Carlo stops when interrupted") {
 TEST_CASE("parallel_blocks carries a worker's exception to the caller and caps threads") {
   cancel::reset();
   int calls = 0;
-  REQUIRE_THROWS_WITH(detail::parallel_blocks(1000, 100000, 1e9,
+  REQUIRE_THROWS_WITH(pool::parallel_blocks(1000, 100000, 1e9,
                                               [&](Eigen::Index b, Eigen::Index) {
                                                 if (b >= 500) throw Error("worker failed");
                                                 ++calls;
@@ -48,7 +48,7 @@ TEST_CASE("parallel_blocks carries a worker's exception to the caller and caps t
                       "worker failed");
   // without a cancellation every element is computed exactly once, whatever the split
   std::vector<int> hits(1000, 0);
-  detail::parallel_blocks(1000, 3, 1e9, [&](Eigen::Index b, Eigen::Index e) {
+  pool::parallel_blocks(1000, 3, 1e9, [&](Eigen::Index b, Eigen::Index e) {
     for (Eigen::Index i = b; i < e; ++i) hits[static_cast<std::size_t>(i)]++;
   });
   for (int h : hits) REQUIRE(h == 1);
