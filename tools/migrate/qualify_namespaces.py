@@ -43,6 +43,7 @@ SKIP_DIRS = {".git", "build", "tmp", "tools"}
 STATS_DIR = "host/kernels/stats/"
 SURR_DIR = "host/kernels/surrogate/"
 COMPONENTS = ["kriging", "doe", "delta", "polyfit", "propagate", "screen"]
+AREA_OF = {c: "surrogate" for c in COMPONENTS}  # `using namespace smi::<x>` pulls in the names of area AREA_OF[x]
 KEYWORDS = {
     "return", "else", "new", "delete", "throw", "case", "co_return", "co_await", "sizeof", "if", "while",
     "for", "switch", "operator", "const", "constexpr", "inline", "static", "explicit", "virtual", "typename",
@@ -223,7 +224,7 @@ def substitute(text, masked, pattern, repl):
     return "".join(out)
 
 
-def rewrite(rel, text, funcs, types, group_names):
+def rewrite(rel, text, funcs, types, group_names, area_names):
     in_stats = rel.startswith(STATS_DIR)
     in_surr = rel.startswith(SURR_DIR)
     comps = "|".join(COMPONENTS)
@@ -252,13 +253,17 @@ def rewrite(rel, text, funcs, types, group_names):
     masked = mask(text)
     if not re.search(r"\bnamespace\s+smi\b|\busing\s+namespace\s+smi\b", masked):
         return text
-    binding = rel.startswith("bindings/")
-    stats_q = "smi::stats::" if binding else "stats::"
-    surr_q = "smi::surrogate::" if binding else "surrogate::"
+    # `stats::` resolves where the file is inside namespace smi or pulls it in whole; in bindings
+    # and in files that only pull in smi::<something> the qualifier starts at smi::
+    short = re.search(r"\bnamespace\s+smi\b|\busing\s+namespace\s+smi\s*;", masked) and not rel.startswith("bindings/")
+    stats_q = "stats::" if short else "smi::stats::"
+    surr_q = "surrogate::" if short else "smi::surrogate::"
     if not in_surr:
         step(r"(?<![\w:.>])(" + comps + r")::", lambda m: surr_q + m.group(1) + "::")
     if not in_stats and sym_alt:
         own = declared_names(masked) | group_names
+        for m in re.finditer(r"\busing\s+namespace\s+smi::(\w+)", masked):  # e.g. smi::kriging: its fit()
+            own |= area_names.get(AREA_OF.get(m.group(1), m.group(1)), set())
 
         def qualify(m):
             name = m.group(1)
@@ -298,9 +303,10 @@ def main():
                 if group_of(rel2) == g and rel2.endswith((".hpp", ".h")):
                     names |= declared_names(mask(read(full2)))
             group_cache[g] = names
+    area_names = {a: group_cache.get("host/kernels/" + a, set()) for a in ("surrogate", "improve", "eval")}
     for rel, full in files:
         text = read(full)
-        new = rewrite(rel, text, funcs, types, group_cache.get(group_of(rel), set()))
+        new = rewrite(rel, text, funcs, types, group_cache.get(group_of(rel), set()), area_names)
         if new != text:
             with open(full, "w", encoding="utf-8") as f:
                 f.write(new)
