@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
     auto f2 = [](const Eigen::MatrixXd& X) {
       return Eigen::VectorXd((X.col(1).array() / X.col(2).array() * 10 + X.col(4).array().log() * 3 - X.col(0).array() * X.col(3).array()).matrix());
     };
-    smi::kriging::FitOptions fo;
-    const smi::kriging::Model k1 = smi::kriging::fit(D, f1(D), fo), k2 = smi::kriging::fit(D, f2(D), fo);
+    smi::surrogate::kriging::FitOptions fo;
+    const smi::surrogate::kriging::Model k1 = smi::surrogate::kriging::fit(D, f1(D), fo), k2 = smi::surrogate::kriging::fit(D, f2(D), fo);
     // Truth and synthetic data (the true functions, not the surrogates).
     Eigen::VectorXd mu(k), sd(k);
     mu << 1.0, 2.0, 3.0, 0.5, 5.0;
@@ -161,13 +161,13 @@ int main(int argc, char** argv) {
     so.threads = 2;
     auto model = [&](const Eigen::MatrixXd& X) {
       Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::kriging::predict_mean(k1, X, 2);
-      Y.col(1) = smi::kriging::predict_mean(k2, X, 2);
+      Y.col(0) = smi::surrogate::kriging::predict_mean(k1, X, 2);
+      Y.col(1) = smi::surrogate::kriging::predict_mean(k2, X, 2);
       return Y;
     };
     StatisticalObjective obj(in, {r1, r2}, p, model, so);
     obj.set_model_jacobian([&](const Eigen::MatrixXd& X) {
-      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(k1, X, 2), smi::kriging::predict_gradient(k2, X, 2)};
+      return std::vector<Eigen::MatrixXd>{smi::surrogate::kriging::predict_gradient(k1, X, 2), smi::surrogate::kriging::predict_gradient(k2, X, 2)};
     });
     Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
     OptimizerOptions o;

@@ -15,7 +15,7 @@ namespace {
 
 /// One part's Jacobian source: a Kriging (closed form) or a Lua gradient method.
 struct Source {
-  const kriging::Model* kriging = nullptr;
+  const smi::surrogate::kriging::Model* kriging = nullptr;
   int grad_slot = 0;
   int self_slot = 0;
   std::string output;  ///< the part's response name ("" = the model of all responses)
@@ -70,7 +70,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
     if (src.size() == 1 && src[0].output.empty()) {
       const Source& part = src[0];
       if (part.kriging) {
-        J[0] = kriging::predict_gradient(*part.kriging, X, 2);
+        J[0] = smi::surrogate::kriging::predict_gradient(*part.kriging, X, 2);
         return J;
       }
       StackGuard guard(L);
@@ -90,7 +90,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
         if (p.output == responses[r]) part = &p;
       if (!part) throw InvalidArgument(fmt::format("no model part predicts response '{}'", responses[r]));
       if (part->kriging) {
-        J[r] = kriging::predict_gradient(*part->kriging, X, 2);
+        J[r] = smi::surrogate::kriging::predict_gradient(*part->kriging, X, 2);
         continue;
       }
       StackGuard guard(L);

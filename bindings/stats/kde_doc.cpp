@@ -86,8 +86,8 @@ example:
 }  // namespace
 
 DocText doc_stats_kde() {
-  const KdeOptions k;
-  const BoundedKdeOptions b;
+  const smi::stats::KdeOptions k;
+  const smi::stats::BoundedKdeOptions b;
   return {"bindings/stats/kde_doc.cpp",
           fill(kText, {{"tol", num(k.binned_tol)},
                        {"threads", num(k.threads)},

@@ -110,8 +110,8 @@ example:
 }  // namespace
 
 DocText doc_stats_metric() {
-  const UpoolMcSettings s;
-  const Grid g;
+  const smi::stats::UpoolMcSettings s;
+  const smi::stats::Grid g;
   return {"bindings/stats/metric_doc.cpp",
           fill(kText, {{"nodes", num(static_cast<double>(g.n))},
                        {"replications", num(static_cast<double>(s.replications))},

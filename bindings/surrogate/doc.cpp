@@ -186,9 +186,9 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const doe::LhsOptions lo;
-  const kriging::FitOptions fo;
-  const screen::Options so;
+  const smi::surrogate::doe::LhsOptions lo;
+  const smi::surrogate::kriging::FitOptions fo;
+  const smi::surrogate::screen::Options so;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"criterion", lo.criterion},

@@ -13,7 +13,7 @@ namespace smi::bind::surrogate {
 inline constexpr const char* kKrigingType = "smi.kriging";
 
 struct KrigingBox {
-  kriging::Model model;
+  smi::surrogate::kriging::Model model;
   std::vector<std::string> inputs;  // may be empty (unnamed)
   std::string output = "y";
 };

@@ -61,7 +61,7 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
       }
       t = (x.segment(g0, g1 - g0).array() - y[i]) / h;
       e = 0.5 * t.square();
-      smi::kriging::exp_neg_inplace(e.data(), static_cast<long>(e.size()));  // vectorised exp(−t²/2)
+      smi::surrogate::kriging::exp_neg_inplace(e.data(), static_cast<long>(e.size()));  // vectorised exp(−t²/2)
       e *= a.segment(g0, g1 - g0).array();
       gy[i] = norm * (e * t).sum();
       acc_h += (e * (t.square() - 1.0)).sum();
@@ -103,18 +103,18 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
     if (!(sd > 0.0))
       throw InvalidArgument(fmt::format("response '{}': the model output is constant ({}) over the CRN sample, so it has no density "
                                         "(check that the calibrated inputs reach the model)", r.name, y[0]));
-    const double h = bandwidth_by_name(y, opt_.bandwidth);
+    const double h = stats::bandwidth_by_name(y, opt_.bandwidth);
     Eigen::VectorXd gy;
     double gh = 0.0;
     if (opt_.metric == MetricKind::pr) {
-      const Grid& g = *r.grid;
-      const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, opt_.threads);
+      const stats::Grid& g = *r.grid;
+      const Eigen::VectorXd fp = stats::kde_pdf_grid(y, h, g, opt_.threads);
       const Eigen::VectorXd& fe = f_exp_grid_[static_cast<std::size_t>(j)];
       Eigen::VectorXd ends(2);
       ends << g.lo, g.hi;
-      const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
+      const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
       const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
-      e.parts[j] = l1_area_on_grid(fe, fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
+      e.parts[j] = stats::l1_area_on_grid(fe, fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
       // ∂PR/∂fp_g = −w_g sign(fe_g − fp_g), trapezoid weights w_g.
       Eigen::VectorXd a(g.n);
       for (Eigen::Index k = 0; k < g.n; ++k) {
@@ -137,7 +137,7 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
         }
       }
     } else {
-      const Eigen::VectorXd f = kde_pdf(y, h, r.data, 1);
+      const Eigen::VectorXd f = stats::kde_pdf(y, h, r.data, 1);
       double s = 0.0;
       Eigen::VectorXd a(f.size());
       for (Eigen::Index i = 0; i < f.size(); ++i) {

@@ -11,7 +11,7 @@
 
 #include "kernels/core/rng.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 class Distribution {
  public:
@@ -54,4 +54,4 @@ class Distribution {
 
 using DistributionPtr = std::shared_ptr<const Distribution>;
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -7,7 +7,7 @@
 #include "kernels/core/descriptive.hpp"
 #include "kernels/core/errors.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Ecdf::Ecdf(Eigen::VectorXd data) : t_(std::move(data)) {
   require_size(t_, 1, "data");
@@ -64,4 +64,4 @@ void Ecdf::steps(Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   }
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -4,7 +4,7 @@
 // (use a KDE for densities).
 #include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 class Ecdf : public Distribution {
  public:
@@ -32,4 +32,4 @@ class Ecdf : public Distribution {
   Eigen::VectorXd t_;
 };
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -7,7 +7,7 @@
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/special.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEulerGamma = 0.57721566490153286061;
@@ -151,4 +151,4 @@ std::vector<std::pair<std::string, double>> Beta::params() const {
   return {{"alpha", a_}, {"beta", b_}, {"lower", lo_}, {"upper", hi_}};
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -10,7 +10,7 @@
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/nelder_mead.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -138,4 +138,4 @@ std::vector<FitResult> fit(ConstVec data, const std::vector<std::string>& famili
   return out;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

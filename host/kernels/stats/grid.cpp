@@ -5,7 +5,7 @@
 
 #include "kernels/core/errors.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Eigen::VectorXd Grid::nodes() const {
   Eigen::VectorXd x(n);
@@ -36,4 +36,4 @@ Grid Grid::covering(ConstVec data, double h_max, Eigen::Index n) {
   return covering(data.minCoeff(), data.maxCoeff(), h_max, n);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

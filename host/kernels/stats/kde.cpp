@@ -9,7 +9,7 @@
 #include "kernels/core/normal.hpp"
 #include "kernels/stats/bandwidth.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Kde::Kde(Eigen::VectorXd data, double h, KdeOptions opt) : t_(std::move(data)), h_(h), opt_(opt) {
   require_size(t_, 1, "data");
@@ -121,4 +121,4 @@ std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, double h, KdeOptions 
   return std::make_shared<Kde>(data, h, opt);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

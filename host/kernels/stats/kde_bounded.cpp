@@ -8,7 +8,7 @@
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/metrics.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 void check_options(const BoundedKdeOptions& o) {
@@ -107,4 +107,4 @@ BoundedKdeResult kde_ebd(const Eigen::VectorXd& x, double alpha, bool unbiased, 
   return kde_bounded(x, l, u, o);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

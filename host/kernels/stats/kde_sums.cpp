@@ -10,7 +10,7 @@
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/kde_uniform_grid.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 // Below this many data points the loop runs over data outside and over a block of x inside
@@ -183,4 +183,4 @@ Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, int threads
   return kde_pdf(data, h, g.nodes(), threads);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

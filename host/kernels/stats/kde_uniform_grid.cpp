@@ -9,7 +9,7 @@
 #include "kernels/stats/fast_normal.hpp"
 #include "kernels/stats/kde.hpp"
 
-namespace smi::detail {
+namespace smi::stats::detail {
 namespace {
 
 constexpr Eigen::Index kBlock = 64;
@@ -127,4 +127,4 @@ void uniform_cdf_sums(ConstVec t, double h, ConstVec x, double dx, Eigen::Vector
   });
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

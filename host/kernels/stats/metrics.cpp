@@ -10,7 +10,7 @@
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/quadrature.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 /// [lo, hi] holding all but ~1e-10 of d's mass (a KDE: data range ± 6h, §0).
@@ -200,4 +200,4 @@ double loglik(ConstVec y, const Distribution& d, double floor, int* floored) {
   return s;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <vector>
 
-namespace smi::detail {
+namespace smi::stats::detail {
 namespace {
 
 Eigen::VectorXd run(const std::function<double(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x0,
@@ -58,4 +58,4 @@ Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>&
   return x;
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

@@ -7,7 +7,7 @@
 #include "kernels/core/errors.hpp"
 #include "kernels/stats/kde.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 constexpr int kQuantileScan = 400;      // scan points per analytic distribution
@@ -112,4 +112,4 @@ PdfOverlap pdf_overlap(const Distribution& a, const Distribution& b, double lo, 
   return out;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

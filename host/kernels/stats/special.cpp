@@ -6,7 +6,7 @@
 
 #include "kernels/core/normal.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 constexpr double kEps = 1e-16;
 constexpr double kTiny = 1e-300;
@@ -154,4 +154,4 @@ double normal_mass_width(double a, double w) {
   return s * hw;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

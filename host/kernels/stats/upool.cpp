@@ -17,7 +17,7 @@
 #include "kernels/stats/quadrature.hpp"
 #include "kernels/stats/upool_asymptotic.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 /// ∫_a^b |u − c| du = F(b) − F(a) with F(u) = (u − c)|u − c|/2: branch-free and exact.
@@ -262,4 +262,4 @@ void upool_curve(const UpoolVerdict& v, Eigen::VectorXd& x, Eigen::VectorXd& y) 
   x[2 * n + 1] = 1.0, y[2 * n + 1] = 1.0;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 struct Row {
@@ -63,4 +63,4 @@ double upool_asymptotic_pvalue(int n, double u) {
   return 1.0 - ((1.0 - w) * kTable[i].p + w * kTable[i + 1].p);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

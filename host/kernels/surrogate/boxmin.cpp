@@ -7,7 +7,7 @@
 
 #include "kernels/core/errors.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 struct State {
@@ -137,4 +137,4 @@ BoxminResult boxmin(const Eigen::VectorXd& theta0, const Eigen::VectorXd& lo, co
   return {s.t, s.f, s.nv};
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -8,7 +8,7 @@
 #include <bit>
 #include <cstdint>
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr double kLog2e = 1.4426950408889634074;
@@ -61,4 +61,4 @@ void exp_neg_inplace(double* x, long n) {
   for (long i = 0; i < n; ++i) x[i] = exp_neg_scalar(x[i]);
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

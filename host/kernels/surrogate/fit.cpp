@@ -14,7 +14,7 @@
 #include "kernels/surrogate/likelihood.hpp"
 #include "kernels/surrogate/ml_search.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr Eigen::Index kSubsetAbove = 400, kSubset = 250;
@@ -224,4 +224,4 @@ Model assemble(const detail::Problem& pb, const Eigen::VectorXd& theta, double n
   return md;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

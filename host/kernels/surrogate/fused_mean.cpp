@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr double kLog2e = 1.4426950408889634074;
@@ -101,4 +101,4 @@ void fused_gauss_sum(const Eigen::MatrixXd& Xw, const RowMatrix& Sw, const Eigen
   std::copy(tmp, tmp + (nr - i), out + i);
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

@@ -15,7 +15,7 @@
 #include "kernels/surrogate/correlation.hpp"
 #include "kernels/surrogate/regression.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 struct FitOptions {
   Trend trend = Trend::constant;
@@ -101,4 +101,4 @@ Model load(const std::string& path, ModelNames* names = nullptr);
 void save(const Model& m, std::ostream& os, const std::string& path, const ModelNames& names = {});
 Model load(std::istream& is, const std::string& path, ModelNames* names = nullptr);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -11,7 +11,7 @@
 
 #include "kernels/core/errors.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr Eigen::Index kLeaf = 48;  // below this, plain triangular solves beat the recursion
@@ -144,4 +144,4 @@ Eigen::VectorXd log_psi_gradient(const Problem& pb, const Factors& f, const Eige
   return g;
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

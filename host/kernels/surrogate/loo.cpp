@@ -5,7 +5,7 @@
 
 #include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 LooResult loo(const Model& md) {
   const Eigen::Index m = md.size();
@@ -23,4 +23,4 @@ LooResult loo(const Model& md) {
   return r;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

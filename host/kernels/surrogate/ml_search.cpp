@@ -13,7 +13,7 @@
 #include "kernels/core/thread_pool.hpp"
 #include "kernels/surrogate/doe.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr double kNuggetLo = 1e-10, kNuggetHi = 1.0;
@@ -154,4 +154,4 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   return res;
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

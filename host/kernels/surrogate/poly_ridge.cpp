@@ -8,7 +8,7 @@
 
 #include "kernels/core/errors.hpp"
 
-namespace smi::polyfit {
+namespace smi::surrogate::polyfit {
 namespace {
 
 // Standardised basis without intercept: z_j, and z_j^2 - 1 for the quadratic basis.
@@ -122,4 +122,4 @@ Fit fit(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, Basis basis, double 
   return f;
 }
 
-}  // namespace smi::polyfit
+}  // namespace smi::surrogate::polyfit

@@ -12,7 +12,7 @@
 #include "kernels/core/rng.hpp"
 #include "kernels/surrogate/screen.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 namespace {
 
 struct Est {
@@ -75,4 +75,4 @@ void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const E
   }
 }
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

@@ -21,7 +21,7 @@ StatisticalObjective spec_objective(double mu0 = 30.0, double s0 = 0.5) {
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
-  r.grid = smi::Grid{27.0, 33.5, 6501};
+  r.grid = smi::stats::Grid{27.0, 33.5, 6501};
   StatisticalOptions o;
   o.n = 2000;
   o.crn = CrnKind::quantiles;
@@ -76,7 +76,7 @@ TEST_CASE("negative log-likelihood metric and mass outside the grid") {
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
-  r.grid = smi::Grid{27.0, 33.5, 6501};
+  r.grid = smi::stats::Grid{27.0, 33.5, 6501};
   StatisticalOptions o;
   o.crn = CrnKind::quantiles;
   // Far from the data the prediction leaves the grid: PR must saturate at 2, not drop.

@@ -22,18 +22,18 @@ TEST_CASE("a KDE sum over large data stops at the deadline, on any thread") {
   Eigen::VectorXd data = Eigen::VectorXd::LinSpaced(200000, 0, 1);
   Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(5000, 0, 1).array().square();  // not uniform: direct sums
   PastDeadline d;
-  REQUIRE_THROWS_WITH(kde_pdf(data, 0.01, x, 2), Catch::StartsWith("timeout: "));
-  REQUIRE_THROWS_AS(kde_pdf(data, 0.01, x, 1), Interrupted);
+  REQUIRE_THROWS_WITH(stats::kde_pdf(data, 0.01, x, 2), Catch::StartsWith("timeout: "));
+  REQUIRE_THROWS_AS(stats::kde_pdf(data, 0.01, x, 1), Interrupted);
 }
 
 TEST_CASE("the u-pooling Monte Carlo stops when interrupted") {
   cancel::reset();
   cancel::request_interrupt();
-  UpoolMcSettings s;
+  stats::UpoolMcSettings s;
   s.replications = 100000;
   s.seed = 99;  // a sample no other test caches
-  REQUIRE_THROWS_WITH(upool_null_sample(5000, s), "interrupted");  // the Monte Carlo (sort path)
-  REQUIRE_THROWS_WITH(upool_threshold(40, 0.95, s), "interrupted");  // through the threshold (network path)
+  REQUIRE_THROWS_WITH(stats::upool_null_sample(5000, s), "interrupted");  // the Monte Carlo (sort path)
+  REQUIRE_THROWS_WITH(stats::upool_threshold(40, 0.95, s), "interrupted");  // through the threshold (network path)
   cancel::reset();
 }
 

@@ -5,7 +5,7 @@
 
 #include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 

@@ -6,7 +6,7 @@
 #include "kernels/core/rng.hpp"
 #include "kernels/surrogate/likelihood.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("d ln psi / d ln theta matches central differences") {
   smi::Rng rng(7);

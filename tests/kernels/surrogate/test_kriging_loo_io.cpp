@@ -9,7 +9,7 @@
 #include "kernels/core/rng.hpp"
 #include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 namespace {
 Eigen::VectorXd f(const Eigen::MatrixXd& X) {
