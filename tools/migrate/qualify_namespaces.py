@@ -15,7 +15,10 @@ closing comments of the moved files follow their namespace):
   1. `namespace smi {` / `namespace smi::detail {` in host/kernels/stats files, and
      `namespace smi::<c>` in host/kernels/surrogate files, to the new namespace.
   2. everywhere: `smi::<stats symbol>` -> `smi::stats::<symbol>`, `smi::detail::` -> `smi::stats::detail::`,
-     `smi::<c>` -> `smi::surrogate::<c>` (so `using smi::Kde;`, `using namespace smi::kriging;` follow).
+     `smi::<c>` -> `smi::surrogate::<c>` (so `using smi::Kde;`, `using namespace smi::kriging;` follow);
+     the old parallel loops `[smi::]detail::parallel_for/_blocks` -> `smi::pool::parallel_for/_blocks`
+     (the codecs branch replaced stats/parallel.hpp and surrogate/parallel.hpp by core's thread pool;
+     their #include needs a hand edit to "kernels/core/thread_pool.hpp").
   3. outside the moved area, in files that open a `smi` namespace or use `using namespace smi`:
      a bare `<c>::` becomes `surrogate::<c>::`, and an unqualified stats symbol (a type or constant
      anywhere, a function where it is called: `name(` or `name<`) becomes `stats::name`.
@@ -245,6 +248,8 @@ def rewrite(rel, text, funcs, types, group_names, area_names):
         text = re.sub(r"(//\s*namespace\s+smi::)(" + comps + r")\b", r"\1surrogate::\2", text)
     # 2. fully qualified names
     step(r"(?<![\w:])smi::(" + comps + r")\b", lambda m: "smi::surrogate::" + m.group(1))
+    # stats/parallel.hpp's and surrogate/parallel.hpp's loops (smi::detail) became core's pool (codecs)
+    step(r"(?<![\w:])(?:smi::)?detail::parallel_(for|blocks)\b", lambda m: "smi::pool::parallel_" + m.group(1))
     step(r"(?<![\w:])smi::detail::", lambda m: "smi::stats::detail::")
     if sym_alt:
         step(r"(?<![\w:])smi::(" + sym_alt + r")\b(?!::)|(?<![\w:])smi::(" + sym_alt + r")(?=::)",
