@@ -16,7 +16,7 @@
 #include <vector>
 #include <Eigen/Core>
 
-#include "vm/runtime.hpp"
+#include "app/runtime.hpp"
 
 extern char** environ;
 

@@ -20,11 +20,11 @@
 
 #include <string>
 
-#include "core/rng.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/overlap_start.hpp"
-#include "improve/statistical_objective.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/overlap_start.hpp"
+#include "kernels/improve/statistical_objective.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi::improve;
 
@@ -189,7 +189,7 @@ void write_peer_files(const std::string& dir, const AnalyticProblem& ap, const S
 /// and 10 parameters (each input's mean and std) with starts off the truth.
 struct TrialProblem {
   static constexpr int k = 5;
-  smi::kriging::Model k1, k2;
+  smi::surrogate::kriging::Model k1, k2;
   ResponseSpec r1, r2;
   std::vector<Parameter> p;
   std::vector<InputSpec> in;
@@ -210,9 +210,9 @@ struct TrialProblem {
     const Eigen::MatrixXd U = g.uniform_matrix(150, k);
     Eigen::MatrixXd D(150, k);
     for (int j = 0; j < k; ++j) D.col(j) = (lo(0, j) + (hi(0, j) - lo(0, j)) * U.col(j).array()).matrix();
-    smi::kriging::FitOptions fo;
-    k1 = smi::kriging::fit(D, f1(D), fo);
-    k2 = smi::kriging::fit(D, f2(D), fo);
+    smi::surrogate::kriging::FitOptions fo;
+    k1 = smi::surrogate::kriging::fit(D, f1(D), fo);
+    k2 = smi::surrogate::kriging::fit(D, f2(D), fo);
     // Truth and synthetic data (the true functions, not the surrogates).
     Eigen::VectorXd mu(k), sd(k);
     mu << 1.0, 2.0, 3.0, 0.5, 5.0;
@@ -254,8 +254,8 @@ void profile_evaluation(const TrialProblem& tp, const StatisticalObjective& obj,
   std::printf("profile_inputs %.6f\n", best([&] { (void)obj.inputs_at(t0); }));
   std::printf("profile_model %.6f\n", best([&] { (void)model(X); }));
   std::printf("profile_jacobian %.6f\n", best([&] {
-    (void)smi::kriging::predict_gradient(tp.k1, X, 1);
-    (void)smi::kriging::predict_gradient(tp.k2, X, 1);
+    (void)smi::surrogate::kriging::predict_gradient(tp.k1, X, 1);
+    (void)smi::surrogate::kriging::predict_gradient(tp.k2, X, 1);
   }));
   std::printf("profile_value %.6f\n", best([&] { (void)obj(t0); }));
   Eigen::VectorXd gr;
@@ -320,14 +320,14 @@ int main(int argc, char** argv) {
     const int nt = tp.so.threads;
     const Model model = [&tp, nt](const Eigen::MatrixXd& X) {
       Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::kriging::predict_mean(tp.k1, X, nt);
-      Y.col(1) = smi::kriging::predict_mean(tp.k2, X, nt);
+      Y.col(0) = smi::surrogate::kriging::predict_mean(tp.k1, X, nt);
+      Y.col(1) = smi::surrogate::kriging::predict_mean(tp.k2, X, nt);
       return Y;
     };
     StatisticalObjective obj(tp.in, {tp.r1, tp.r2}, tp.p, model, tp.so);
     obj.set_model_jacobian([&tp, nt](const Eigen::MatrixXd& X) {
       ++g_jacobian_runs;
-      return std::vector<Eigen::MatrixXd>{smi::kriging::predict_gradient(tp.k1, X, nt), smi::kriging::predict_gradient(tp.k2, X, nt)};
+      return std::vector<Eigen::MatrixXd>{smi::surrogate::kriging::predict_gradient(tp.k1, X, nt), smi::surrogate::kriging::predict_gradient(tp.k2, X, nt)};
     });
     if (mode == "profile") {
       profile_evaluation(tp, obj, model);

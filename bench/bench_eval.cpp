@@ -16,10 +16,10 @@
 #include <sys/wait.h>
 #include <vector>
 
-#include "eval/evaluator.hpp"
-#include "eval/process.hpp"
-#include "eval/text_parsers.hpp"
-#include "vm/runtime.hpp"
+#include "app/runtime.hpp"
+#include "kernels/eval/evaluator.hpp"
+#include "kernels/eval/process.hpp"
+#include "kernels/eval/text_parsers.hpp"
 
 namespace fs = std::filesystem;
 using namespace smi::eval;

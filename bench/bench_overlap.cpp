@@ -8,12 +8,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/families.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "stats/pdf_overlap.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 namespace {
 template <class F>
@@ -33,26 +33,26 @@ int main() {
   smi::Rng rng(11);
   const Eigen::VectorXd y = (30.0 + 0.4 * rng.normal(2000).array()).matrix();
   const Eigen::VectorXd data = (30.1 + 0.35 * rng.normal(30).array()).matrix();
-  const double h = smi::bandwidth_normal_reference(y), hd = smi::bandwidth_normal_reference(data);
-  const smi::Grid g = smi::Grid::covering(y, std::max(h, hd), 4001);
-  const Eigen::VectorXd fexp = smi::kde_pdf_grid(data, hd, g);
-  std::printf("calib_loop_pr %.9f\n", per_call(50, [&] { sink = smi::l1_area_on_grid(fexp, smi::kde_pdf_grid(y, h, g), g); }));
-  std::printf("calib_loop_l1_only %.9f\n", per_call(2000, [&] { sink = smi::l1_area_on_grid(fexp, fexp, g); }));
+  const double h = smi::stats::bandwidth_normal_reference(y), hd = smi::stats::bandwidth_normal_reference(data);
+  const smi::stats::Grid g = smi::stats::Grid::covering(y, std::max(h, hd), 4001);
+  const Eigen::VectorXd fexp = smi::stats::kde_pdf_grid(data, hd, g);
+  std::printf("calib_loop_pr %.9f\n", per_call(50, [&] { sink = smi::stats::l1_area_on_grid(fexp, smi::stats::kde_pdf_grid(y, h, g), g); }));
+  std::printf("calib_loop_l1_only %.9f\n", per_call(2000, [&] { sink = smi::stats::l1_area_on_grid(fexp, fexp, g); }));
 
-  const smi::Normal n0(0, 1), n1(1, 1), nn(0, 0.01);
-  const smi::Gamma g05(0.5, 1), g2(2, 1);
-  const smi::Beta b05(0.5, 0.5), b2(2, 2);
-  const smi::TruncNormal t6(0, 1, 6, std::numeric_limits<double>::infinity());
-  const smi::Normal n7(6.3, 0.3);
-  std::printf("exact_normal_normal %.9f\n", per_call(20, [&] { sink = smi::pdf_overlap(n0, n1).l1; }));
-  std::printf("exact_normal_narrow %.9f\n", per_call(20, [&] { sink = smi::pdf_overlap(n0, nn).l1; }));
-  std::printf("exact_gamma_gamma %.9f\n", per_call(5, [&] { sink = smi::pdf_overlap(g05, g2).l1; }));
-  std::printf("exact_beta_beta %.9f\n", per_call(5, [&] { sink = smi::pdf_overlap(b05, b2).l1; }));
-  std::printf("exact_truncnormal_normal %.9f\n", per_call(5, [&] { sink = smi::pdf_overlap(t6, n7).l1; }));
-  const smi::Kde ky(y, h), kd(data, hd);
-  std::printf("exact_kde2000_kde30 %.9f\n", per_call(5, [&] { sink = smi::pdf_overlap(ky, kd).l1; }));
-  const smi::Grid gn{-10, 11, 4001};
-  std::printf("grid_normal_normal %.9f\n", per_call(50, [&] { sink = smi::compare_on_grid(n0, n1, gn).pr; }));
-  std::printf("grid_kde2000_kde30 %.9f\n", per_call(5, [&] { sink = smi::compare_on_grid(ky, kd, g).pr; }));
+  const smi::stats::Normal n0(0, 1), n1(1, 1), nn(0, 0.01);
+  const smi::stats::Gamma g05(0.5, 1), g2(2, 1);
+  const smi::stats::Beta b05(0.5, 0.5), b2(2, 2);
+  const smi::stats::TruncNormal t6(0, 1, 6, std::numeric_limits<double>::infinity());
+  const smi::stats::Normal n7(6.3, 0.3);
+  std::printf("exact_normal_normal %.9f\n", per_call(20, [&] { sink = smi::stats::pdf_overlap(n0, n1).l1; }));
+  std::printf("exact_normal_narrow %.9f\n", per_call(20, [&] { sink = smi::stats::pdf_overlap(n0, nn).l1; }));
+  std::printf("exact_gamma_gamma %.9f\n", per_call(5, [&] { sink = smi::stats::pdf_overlap(g05, g2).l1; }));
+  std::printf("exact_beta_beta %.9f\n", per_call(5, [&] { sink = smi::stats::pdf_overlap(b05, b2).l1; }));
+  std::printf("exact_truncnormal_normal %.9f\n", per_call(5, [&] { sink = smi::stats::pdf_overlap(t6, n7).l1; }));
+  const smi::stats::Kde ky(y, h), kd(data, hd);
+  std::printf("exact_kde2000_kde30 %.9f\n", per_call(5, [&] { sink = smi::stats::pdf_overlap(ky, kd).l1; }));
+  const smi::stats::Grid gn{-10, 11, 4001};
+  std::printf("grid_normal_normal %.9f\n", per_call(50, [&] { sink = smi::stats::compare_on_grid(n0, n1, gn).pr; }));
+  std::printf("grid_kde2000_kde30 %.9f\n", per_call(5, [&] { sink = smi::stats::compare_on_grid(ky, kd, g).pr; }));
   return 0;
 }

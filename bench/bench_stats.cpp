@@ -6,10 +6,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/upool.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/upool.hpp"
 
 namespace {
 
@@ -37,39 +37,39 @@ int main(int argc, char** argv) {
   // 1. KDE of the 9-point spec data at 1e6 points.
   Eigen::VectorXd x9(9);
   x9 << 30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20;
-  const double h9 = smi::bandwidth_normal_reference(x9);
+  const double h9 = smi::stats::bandwidth_normal_reference(x9);
   const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(1000000, 28.0, 32.5);
   Eigen::VectorXd p, c;
-  std::printf("kde9_pdf_1e6 %.6f\n", best_of(5, [&](int) { p = smi::kde_pdf(x9, h9, y); }));
-  std::printf("kde9_cdf_1e6 %.6f\n", best_of(5, [&](int) { c = smi::kde_cdf(x9, h9, y); }));
+  std::printf("kde9_pdf_1e6 %.6f\n", best_of(5, [&](int) { p = smi::stats::kde_pdf(x9, h9, y); }));
+  std::printf("kde9_cdf_1e6 %.6f\n", best_of(5, [&](int) { c = smi::stats::kde_cdf(x9, h9, y); }));
   std::printf("kde9_checksum %.12f %.12f\n", p.sum() * (y[1] - y[0]), c[500000]);
 
   // 2. KDE of 1e5 normal points at 1e3 points.
   smi::Rng rng(2024);
   const Eigen::VectorXd big = rng.normal(100000);
-  const double hb = smi::bandwidth_normal_reference(big);
+  const double hb = smi::stats::bandwidth_normal_reference(big);
   const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(1000, -4.0, 4.0);
   write(dir + "/big.txt", big);
   write(dir + "/q.txt", q);
   Eigen::VectorXd exact, binned;
   std::printf("h_big %.17g\n", hb);
-  std::printf("kde1e5_exact %.6f\n", best_of(3, [&](int) { exact = smi::kde_pdf(big, hb, q); }));
+  std::printf("kde1e5_exact %.6f\n", best_of(3, [&](int) { exact = smi::stats::kde_pdf(big, hb, q); }));
   write(dir + "/exact.txt", exact);
   for (double tol : {1e-4, 1e-5, 1e-6}) {
     const double bin = hb * std::sqrt(8.0 * tol);
-    const double t = best_of(5, [&](int) { binned = smi::kde_pdf_binned(big, hb, q, bin); });
+    const double t = best_of(5, [&](int) { binned = smi::stats::kde_pdf_binned(big, hb, q, bin); });
     std::printf("kde1e5_binned_tol%.0e %.6f maxerr %.3e bound %.3e\n", tol, t, (binned - exact).cwiseAbs().maxCoeff(),
-                smi::binned_error_bound(hb, bin));
+                smi::stats::binned_error_bound(hb, bin));
   }
 
   // 3. u-pooling threshold, n = 9, 1e6 sets (a fresh seed each repeat: no cache hit).
   double thr = 0;
   std::printf("upool_threshold_n9_1e6 %.6f\n", best_of(5, [&](int r) {
-                smi::UpoolMcSettings s;
+                smi::stats::UpoolMcSettings s;
                 s.seed = 1000 + static_cast<std::uint64_t>(r);
-                thr = smi::upool_threshold(9, 0.95, s);
+                thr = smi::stats::upool_threshold(9, 0.95, s);
               }));
   std::printf("upool_threshold_value %.5f\n", thr);
-  std::printf("upool_threshold_cached %.9f\n", best_of(5, [&](int) { thr = smi::upool_threshold(9, 0.95); }));
+  std::printf("upool_threshold_cached %.9f\n", best_of(5, [&](int) { thr = smi::stats::upool_threshold(9, 0.95); }));
   return 0;
 }

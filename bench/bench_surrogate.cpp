@@ -11,14 +11,14 @@
 #include <fstream>
 #include <string>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/families.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 namespace {
 
@@ -63,24 +63,24 @@ void write_csv(const std::string& path, const Eigen::MatrixXd& X, const Eigen::V
 void bench_kriging(const Case& c, const std::vector<int>& sizes, const std::string& dir, std::ofstream& js, bool& first) {
   const Eigen::Index d = c.lo.size();
   smi::Rng rng(20200214, smi::hash_label("bench/test/" + c.name));
-  const Eigen::MatrixXd Xt = smi::doe::scale_to_bounds(rng.uniform_matrix(10000, d), c.lo, c.hi);
+  const Eigen::MatrixXd Xt = smi::surrogate::doe::scale_to_bounds(rng.uniform_matrix(10000, d), c.lo, c.hi);
   const Eigen::VectorXd yt = eval(c, Xt);
   write_csv(dir + "/" + c.name + "_test.csv", Xt, yt);
   Eigen::MatrixXd Xbig(Xt.rows() * 100, d);
   for (int r = 0; r < 100; ++r) Xbig.middleRows(r * Xt.rows(), Xt.rows()) = Xt;
   for (int N : sizes) {
-    const Eigen::MatrixXd X = smi::doe::scale_to_bounds(smi::doe::lhs(N, d, 7 + N), c.lo, c.hi);
+    const Eigen::MatrixXd X = smi::surrogate::doe::scale_to_bounds(smi::surrogate::doe::lhs(N, d, 7 + N), c.lo, c.hi);
     const Eigen::VectorXd y = eval(c, X);
     write_csv(dir + "/" + c.name + "_" + std::to_string(N) + ".csv", X, y);
     auto t0 = Clock::now();
-    const smi::kriging::Model m = smi::kriging::fit(X, y);
+    const smi::surrogate::kriging::Model m = smi::surrogate::kriging::fit(X, y);
     const double t_fit = since(t0);
     t0 = Clock::now();
-    const Eigen::VectorXd yp = smi::kriging::predict_mean(m, Xt);
+    const Eigen::VectorXd yp = smi::surrogate::kriging::predict_mean(m, Xt);
     const double rmse = std::sqrt((yp - yt).squaredNorm() / yt.size());
     const double q2 = 1 - (yp - yt).squaredNorm() / (yt.array() - yt.mean()).square().sum();
     t0 = Clock::now();
-    const Eigen::VectorXd ybig = smi::kriging::predict_mean(m, Xbig);
+    const Eigen::VectorXd ybig = smi::surrogate::kriging::predict_mean(m, Xbig);
     const double t_pred = since(t0);
     std::fprintf(stderr, "%s N=%d fit %.3fs (%d evals) predict1e6 %.3fs rmse %.5g q2 %.5f\n", c.name.c_str(), N,
                  t_fit, m.evaluations, t_pred, rmse, q2);
@@ -95,26 +95,26 @@ void bench_kriging(const Case& c, const std::vector<int>& sizes, const std::stri
 // samples predicted and their KDE on 512 points (the Auto rule against the exact sum).
 void bench_propagation(const std::string& dir, std::ofstream& js) {
   const Case c{"five", Eigen::VectorXd::Constant(5, -4), Eigen::VectorXd::Constant(5, 4), five};
-  const Eigen::MatrixXd X = smi::doe::scale_to_bounds(smi::doe::lhs(100, 5, 11), c.lo, c.hi);
+  const Eigen::MatrixXd X = smi::surrogate::doe::scale_to_bounds(smi::surrogate::doe::lhs(100, 5, 11), c.lo, c.hi);
   const Eigen::VectorXd y = eval(c, X);
   write_csv(dir + "/five_100.csv", X, y);
-  const smi::kriging::Model m = smi::kriging::fit(X, y);
-  std::vector<smi::propagate::Input> in;
+  const smi::surrogate::kriging::Model m = smi::surrogate::kriging::fit(X, y);
+  std::vector<smi::surrogate::propagate::Input> in;
   for (int j = 0; j < 5; ++j)
-    in.push_back({"x" + std::to_string(j + 1), std::make_shared<smi::Normal>(0.0, 1.0), 0.0});
+    in.push_back({"x" + std::to_string(j + 1), std::make_shared<smi::stats::Normal>(0.0, 1.0), 0.0});
   auto t0 = Clock::now();
-  const Eigen::MatrixXd S = smi::propagate::crn_sample(in, 1000000, 1);
+  const Eigen::MatrixXd S = smi::surrogate::propagate::crn_sample(in, 1000000, 1);
   const double t_sample = since(t0);
-  const Eigen::VectorXd ys = smi::kriging::predict_mean(m, S);
+  const Eigen::VectorXd ys = smi::surrogate::kriging::predict_mean(m, S);
   const double t_predict = since(t0) - t_sample;
-  const double h = smi::bandwidth_normal_reference(ys);
-  const smi::Grid g = smi::Grid::covering(ys.minCoeff(), ys.maxCoeff(), h, 512);
+  const double h = smi::stats::bandwidth_normal_reference(ys);
+  const smi::stats::Grid g = smi::stats::Grid::covering(ys.minCoeff(), ys.maxCoeff(), h, 512);
   // The Auto rule users get from smi.kde: 1e6 x 512 takes the binned path (error bound below).
-  const smi::KdeOptions kopt;
-  const Eigen::VectorXd pdf = smi::kde_pdf_grid(ys, h, g, kopt);
+  const smi::stats::KdeOptions kopt;
+  const Eigen::VectorXd pdf = smi::stats::kde_pdf_grid(ys, h, g, kopt);
   const double t_prop = since(t0);
-  const double bound = smi::kde_uses_binned(ys.size(), g.n, kopt) ? smi::binned_error_bound(h, smi::kde_bin_width(h, kopt)) : 0.0;
-  const double err = (pdf - smi::kde_pdf_grid(ys, h, g)).cwiseAbs().maxCoeff();
+  const double bound = smi::stats::kde_uses_binned(ys.size(), g.n, kopt) ? smi::stats::binned_error_bound(h, smi::stats::kde_bin_width(h, kopt)) : 0.0;
+  const double err = (pdf - smi::stats::kde_pdf_grid(ys, h, g)).cwiseAbs().maxCoeff();
   std::fprintf(stderr, "propagation KDE: max |auto - exact| = %.3g (bound %.3g, peak %.4g)\n", err, bound, pdf.maxCoeff());
   std::fprintf(stderr, "propagation 1e6 x 5 + KDE 512: %.3fs = sample %.3f + predict %.3f + kde %.3f (mean %.5f, sd %.5f, pdf mass %.6f)\n",
                t_prop, t_sample, t_predict, t_prop - t_sample - t_predict, ys.mean(),

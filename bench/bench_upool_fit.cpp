@@ -15,8 +15,8 @@
 #include <cstring>
 #include <vector>
 
-#include "stats/upool.hpp"
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/stats/upool.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
 namespace {
 
@@ -39,14 +39,14 @@ int fit() {
   constexpr int K = 5;
   std::vector<std::vector<double>> q(K);
   for (int k = 0; k < K; ++k) {
-    smi::UpoolMcSettings s;
+    smi::stats::UpoolMcSettings s;
     s.replications = reps[k];
     s.seed = 777;
-    const auto sample = smi::upool_null_sample(ns[k], s);
-    for (double p : smi::upool_asymptotic_probabilities()) q[k].push_back(std::sqrt(ns[k]) * quantile(*sample, p));
+    const auto sample = smi::stats::upool_null_sample(ns[k], s);
+    for (double p : smi::stats::upool_asymptotic_probabilities()) q[k].push_back(std::sqrt(ns[k]) * quantile(*sample, p));
     std::fprintf(stderr, "n = %d done\n", ns[k]);
   }
-  const auto& ps = smi::upool_asymptotic_probabilities();
+  const auto& ps = smi::stats::upool_asymptotic_probabilities();
   std::printf("// p, a(p), b(p): sqrt(n) U_crit(n, p) = a + b / sqrt(n) (bench_upool_fit fit)\n");
   for (std::size_t i = 0; i < ps.size(); ++i) {
     double sw = 0, sy = 0;
@@ -62,15 +62,15 @@ int fit() {
 int check() {
   std::printf("| n | confidence | U_crit Monte Carlo (1e5, seed 4242) | U_crit large-n form | relative error |\n|---|---|---|---|---|\n");
   for (int n : {100, 300, 1000, 3000}) {
-    smi::UpoolMcSettings s;
+    smi::stats::UpoolMcSettings s;
     s.replications = 100000;
     s.seed = 4242;
     const auto t0 = std::chrono::steady_clock::now();
-    const auto sample = smi::upool_null_sample(n, s);
+    const auto sample = smi::stats::upool_null_sample(n, s);
     const double mc_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     double worst_p = 0;
     for (double c : {0.5, 0.9, 0.95, 0.99}) {
-      const double mc = quantile(*sample, c), fit = smi::upool_asymptotic_threshold(n, c);
+      const double mc = quantile(*sample, c), fit = smi::stats::upool_asymptotic_threshold(n, c);
       std::printf("| %d | %g | %.6f | %.6f | %+.2f%% |\n", n, c, mc, fit, 100 * (fit - mc) / mc);
     }
     for (double c : {0.5, 0.9, 0.95, 0.99}) {
@@ -78,7 +78,7 @@ int check() {
       std::int64_t count = 0;
       for (double v : *sample) count += v >= u;
       const double p_mc = static_cast<double>(count) / static_cast<double>(sample->size());
-      worst_p = std::max(worst_p, std::abs(smi::upool_asymptotic_pvalue(n, u) - p_mc));
+      worst_p = std::max(worst_p, std::abs(smi::stats::upool_asymptotic_pvalue(n, u) - p_mc));
     }
     std::printf("| %d | p-values at those quantiles | | | max abs error %.4f (MC %.1f s) |\n", n, worst_p, mc_s);
     std::fflush(stdout);

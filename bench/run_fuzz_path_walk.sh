@@ -8,7 +8,7 @@ secs=${1:-120}
 out_dir=${TMPDIR:-/tmp}/fuzz_path_walk.build
 mkdir -p "$out_dir"
 clang++ -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -I host/kernels bench/fuzz_path_walk.cpp host/kernels/core/path_walk.cpp -o "$out_dir/fuzz_path_walk"
+  -I host bench/fuzz_path_walk.cpp host/kernels/core/path_walk.cpp -o "$out_dir/fuzz_path_walk"
 corpus=bench/fuzz_corpus/path_walk
 work=$(mktemp -d)
 cp "$corpus"/* "$work"/ 2>/dev/null || true

@@ -21,11 +21,11 @@
 #include <map>
 #include <vector>
 
-#include "core/csv.hpp"
-#include "core/number_text.hpp"
+#include "kernels/core/csv.hpp"
+#include "bindings/modules.hpp"
+#include "kernels/core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "modules.hpp"
 
 namespace smi::bind {
 namespace {

@@ -1,5 +1,5 @@
 // Reference texts of smi.csv and smi.json (registered in csv.cpp and json.cpp).
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 
 namespace smi::bind {
 

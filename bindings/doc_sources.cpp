@@ -1,8 +1,8 @@
 // The list of binding doc texts (see doc.hpp) and the placeholder filler they share.
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "doc.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::bind {
 

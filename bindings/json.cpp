@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "core/json.hpp"
-#include "core/number_text.hpp"
+#include "bindings/modules.hpp"
+#include "kernels/core/json.hpp"
+#include "kernels/core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "modules.hpp"
 
 namespace smi::bind {
 namespace {
@@ -324,6 +324,8 @@ int json_read(lua_State* L) {
   });
 }
 
+constexpr const char* kNullType = "smi.json.null";
+
 int null_tostring(lua_State* L) {
   lua_pushliteral(L, "null");
   return 1;
@@ -338,14 +340,10 @@ void open_json(lua_State* L) {
   lua_newtable(L);  // stack: [smi, json]
   luaL_setfuncs(L, kFunctions, 0);
   // null: an empty table with a named metatable, unique per state
+  const luaL_Reg null_meta[] = {{"__tostring", null_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kNullType, nullptr, null_meta);
   lua_newtable(L);
-  lua_createtable(L, 0, 2);
-  lua_pushcfunction(L, null_tostring);
-  lua_setfield(L, -2, "__tostring");
-  lua_pushliteral(L, "smi.json.null");
-  lua_setfield(L, -2, "__name");
-  lua::protect_metatable(L, -1, "smi.json.null");
-  lua_setmetatable(L, -2);
+  luaL_setmetatable(L, kNullType);
   lua_pushvalue(L, -1);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kNullKey);
   lua_setfield(L, -2, "null");

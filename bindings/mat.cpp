@@ -2,10 +2,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/descriptive.hpp"
+#include "bindings/modules.hpp"
+#include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
-#include "modules.hpp"
 
 namespace smi::bind {
 namespace {

@@ -1,5 +1,5 @@
 // Reference texts of smi.mat (registered in mat.cpp; format: stdlib/smi/doc.lua).
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 
 namespace smi::bind {
 

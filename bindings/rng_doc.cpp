@@ -1,5 +1,5 @@
 // Reference texts of smi.rng (registered in rng.cpp; format: stdlib/smi/doc.lua).
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 
 namespace smi::bind {
 

@@ -1,5 +1,5 @@
 // luaopen_smi: the `smi` module table, assembled from every binding area.
-#include "modules.hpp"
+#include "bindings/modules.hpp"
 
 int luaopen_smi(lua_State* L) {
   lua_newtable(L);  // stack: [smi]

@@ -6,10 +6,10 @@
 #include <new>
 #include <unistd.h>
 
-#include "core/descriptive.hpp"
+#include "bindings/modules.hpp"
+#include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
-#include "modules.hpp"
 
 namespace smi::bind {
 namespace {

@@ -1,5 +1,5 @@
 // Reference texts of smi.vec (registered in vec.cpp; format: stdlib/smi/doc.lua).
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 
 namespace smi::bind {
 

@@ -1,8 +1,8 @@
 // Reference texts of smi.model.* and the model methods (this folder). Defaults are read from
 // the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
 // "solver" (smi-lua doc allows it for them), so they run anywhere.
-#include "doc.hpp"
-#include "eval/evaluator.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/eval/evaluator.hpp"
 
 namespace smi::bind {
 namespace {
@@ -39,7 +39,7 @@ options:
   concurrency = ${concurrency}  -- processes at once
   reuse_failed = ${reuse_failed}  -- also reuse stored failures (default: run them again)
   store = nil                -- the store file (default <out>/evaluations.sqlite)
-returns: a model (smi.Model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
+returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
 errors: a missing or mistyped option (named); both or neither template; the sandbox refuses the
   program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
   placeholder (file and line)
@@ -60,7 +60,7 @@ smi.model.command, without template/deck/constants, plus:
 options:
   input_file = "points.csv"     -- the CSV file of points in the work folder ({deck} in command)
   batch_size = ${batch_size}    -- points per run; 0 = all pending points in one run
-returns: a model (smi.Model, kind "batch")
+returns: a model (smi.model, kind "batch")
 errors: as smi.model.command; parse returning the wrong number of values (named with the output)
 example:
   local m = smi.model.batch{
@@ -78,7 +78,7 @@ options:
   inputs = (required)   -- input names (columns of X)
   outputs = (required)  -- output names
   fn = (required)       -- function(X) returning {output = vec, ...}, one value per row
-returns: a model (smi.Model, kind "lua")
+returns: a model (smi.model, kind "lua")
 errors: no inputs or outputs; fn not a function; fn returning the wrong lengths (at evaluate)
 example:
   local m = smi.model.lua{inputs = {"a", "b"}, outputs = {"s"}, fn = function(X) return {s = X:col(1) + X:col(2)} end}
@@ -92,7 +92,7 @@ errors: none
 example:
   print(smi.model.planned().runs)
 
-@ smi.Model:evaluate(X) -> Y, info
+@ smi.model:evaluate(X) -> Y, info
 Evaluates the model at the rows of X (a mat, a table of rows, or named columns {x = vec, ...}).
 Y holds one value per row in row order whatever the concurrency; rows that failed hold NaN.
 returns: Y = {output = vec}, info = {status = {"ok" | "failed" | "not run", ...}, ok = vec of 1/0,
@@ -105,7 +105,7 @@ example:
   local Y, info = m:evaluate{x = smi.vec{1, 2}}
   print(Y.y, info.status[1])
 
-@ smi.Model:plan(X) -> {points =, unique =, reused =, runs =, eta =, mean_seconds =}
+@ smi.model:plan(X) -> {points =, unique =, reused =, runs =, eta =, mean_seconds =}
 What evaluate(X) would launch, launching nothing (the evaluation store is read).
 returns: a table of counts, the estimated seconds (eta) and the stored mean seconds of one run
   (mean_seconds), each when the store has timings of this program and version

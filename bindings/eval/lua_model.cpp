@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
-#include "model.hpp"
 
 namespace smi::bind::eval {
 

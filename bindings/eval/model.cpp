@@ -1,11 +1,11 @@
-// The smi.Model type: m:evaluate(X), m:plan(X), m.inputs, m.outputs, m.name, m.kind, and the
+// The smi.model type: m:evaluate(X), m:plan(X), m.inputs, m.outputs, m.name, m.kind, and the
 // conversions shared by every kind of model (design matrix in, Y and info out).
 #include <cmath>
 #include <fmt/format.h>
 #include <set>
 
+#include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
-#include "model.hpp"
 
 namespace smi::bind::eval {
 namespace {
@@ -55,7 +55,7 @@ int model_plan(lua_State* L) {
     lua::set_number(L, "eta", 0);
     return 1;
   }
-  return lua::protect(L, "smi.Model:plan", [&] {
+  return lua::protect(L, "smi.model:plan", [&] {
     const se::Plan p = m.ev->plan(X);
     lua_createtable(L, 0, 5);
     lua::set_integer(L, "points", static_cast<lua_Integer>(p.points));
@@ -85,7 +85,7 @@ int model_getter(lua_State* L) {
 
 int model_tostring(lua_State* L) {
   const Model& m = self(L);
-  lua_pushfstring(L, "smi.Model(%s '%s': %d inputs -> %d outputs)", kind_name(m.kind), m.name.c_str(),
+  lua_pushfstring(L, "smi.model(%s '%s': %d inputs -> %d outputs)", kind_name(m.kind), m.name.c_str(),
                   static_cast<int>(m.inputs.size()), static_cast<int>(m.outputs.size()));
   return 1;
 }

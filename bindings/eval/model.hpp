@@ -1,5 +1,5 @@
 #pragma once
-// smi.Model: the one object type behind smi.model.command, smi.model.batch and smi.model.lua
+// smi.model: the one object type behind smi.model.command, smi.model.batch and smi.model.lua
 // (see the interface comment in open.cpp). The Lua function a model calls (an output parser or
 // the model function itself) lives in the box's user value 1, so the GC keeps it alive exactly
 // as long as the model.
@@ -9,11 +9,11 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "eval/evaluator.hpp"
+#include "kernels/eval/evaluator.hpp"
 
 namespace smi::bind::eval {
 
-inline constexpr const char* kModelType = "smi.Model";
+inline constexpr const char* kModelType = "smi.model";
 
 struct Model {
   enum Kind { Command, Batch, LuaFn } kind = LuaFn;
@@ -22,7 +22,7 @@ struct Model {
   std::unique_ptr<smi::eval::Evaluator> ev;  // Command and Batch
 };
 
-/// Creates the smi.Model metatable.
+/// Creates the smi.model metatable.
 void register_model_type(lua_State* L);
 /// Pushes a model box owning `m`, with the function at `fn_idx` as its user value.
 /// Stack: [...] -> [..., model].

@@ -37,9 +37,9 @@
 //   f06(file) -> {mode, cycles, eigenvalue, radians, mass, stiffness, direction, labels,
 //                 paper = {[n] = {mode, direction, hz}}, paper_hz}
 // smi.model.planned() -> totals of the --dry-run so far {runs, points, reused, eta}.
+#include "bindings/eval/model.hpp"
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
-#include "modules.hpp"
-#include "eval/model.hpp"
 
 namespace smi::bind {
 

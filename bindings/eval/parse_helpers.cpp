@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "eval/f06.hpp"
-#include "eval/text_parsers.hpp"
+#include "bindings/eval/model.hpp"
+#include "kernels/eval/f06.hpp"
+#include "kernels/eval/text_parsers.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "model.hpp"
 
 namespace smi::bind::eval {
 namespace {

@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "eval/folder_lock.hpp"
-#include "eval/process.hpp"
-#include "eval/progress_line.hpp"
+#include "bindings/eval/model.hpp"
+#include "kernels/eval/folder_lock.hpp"
+#include "kernels/eval/process.hpp"
+#include "kernels/eval/progress_line.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "model.hpp"
 
 namespace smi::bind::eval {
 namespace {
@@ -363,7 +363,7 @@ int evaluate_solver(lua_State* L, Model& m) {
   const Eigen::MatrixXd X = design_of(L, 2, m);
   const Policy& pol = lua::policy(L);
   const bool batch = m.kind == Model::Batch;
-  const char* fname = "smi.Model:evaluate";
+  const char* fname = "smi.model:evaluate";
   lua_getiuservalue(L, 1, 1);  // the parser
   const int fn = lua_gettop(L);
   lua_createtable(L, static_cast<int>(m.outputs.size()), 0);
@@ -400,18 +400,9 @@ int evaluate_solver(lua_State* L, Model& m) {
   };
   const se::ProgressFn progress = terminal_progress(m, pol);
 
-  // Ctrl-C (and the other aborts of the runtime) arm a count hook firing at every instruction;
-  // while we wait on solvers no Lua runs, so we look for that hook ourselves, and ask the
-  // runtime whether --timeout has passed (its own check lives in that hook).
-  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
-  lua_State* main = lua_tothread(L, -1);
-  lua_pop(L, 1);
-  m.ev->set_stop_check([L, main, stop = pol.stop_reason]() -> std::string {
-    if (std::string why = stop ? stop() : ""; !why.empty()) return why;
-    for (lua_State* s : {L, main})
-      if (s && lua_gethook(s) && lua_gethookcount(s) == 1) return "interrupted";
-    return "";
-  });
+  // While we wait on solvers no Lua runs, so the runtime's hook cannot see Ctrl-C, --timeout,
+  // the memory ceiling or os.exit: we ask the runtime through the policy instead.
+  m.ev->set_stop_check([stop = pol.stop_reason]() -> std::string { return stop ? stop() : ""; });
 
   se::EvalResult r;
   std::string summary;

@@ -29,7 +29,7 @@
 //         identifiability (span, weak, profiles; directions, tolerance), near_optimal, bootstrap;
 //         statistical form also inputs, distributions (smi.dist per input), grids, model_runs, n,
 //         seed, metric.
-#include "improve/calibrate.hpp"
+#include "bindings/improve/calibrate.hpp"
 
 #include <fmt/format.h>
 
@@ -37,11 +37,11 @@
 #include <cmath>
 #include <memory>
 
-#include "core/errors.hpp"
-#include "improve/design_bounds.hpp"
-#include "improve/lua_callbacks.hpp"
-#include "improve/model_gradient.hpp"
-#include "improve/overlap_start.hpp"
+#include "bindings/improve/lua_callbacks.hpp"
+#include "bindings/improve/model_gradient.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/design_bounds.hpp"
+#include "kernels/improve/overlap_start.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {
@@ -232,7 +232,7 @@ Objective minimize_statistical(lua_State* L, const CalibrateSpec& s, OptimizerOp
   Objective f = with_extras(L, s, [&obj](const Eigen::VectorXd& t) { return obj(t); });
   if (s.gradient == "analytic" && !obj.has_gradient())
     throw InvalidArgument("gradient = \"analytic\" needs metric \"pr\" or \"loglik\", a bandwidth rule with a derivative (silverman, "
-                          "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.Kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
+                          "normal, 1.06, scott, robust, mad; not lscv or sj) and a model with a gradient (an smi.kriging, or an object with m:gradient(X)); use gradient = \"auto\"");
   if (obj.has_gradient()) {
     oo.gradient = gradient_with_extras(L, s, obj);
     out.analytic_gradient = true;

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "improve/bootstrap.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/calibrate_spec.hpp"
-#include "improve/directions.hpp"
-#include "improve/identifiability.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/improve/calibrate_spec.hpp"
+#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/directions.hpp"
+#include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
 

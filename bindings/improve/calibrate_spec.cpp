@@ -1,15 +1,15 @@
-#include "improve/calibrate_spec.hpp"
+#include "bindings/improve/calibrate_spec.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "improve/lua_values.hpp"
+#include "bindings/improve/lua_values.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/dist_box.hpp"
 
 namespace smi::bind::improve {
 
@@ -316,14 +316,14 @@ void read_grid(lua_State* L, int spec, CalibrateSpec& s) {
       lua_rawgeti(L, idx, 1);
       lua_rawgeti(L, idx, 2);
       lua_rawgeti(L, idx, 3);
-      Grid grid{read_number(L, -3, where + "[1] (lower)"), read_number(L, -2, where + "[2] (upper)"),
+      smi::stats::Grid grid{read_number(L, -3, where + "[1] (lower)"), read_number(L, -2, where + "[2] (upper)"),
                 lua_isnil(L, -1) ? s.stat.grid_nodes : static_cast<Eigen::Index>(read_number(L, -1, where + "[3] (nodes)"))};
       lua_pop(L, 3);
       grid.validate();
       return grid;
     };
     if (lua_rawlen(L, g) > 0) {
-      const Grid one = read_one(g, "grid");
+      const smi::stats::Grid one = read_one(g, "grid");
       for (auto& r : s.responses) r.grid = one;
     } else {
       for (auto& r : s.responses)

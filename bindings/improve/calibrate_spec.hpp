@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "improve/bootstrap.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/design_bounds.hpp"
-#include "improve/directions.hpp"
-#include "improve/identifiability.hpp"
-#include "improve/lua_callbacks.hpp"
-#include "improve/profile_intervals.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/improve/lua_callbacks.hpp"
+#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/design_bounds.hpp"
+#include "kernels/improve/directions.hpp"
+#include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/profile_intervals.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
 

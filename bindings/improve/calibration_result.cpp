@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "improve/calibrate.hpp"
+#include "bindings/improve/calibrate.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "kernels/stats/families.hpp"
 #include "luax/luax.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/families.hpp"
 
 namespace smi::bind::improve {
 
@@ -47,7 +47,7 @@ void push_statistical(lua_State* L, const CalibrateSpec& s, const CalibrationOut
     lua::set_number(L, "std", m[j].second);
     lua::set_boolean(L, "calibrated", in.mean_param >= 0 || in.std_param >= 0);
     lua_setfield(L, -3, in.name.c_str());
-    if (DistributionPtr d = input_distribution(in.family, m[j].first, m[j].second, in.shape, fmt::format("input '{}'", in.name))) {
+    if (smi::stats::DistributionPtr d = input_distribution(in.family, m[j].first, m[j].second, in.shape, fmt::format("input '{}'", in.name))) {
       push_distribution(L, std::move(d));
       lua_setfield(L, -2, in.name.c_str());
     }

@@ -1,15 +1,15 @@
 // smi.refine.decision_matrix{candidates = {...}, criteria = {{name =, weight =, magnitude = ...}}}
 // The weighted decision matrix of spec §6 with criteria written by the analyst: a magnitude is a
 // Lua function(candidate, j) or a list of values (or a table keyed by candidate name).
-#include "improve/decision_matrix_binding.hpp"
+#include "bindings/improve/decision_matrix_binding.hpp"
 
 #include <fmt/format.h>
 
 #include <numeric>
 
-#include "core/errors.hpp"
-#include "improve/decision_matrix.hpp"
-#include "improve/lua_values.hpp"
+#include "bindings/improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/decision_matrix.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {
@@ -181,12 +181,8 @@ int decision_matrix(lua_State* L) {
 }
 
 void register_decision_meta(lua_State* L) {
-  if (luaL_newmetatable(L, kDecisionMeta)) {
-    lua_pushcfunction(L, decision_tostring);
-    lua_setfield(L, -2, "__tostring");
-    lua::protect_metatable(L, -1, kDecisionMeta);
-  }
-  lua_pop(L, 1);
+  const luaL_Reg meta[] = {{"__tostring", decision_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kDecisionMeta, nullptr, meta);
 }
 
 }  // namespace smi::bind::improve

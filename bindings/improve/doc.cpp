@@ -1,11 +1,11 @@
 // Reference texts of smi.calibrate and smi.refine.decision_matrix (this folder). Defaults are
 // read from the kernels' option structs (improve/bounded_optimizer.hpp, statistical_objective.hpp,
 // bootstrap.hpp, identifiability.hpp).
-#include "doc.hpp"
-#include "improve/bootstrap.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/identifiability.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind {
 namespace {
@@ -20,7 +20,7 @@ metric. Objective form: parameters = {{name, lower, upper, start}, ...} and obje
 The optimizer works in scaled [0, 1] units (SLSQP with central differences, COBYLA, BOBYQA or
 Nelder-Mead), from the start and multistart - 1 seeded points.
 options:
-  model = nil                 -- model form: an smi.Model, an smi.Kriging (or a table of them by
+  model = nil                 -- model form: an smi.model, an smi.kriging (or a table of them by
                               -- output), or a function(X) returning {output = vec}
   inputs = nil                -- model form: {name = {dist = "normal", mean = m | {lo, hi, start},
                               -- std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =);

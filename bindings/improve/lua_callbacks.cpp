@@ -1,9 +1,9 @@
-#include "improve/lua_callbacks.hpp"
+#include "bindings/improve/lua_callbacks.hpp"
 
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "improve/lua_values.hpp"
+#include "bindings/improve/lua_values.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

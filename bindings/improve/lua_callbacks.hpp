@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
 

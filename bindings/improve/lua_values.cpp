@@ -1,10 +1,10 @@
-#include "improve/lua_values.hpp"
+#include "bindings/improve/lua_values.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::bind::improve {

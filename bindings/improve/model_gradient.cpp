@@ -1,13 +1,13 @@
-#include "improve/model_gradient.hpp"
+#include "bindings/improve/model_gradient.hpp"
 
 #include <fmt/format.h>
 
 #include <memory>
 
-#include "core/errors.hpp"
-#include "improve/lua_values.hpp"
+#include "bindings/improve/lua_values.hpp"
+#include "bindings/surrogate/kriging_box.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
-#include "surrogate/kriging_box.hpp"
 
 namespace smi::bind::improve {
 
@@ -15,7 +15,7 @@ namespace {
 
 /// One part's Jacobian source: a Kriging (closed form) or a Lua gradient method.
 struct Source {
-  const kriging::Model* kriging = nullptr;
+  const smi::surrogate::kriging::Model* kriging = nullptr;
   int grad_slot = 0;
   int self_slot = 0;
   std::string output;  ///< the part's response name ("" = the model of all responses)
@@ -48,7 +48,7 @@ Eigen::MatrixXd read_jacobian(lua_State* L, const std::string& r, bool lenient, 
 }  // namespace
 
 smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const std::vector<std::string>& responses, int threads) {
-  std::vector<const kriging::Model*> per(responses.size(), nullptr);
+  std::vector<const smi::surrogate::kriging::Model*> per(responses.size(), nullptr);
   for (const ModelPart& p : s.model_parts) {
     const auto* k = p.self_slot ? surrogate::test_kriging(L, p.self_slot) : nullptr;
     if (!k) return {};
@@ -65,7 +65,7 @@ smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const st
   // The boxes stay alive: the spec's slots hold them on the Lua stack for the whole call.
   return [per, threads](const Eigen::MatrixXd& X) {
     Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(per.size()));
-    for (std::size_t r = 0; r < per.size(); ++r) Y.col(static_cast<Eigen::Index>(r)) = kriging::predict_mean(*per[r], X, threads);
+    for (std::size_t r = 0; r < per.size(); ++r) Y.col(static_cast<Eigen::Index>(r)) = smi::surrogate::kriging::predict_mean(*per[r], X, threads);
     return Y;
   };
 }
@@ -93,7 +93,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
     if (src.size() == 1 && src[0].output.empty()) {
       const Source& part = src[0];
       if (part.kriging) {
-        J[0] = kriging::predict_gradient(*part.kriging, X, 2);
+        J[0] = smi::surrogate::kriging::predict_gradient(*part.kriging, X, 2);
         return J;
       }
       StackGuard guard(L);
@@ -113,7 +113,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
         if (p.output == responses[r]) part = &p;
       if (!part) throw InvalidArgument(fmt::format("no model part predicts response '{}'", responses[r]));
       if (part->kriging) {
-        J[r] = kriging::predict_gradient(*part->kriging, X, 2);
+        J[r] = smi::surrogate::kriging::predict_gradient(*part->kriging, X, 2);
         continue;
       }
       StackGuard guard(L);

@@ -1,6 +1,6 @@
 #pragma once
 // The model's Jacobian for smi.calibrate's analytic gradient (issue 11 item 1): per response,
-// dY/dX at the CRN inputs. A part that is an smi.Kriging gives it in closed form (no Lua call);
+// dY/dX at the CRN inputs. A part that is an smi.kriging gives it in closed form (no Lua call);
 // a model object with a gradient method gives m:gradient(X) (an N×k smi.mat for its one output,
 // or {output = mat}); a plain function, or an object without one, has none and the calibration
 // falls back to finite differences of the objective.
@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "improve/calibrate_spec.hpp"
-#include "improve/statistical_objective.hpp"
+#include "bindings/improve/calibrate_spec.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
 
-/// The model without Lua when every response's part is an smi.Kriging (per-response parts, or one
+/// The model without Lua when every response's part is an smi.kriging (per-response parts, or one
 /// Kriging for a single response): predict_mean on `threads` threads, the numbers of
 /// m:evaluate(X). Empty otherwise. Being Lua-free it may run on several threads at once (starts
 /// side by side).

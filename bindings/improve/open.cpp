@@ -1,7 +1,7 @@
 // Entry point of the improve binding area (see modules.hpp): smi.calibrate and smi.refine.
-#include "improve/calibrate.hpp"
-#include "improve/decision_matrix_binding.hpp"
-#include "modules.hpp"
+#include "bindings/improve/calibrate.hpp"
+#include "bindings/improve/decision_matrix_binding.hpp"
+#include "bindings/modules.hpp"
 
 namespace smi::bind {
 

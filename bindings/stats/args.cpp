@@ -1,8 +1,8 @@
-#include "stats/args.hpp"
+#include "bindings/stats/args.hpp"
 
 #include <fmt/format.h>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 namespace smi::bind::stats {
 

@@ -1,30 +1,30 @@
 // smi.dist: the common Lua object of every distribution and density estimate.
-#include "stats/dist_box.hpp"
+#include "bindings/stats/dist_box.hpp"
 
 #include <cmath>
 
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
 #include "luax/luax.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
 
 namespace smi::bind {
 namespace {
 
-using Ptr = DistributionPtr;
+using Ptr = smi::stats::DistributionPtr;
 
-const Distribution& self(lua_State* L) { return *lua::check_box<Ptr>(L, 1, kDistType); }
+const smi::stats::Distribution& self(lua_State* L) { return *lua::check_box<Ptr>(L, 1, kDistType); }
 
 /// d:pdf(x), d:cdf(x), d:quantile(p): x a number (-> number) or a vec/table (-> vec).
 int dist_pdf(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   return lua::push_mapped(L, 2, "dist:pdf", [&](const Eigen::VectorXd& x) { return d.pdf(x); });
 }
 int dist_cdf(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   return lua::push_mapped(L, 2, "dist:cdf", [&](const Eigen::VectorXd& x) { return d.cdf(x); });
 }
 int dist_quantile(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   return lua::push_mapped(L, 2, "dist:quantile", [&](const Eigen::VectorXd& p) {
     for (Eigen::Index i = 0; i < p.size(); ++i)
       if (!(p[i] > 0.0 && p[i] < 1.0) && !(p[i] == 0.0 || p[i] == 1.0))
@@ -34,21 +34,21 @@ int dist_quantile(lua_State* L) {
 }
 /// d:logpdf(x), d:logcdf(x), d:sf(x): in log space / as complements, so tails keep their
 /// relative precision (d:sf(x) is not 1 − d:cdf(x) rounded).
-template <double (Distribution::*F)(double) const>
+template <double (smi::stats::Distribution::*F)(double) const>
 int dist_scalar_map(lua_State* L, const char* fname) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   return lua::push_mapped(L, 2, fname, [&](const Eigen::VectorXd& x) {
     Eigen::VectorXd y(x.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) y[i] = (d.*F)(x[i]);
     return y;
   });
 }
-int dist_logpdf(lua_State* L) { return dist_scalar_map<&Distribution::logpdf>(L, "dist:logpdf"); }
-int dist_logcdf(lua_State* L) { return dist_scalar_map<&Distribution::logcdf>(L, "dist:logcdf"); }
-int dist_sf(lua_State* L) { return dist_scalar_map<&Distribution::sf>(L, "dist:sf"); }
+int dist_logpdf(lua_State* L) { return dist_scalar_map<&smi::stats::Distribution::logpdf>(L, "dist:logpdf"); }
+int dist_logcdf(lua_State* L) { return dist_scalar_map<&smi::stats::Distribution::logcdf>(L, "dist:logcdf"); }
+int dist_sf(lua_State* L) { return dist_scalar_map<&smi::stats::Distribution::sf>(L, "dist:sf"); }
 /// d:isf(q): x with sf(x) = q, q in [0, 1] (the upper-tail quantile without rounding 1 − q).
 int dist_isf(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   return lua::push_mapped(L, 2, "dist:isf", [&](const Eigen::VectorXd& q) {
     Eigen::VectorXd y(q.size());
     for (Eigen::Index i = 0; i < q.size(); ++i) {
@@ -61,7 +61,7 @@ int dist_isf(lua_State* L) {
 }
 /// d:sample(n, seed_or_rng): n draws; the generator is explicit (an integer seed or an smi.rng).
 int dist_sample(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   const lua_Integer n = luaL_checkinteger(L, 2);
   luaL_argcheck(L, n >= 0, 2, "count must be >= 0");
   Rng* rng = lua::test_box<Rng>(L, 3, "smi.rng");
@@ -94,11 +94,11 @@ int dist_support(lua_State* L) {
 /// (a KDE: data range ± 4h; otherwise the 1e-4 and 1 − 1e-4 quantiles, or finite support ends).
 /// An ECDF gives its steps {x =, cdf =} instead.
 int dist_curve(lua_State* L) {
-  const Distribution& d = self(L);
+  const smi::stats::Distribution& d = self(L);
   const lua_Integer n = luaL_optinteger(L, 2, 401);
   luaL_argcheck(L, n >= 2 && n <= 10000000, 2, "number of points must be in 2..1e7");
   return lua::protect(L, "dist:curve", [&] {
-    if (const auto* e = dynamic_cast<const Ecdf*>(&d)) {
+    if (const auto* e = dynamic_cast<const smi::stats::Ecdf*>(&d)) {
       Eigen::VectorXd x, y;
       e->steps(x, y);
       lua_createtable(L, 0, 2);
@@ -107,7 +107,7 @@ int dist_curve(lua_State* L) {
       return 1;
     }
     double lo, hi;
-    if (const auto* k = dynamic_cast<const Kde*>(&d)) {
+    if (const auto* k = dynamic_cast<const smi::stats::Kde*>(&d)) {
       lo = k->data()[0] - 4 * k->bandwidth();
       hi = k->data()[k->data().size() - 1] + 4 * k->bandwidth();
     } else {
@@ -152,14 +152,14 @@ const luaL_Reg kMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
 
 }  // namespace
 
-void push_distribution(lua_State* L, DistributionPtr d) { lua::push_box<Ptr>(L, kDistType, std::move(d)); }
+void push_distribution(lua_State* L, smi::stats::DistributionPtr d) { lua::push_box<Ptr>(L, kDistType, std::move(d)); }
 
-DistributionPtr test_distribution(lua_State* L, int idx) {
+smi::stats::DistributionPtr test_distribution(lua_State* L, int idx) {
   Ptr* p = lua::test_box<Ptr>(L, idx, kDistType);
   return p ? *p : nullptr;
 }
 
-DistributionPtr to_distribution(lua_State* L, int idx, const char* what) {
+smi::stats::DistributionPtr to_distribution(lua_State* L, int idx, const char* what) {
   if (Ptr* p = lua::test_box<Ptr>(L, idx, kDistType)) return *p;
   luaL_error(L, "%s must be a distribution (smi.dist), got %s", what, luaL_typename(L, idx));
   return nullptr;

@@ -1,5 +1,5 @@
 // Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp).
-#include "doc.hpp"
+#include "bindings/doc.hpp"
 
 namespace smi::bind {
 

@@ -1,12 +1,12 @@
 // smi.dist.<family>{...} constructors and smi.dist.fit(data, {families}).
 #include <fmt/format.h>
 
+#include "bindings/stats/args.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/fit.hpp"
 #include "luax/luax.hpp"
-#include "stats/args.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/families.hpp"
-#include "stats/fit.hpp"
-#include "stats/open_parts.hpp"
 
 namespace smi::bind::stats {
 namespace {
@@ -26,61 +26,61 @@ int construct(lua_State* L, const char* fname, std::initializer_list<const char*
 
 int d_normal(lua_State* L) {
   return construct(L, "smi.dist.normal", {"mean", "std"}, [](const Options& o) {
-    return std::make_shared<Normal>(required_number(o, "mean", "smi.dist.normal"), required_number(o, "std", "smi.dist.normal"));
+    return std::make_shared<smi::stats::Normal>(required_number(o, "mean", "smi.dist.normal"), required_number(o, "std", "smi.dist.normal"));
   });
 }
 int d_lognormal(lua_State* L) {
   return construct(L, "smi.dist.lognormal", {"mean", "std", "mu_log", "sigma_log"}, [](const Options& o) {
     if (o.has("mu_log") || o.has("sigma_log"))
-      return std::make_shared<LogNormal>(LogNormal::from_log_params(required_number(o, "mu_log", "smi.dist.lognormal"),
+      return std::make_shared<smi::stats::LogNormal>(smi::stats::LogNormal::from_log_params(required_number(o, "mu_log", "smi.dist.lognormal"),
                                                                     required_number(o, "sigma_log", "smi.dist.lognormal")));
-    return std::make_shared<LogNormal>(LogNormal::from_moments(required_number(o, "mean", "smi.dist.lognormal"),
+    return std::make_shared<smi::stats::LogNormal>(smi::stats::LogNormal::from_moments(required_number(o, "mean", "smi.dist.lognormal"),
                                                                required_number(o, "std", "smi.dist.lognormal")));
   });
 }
 int d_uniform(lua_State* L) {
   return construct(L, "smi.dist.uniform", {"lower", "upper", "mean", "std"}, [](const Options& o) {
     if (o.has("mean") || o.has("std"))
-      return std::make_shared<Uniform>(Uniform::from_moments(required_number(o, "mean", "smi.dist.uniform"),
+      return std::make_shared<smi::stats::Uniform>(smi::stats::Uniform::from_moments(required_number(o, "mean", "smi.dist.uniform"),
                                                              required_number(o, "std", "smi.dist.uniform")));
-    return std::make_shared<Uniform>(required_number(o, "lower", "smi.dist.uniform"), required_number(o, "upper", "smi.dist.uniform"));
+    return std::make_shared<smi::stats::Uniform>(required_number(o, "lower", "smi.dist.uniform"), required_number(o, "upper", "smi.dist.uniform"));
   });
 }
 int d_truncnormal(lua_State* L) {
   return construct(L, "smi.dist.truncnormal", {"mean", "std", "lower", "upper"}, [](const Options& o) {
     const double inf = std::numeric_limits<double>::infinity();
-    return std::make_shared<TruncNormal>(required_number(o, "mean", "smi.dist.truncnormal"),
+    return std::make_shared<smi::stats::TruncNormal>(required_number(o, "mean", "smi.dist.truncnormal"),
                                          required_number(o, "std", "smi.dist.truncnormal"), o.number("lower", -inf),
                                          o.number("upper", inf));
   });
 }
 int d_weibull(lua_State* L) {
   return construct(L, "smi.dist.weibull", {"shape", "scale", "loc"}, [](const Options& o) {
-    return std::make_shared<Weibull>(required_number(o, "shape", "smi.dist.weibull"), required_number(o, "scale", "smi.dist.weibull"),
+    return std::make_shared<smi::stats::Weibull>(required_number(o, "shape", "smi.dist.weibull"), required_number(o, "scale", "smi.dist.weibull"),
                                      o.number("loc", 0.0));
   });
 }
 int d_gumbel(lua_State* L) {
   return construct(L, "smi.dist.gumbel", {"loc", "scale"}, [](const Options& o) {
-    return std::make_shared<Gumbel>(required_number(o, "loc", "smi.dist.gumbel"), required_number(o, "scale", "smi.dist.gumbel"));
+    return std::make_shared<smi::stats::Gumbel>(required_number(o, "loc", "smi.dist.gumbel"), required_number(o, "scale", "smi.dist.gumbel"));
   });
 }
 int d_gamma(lua_State* L) {
   return construct(L, "smi.dist.gamma", {"shape", "scale", "rate", "loc"}, [](const Options& o) {
     const double k = required_number(o, "shape", "smi.dist.gamma");
     const double scale = o.has("rate") ? 1.0 / required_number(o, "rate", "smi.dist.gamma") : required_number(o, "scale", "smi.dist.gamma");
-    return std::make_shared<Gamma>(k, scale, o.number("loc", 0.0));
+    return std::make_shared<smi::stats::Gamma>(k, scale, o.number("loc", 0.0));
   });
 }
 int d_beta(lua_State* L) {
   return construct(L, "smi.dist.beta", {"alpha", "beta", "lower", "upper"}, [](const Options& o) {
-    return std::make_shared<Beta>(required_number(o, "alpha", "smi.dist.beta"), required_number(o, "beta", "smi.dist.beta"),
+    return std::make_shared<smi::stats::Beta>(required_number(o, "alpha", "smi.dist.beta"), required_number(o, "beta", "smi.dist.beta"),
                                   o.number("lower", 0.0), o.number("upper", 1.0));
   });
 }
 int d_triangular(lua_State* L) {
   return construct(L, "smi.dist.triangular", {"lower", "mode", "upper"}, [](const Options& o) {
-    return std::make_shared<Triangular>(required_number(o, "lower", "smi.dist.triangular"),
+    return std::make_shared<smi::stats::Triangular>(required_number(o, "lower", "smi.dist.triangular"),
                                         required_number(o, "mode", "smi.dist.triangular"),
                                         required_number(o, "upper", "smi.dist.triangular"));
   });
@@ -93,7 +93,7 @@ int d_fit(lua_State* L) {
   std::vector<std::string> fams = {"normal", "lognormal", "uniform", "weibull", "gumbel", "gamma"};
   if (!lua_isnoneornil(L, 2)) fams = lua::to_strings(L, 2, "families");
   return lua::protect(L, "smi.dist.fit", [&] {
-    const auto res = fit(x, fams);
+    const auto res = smi::stats::fit(x, fams);
     lua_createtable(L, static_cast<int>(res.size()), 1);
     for (std::size_t i = 0; i < res.size(); ++i) {
       const auto& r = res[i];

@@ -1,8 +1,8 @@
 // Reference texts of smi.kde, smi.kde_bd, smi.kde_ebd, smi.ecdf, smi.bandwidth (kde_lua.cpp).
 // Defaults are read from the kernels' option structs (stats/kde.hpp, stats/kde_bounded.hpp).
-#include "doc.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_bounded.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 namespace smi::bind {
 namespace {
@@ -86,8 +86,8 @@ example:
 }  // namespace
 
 DocText doc_stats_kde() {
-  const KdeOptions k;
-  const BoundedKdeOptions b;
+  const smi::stats::KdeOptions k;
+  const smi::stats::BoundedKdeOptions b;
   return {"bindings/stats/kde_doc.cpp",
           fill(kText, {{"tol", num(k.binned_tol)},
                        {"threads", num(k.threads)},

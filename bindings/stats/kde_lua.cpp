@@ -1,27 +1,27 @@
 // smi.kde(data, opts), smi.kde_bd(data, opts), smi.kde_ebd(data, opts), smi.ecdf(data).
 #include <fmt/format.h>
 
+#include "bindings/stats/args.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/args.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_bounded.hpp"
-#include "stats/open_parts.hpp"
 
 namespace smi::bind::stats {
 namespace {
 
 using lua::Options;
 
-KdeOptions kde_options(const Options& o) {
-  KdeOptions k;
+smi::stats::KdeOptions kde_options(const Options& o) {
+  smi::stats::KdeOptions k;
   const std::string m = o.string("method", "auto");
-  if (m == "auto") k.method = KdeMethod::Auto;
-  else if (m == "exact") k.method = KdeMethod::Exact;
-  else if (m == "binned") k.method = KdeMethod::Binned;
+  if (m == "auto") k.method = smi::stats::KdeMethod::Auto;
+  else if (m == "exact") k.method = smi::stats::KdeMethod::Exact;
+  else if (m == "binned") k.method = smi::stats::KdeMethod::Binned;
   else throw InvalidArgument(fmt::format("method must be \"auto\", \"exact\" or \"binned\", got \"{}\"", m));
   k.binned_tol = o.number("tol", k.binned_tol);
   if (!(k.binned_tol > 0.0 && k.binned_tol < 0.1)) throw InvalidArgument(fmt::format("tol must be in (0, 0.1), got {}", k.binned_tol));
@@ -43,20 +43,20 @@ int kde_new(lua_State* L) {
   else if (bt != LUA_TNIL) return luaL_error(L, "smi.kde: bandwidth must be a number or a rule name such as \"silverman\", got %s", lua_typename(L, bt));
   lua_pop(L, 1);
   return lua::protect(L, "smi.kde", [&] {
-    const KdeOptions ko = kde_options(o);
+    const smi::stats::KdeOptions ko = kde_options(o);
     if (bt == LUA_TNUMBER) {
-      push_distribution(L, make_kde(x, h, ko));
+      push_distribution(L, smi::stats::make_kde(x, h, ko));
       return 1;
     }
     if (x.size() < 2)
       throw InvalidArgument(fmt::format("data has 1 point: the bandwidth rule '{}' needs at least 2; pass a fixed bandwidth, e.g. {{bandwidth = 0.1}}", rule));
-    push_distribution(L, make_kde(x, rule, ko));
+    push_distribution(L, smi::stats::make_kde(x, rule, ko));
     return 1;
   });
 }
 
-BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
-  BoundedKdeOptions b;
+smi::stats::BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
+  smi::stats::BoundedKdeOptions b;
   b.critical_area = o.number("critical_area", b.critical_area);
   b.step = static_cast<int>(o.integer("step", b.step));
   b.max_added = static_cast<int>(o.integer("max_added", b.max_added));
@@ -69,7 +69,7 @@ BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
 }
 
 /// Returns d (the KDE, with d.lower, d.upper, d.added) and an info table.
-int push_bounded(lua_State* L, const BoundedKdeResult& r, int outside) {
+int push_bounded(lua_State* L, const smi::stats::BoundedKdeResult& r, int outside) {
   r.kde->set_field("lower", r.lower);
   r.kde->set_field("upper", r.upper);
   r.kde->set_field("added", r.added);
@@ -97,7 +97,7 @@ int kde_bd(lua_State* L) {
     const double lo = required_number(o, "lower", "smi.kde_bd"), hi = required_number(o, "upper", "smi.kde_bd");
     if (!(lo < hi)) throw InvalidArgument(fmt::format("lower ({}) must be < upper ({}): swap them", lo, hi));
     int outside = 0;
-    const auto r = kde_bounded(x, lo, hi, bounded_options(L, o), &outside);
+    const auto r = smi::stats::kde_bounded(x, lo, hi, bounded_options(L, o), &outside);
     if (outside > 0 && !lua::policy(L).quiet)
       std::fprintf(stderr, "smi.kde_bd: warning: %d data point(s) lie outside [%g, %g]\n", outside, lo, hi);
     return push_bounded(L, r, outside);
@@ -110,7 +110,7 @@ int kde_ebd_new(lua_State* L) {
   Options o(L, 2, "smi.kde_ebd");
   return lua::protect(L, "smi.kde_ebd", [&] {
     o.check_known({"alpha", "unbiased", "critical_area", "step", "max_added", "compare", "bandwidth", "deterministic", "seed", "grid_nodes"});
-    const auto r = kde_ebd(x, o.number("alpha", 0.1), o.boolean("unbiased", false), bounded_options(L, o));
+    const auto r = smi::stats::kde_ebd(x, o.number("alpha", 0.1), o.boolean("unbiased", false), bounded_options(L, o));
     return push_bounded(L, r, 0);
   });
 }
@@ -119,7 +119,7 @@ int kde_ebd_new(lua_State* L) {
 int ecdf_new(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.ecdf");
   return lua::protect(L, "smi.ecdf", [&] {
-    push_distribution(L, std::make_shared<Ecdf>(x));
+    push_distribution(L, std::make_shared<smi::stats::Ecdf>(x));
     return 1;
   });
 }
@@ -129,7 +129,7 @@ int bandwidth_fn(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.bandwidth", 2);
   const std::string rule = luaL_optstring(L, 2, "silverman");
   return lua::protect(L, "smi.bandwidth", [&] {
-    lua_pushnumber(L, bandwidth_by_name(x, rule));
+    lua_pushnumber(L, smi::stats::bandwidth_by_name(x, rule));
     return 1;
   });
 }

@@ -1,8 +1,8 @@
 // Reference texts of smi.metric.* and the u-pooling verdict (metric_lua.cpp). The Monte Carlo
 // defaults are read from stats/upool.hpp, the grid's from stats/grid.hpp.
-#include "doc.hpp"
-#include "stats/grid.hpp"
-#include "stats/upool.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/upool.hpp"
 
 namespace smi::bind {
 namespace {
@@ -110,8 +110,8 @@ example:
 }  // namespace
 
 DocText doc_stats_metric() {
-  const UpoolMcSettings s;
-  const Grid g;
+  const smi::stats::UpoolMcSettings s;
+  const smi::stats::Grid g;
   return {"bindings/stats/metric_doc.cpp",
           fill(kText, {{"nodes", num(static_cast<double>(g.n))},
                        {"replications", num(static_cast<double>(s.replications))},

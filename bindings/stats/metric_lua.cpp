@@ -9,15 +9,15 @@
 #include <memory>
 #include <mutex>
 
-#include "eval/progress_line.hpp"
+#include "bindings/stats/args.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
+#include "kernels/eval/progress_line.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/upool.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/args.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "stats/open_parts.hpp"
-#include "stats/upool.hpp"
 
 namespace smi::bind::stats {
 namespace {
@@ -25,12 +25,12 @@ namespace {
 constexpr const char* kVerdictType = "smi.verdict";
 
 /// A distribution argument, or a sample (vec/table) turned into its normal-reference KDE.
-DistributionPtr dist_or_kde(lua_State* L, int idx, const char* fname, const char* what) {
+smi::stats::DistributionPtr dist_or_kde(lua_State* L, int idx, const char* fname, const char* what) {
   if (auto d = test_distribution(L, idx)) return d;
   const Eigen::VectorXd x = data_arg(L, idx, fname, 2);
-  DistributionPtr out;
+  smi::stats::DistributionPtr out;
   lua::protect(L, fname, [&] {
-    out = make_kde(x, std::string("silverman"));
+    out = smi::stats::make_kde(x, std::string("silverman"));
     return 0;
   });
   (void)what;
@@ -38,27 +38,27 @@ DistributionPtr dist_or_kde(lua_State* L, int idx, const char* fname, const char
 }
 
 /// Optional grid {lower =, upper =, nodes =} in an options table at idx.
-std::optional<Grid> grid_option(lua_State* L, int idx, const char* fname) {
+std::optional<smi::stats::Grid> grid_option(lua_State* L, int idx, const char* fname) {
   lua::Options o(L, idx, fname);
   o.check_known({"grid", "nodes"});
   if (o.push("grid") == LUA_TTABLE) {
     lua::Options g(L, lua_gettop(L), fname);
     g.check_known({"lower", "upper", "nodes"});
-    Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", kDefaultGridNodes))};
+    smi::stats::Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", kDefaultGridNodes))};
     lua_pop(L, 1);
     return gr;
   }
   lua_pop(L, 1);
-  if (o.has("nodes")) return Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", kDefaultGridNodes))};  // range filled later
+  if (o.has("nodes")) return smi::stats::Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", kDefaultGridNodes))};  // range filled later
   return std::nullopt;
 }
 
-Grid resolve_grid(const std::optional<Grid>& g, const Distribution& a, const Distribution& b) {
+smi::stats::Grid resolve_grid(const std::optional<smi::stats::Grid>& g, const smi::stats::Distribution& a, const smi::stats::Distribution& b) {
   if (g && g->hi > g->lo) {
     g->validate();
     return *g;
   }
-  return comparison_grid(a, b, g ? g->n : 4001);
+  return smi::stats::comparison_grid(a, b, g ? g->n : 4001);
 }
 
 /// PR (l1 = true) or intersection of a and b: exact between the pdf crossings without grid
@@ -71,11 +71,11 @@ double overlap(lua_State* L, const char* fname, bool l1) {
   double v = 0.0;
   lua::protect(L, fname, [&] {
     if (!g) {
-      const PdfOverlap o = pdf_overlap(*a, *b);
+      const smi::stats::PdfOverlap o = smi::stats::pdf_overlap(*a, *b);
       v = l1 ? o.l1 : o.intersection;
       return 0;
     }
-    const GridComparison c = compare_on_grid(*a, *b, resolve_grid(g, *a, *b));
+    const smi::stats::GridComparison c = smi::stats::compare_on_grid(*a, *b, resolve_grid(g, *a, *b));
     for (const auto& w : c.warnings) std::fprintf(stderr, "%s: warning: %s\n", fname, w.c_str());
     v = l1 ? c.pr : c.intersection;
     return 0;
@@ -103,10 +103,10 @@ int m_area(lua_State* L) {
   if (!db) xb = data_arg(L, 2, "smi.metric.area");
   return lua::protect(L, "smi.metric.area", [&] {
     double v;
-    if (!da && !db) v = area_metric_samples(xa, xb);
-    else if (!da) v = area_metric(xa, *db);
-    else if (!db) v = area_metric(xb, *da);
-    else v = area_metric(*da, *db);
+    if (!da && !db) v = smi::stats::area_metric_samples(xa, xb);
+    else if (!da) v = smi::stats::area_metric(xa, *db);
+    else if (!db) v = smi::stats::area_metric(xb, *da);
+    else v = smi::stats::area_metric(*da, *db);
     lua_pushnumber(L, v);
     return 1;
   });
@@ -120,7 +120,7 @@ int m_loglik(lua_State* L) {
   o.check_known({"floor"});
   return lua::protect(L, "smi.metric.loglik", [&] {
     int floored = 0;
-    lua_pushnumber(L, loglik(x, *d, o.number("floor", 1e-300), &floored));
+    lua_pushnumber(L, smi::stats::loglik(x, *d, o.number("floor", 1e-300), &floored));
     lua_pushinteger(L, floored);
     return 2;
   });
@@ -150,8 +150,8 @@ std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replic
   };
 }
 
-UpoolMcSettings mc_settings(lua_State* L, const lua::Options& o, lua_Integer n) {
-  UpoolMcSettings s;
+smi::stats::UpoolMcSettings mc_settings(lua_State* L, const lua::Options& o, lua_Integer n) {
+  smi::stats::UpoolMcSettings s;
   s.replications = o.integer("replications", s.replications);
   if (o.has("seed")) s.seed = static_cast<std::uint64_t>(o.integer("seed", 0));
   s.progress = mc_progress(L, static_cast<int>(n), s.replications);
@@ -173,7 +173,7 @@ int m_threshold(lua_State* L) {
   lua::Options o(L, 3, "smi.metric.upool_threshold");
   o.check_known({"replications", "seed"});
   return lua::protect(L, "smi.metric.upool_threshold", [&] {
-    lua_pushnumber(L, upool_threshold(static_cast<int>(n), c, mc_settings(L, o, n)));
+    lua_pushnumber(L, smi::stats::upool_threshold(static_cast<int>(n), c, mc_settings(L, o, n)));
     return 1;
   });
 }
@@ -185,7 +185,7 @@ int m_pvalue(lua_State* L) {
   lua::Options o(L, 3, "smi.metric.upool_pvalue");
   o.check_known({"replications", "seed"});
   return lua::protect(L, "smi.metric.upool_pvalue", [&] {
-    lua_pushnumber(L, upool_pvalue(static_cast<int>(n), u, mc_settings(L, o, n)));
+    lua_pushnumber(L, smi::stats::upool_pvalue(static_cast<int>(n), u, mc_settings(L, o, n)));
     return 1;
   });
 }
@@ -194,12 +194,12 @@ int m_pvalue(lua_State* L) {
 int m_statistic(lua_State* L) {
   const Eigen::VectorXd u = data_arg(L, 1, "smi.metric.upool_statistic");
   return lua::protect(L, "smi.metric.upool_statistic", [&] {
-    lua_pushnumber(L, upool_statistic(u));
+    lua_pushnumber(L, smi::stats::upool_statistic(u));
     return 1;
   });
 }
 
-void push_verdict(lua_State* L, const UpoolVerdict& v) {
+void push_verdict(lua_State* L, const smi::stats::UpoolVerdict& v) {
   lua_createtable(L, 0, 8);
   lua::set_number(L, "metric", v.metric);
   lua::set_number(L, "threshold", v.threshold);
@@ -213,9 +213,9 @@ void push_verdict(lua_State* L, const UpoolVerdict& v) {
 }
 
 /// Reads a verdict table back (for __tostring and curve).
-UpoolVerdict read_verdict(lua_State* L, int idx) {
+smi::stats::UpoolVerdict read_verdict(lua_State* L, int idx) {
   luaL_checktype(L, idx, LUA_TTABLE);
-  UpoolVerdict v;
+  smi::stats::UpoolVerdict v;
   lua_getfield(L, idx, "metric"), v.metric = lua_tonumber(L, -1), lua_pop(L, 1);
   lua_getfield(L, idx, "threshold"), v.threshold = lua_tonumber(L, -1), lua_pop(L, 1);
   lua_getfield(L, idx, "p"), v.p = lua_tonumber(L, -1), lua_pop(L, 1);
@@ -229,7 +229,7 @@ UpoolVerdict read_verdict(lua_State* L, int idx) {
 }
 
 int verdict_tostring(lua_State* L) {
-  const UpoolVerdict v = read_verdict(L, 1);
+  const smi::stats::UpoolVerdict v = read_verdict(L, 1);
   const std::string s = v.describe();
   lua_pushlstring(L, s.data(), s.size());
   return 1;
@@ -237,9 +237,9 @@ int verdict_tostring(lua_State* L) {
 
 /// v:curve() -> {x =, y = (ECDF of u as steps), diagonal = {x = {0,1}, y = {0,1}}, threshold =}
 int verdict_curve(lua_State* L) {
-  const UpoolVerdict v = read_verdict(L, 1);
+  const smi::stats::UpoolVerdict v = read_verdict(L, 1);
   Eigen::VectorXd x, y;
-  upool_curve(v, x, y);
+  smi::stats::upool_curve(v, x, y);
   lua_createtable(L, 0, 4);
   lua::set_vec(L, "x", x);
   lua::set_vec(L, "y", y);
@@ -253,7 +253,7 @@ int verdict_curve(lua_State* L) {
 }
 
 /// Collects data groups and their predicted distributions from the upool options table.
-void read_groups(lua_State* L, int t, std::vector<Eigen::VectorXd>& data, std::vector<DistributionPtr>& pred) {
+void read_groups(lua_State* L, int t, std::vector<Eigen::VectorXd>& data, std::vector<smi::stats::DistributionPtr>& pred) {
   lua_getfield(L, t, "predicted");
   lua_getfield(L, t, "data");
   const int ip = lua_absindex(L, -2), id = lua_absindex(L, -1);
@@ -306,12 +306,12 @@ int m_upool(lua_State* L) {
   const double c = check_confidence_arg(L, lua_gettop(L), "smi.metric.upool");
   lua_pop(L, 1);
   std::vector<Eigen::VectorXd> data;
-  std::vector<DistributionPtr> pred;
+  std::vector<smi::stats::DistributionPtr> pred;
   read_groups(L, 1, data, pred);
   return lua::protect(L, "smi.metric.upool", [&] {
     lua_Integer n = 0;  // u-values pooled over every group
     for (const auto& d : data) n += d.size();
-    push_verdict(L, upool(data, pred, c, mc_settings(L, o, n)));
+    push_verdict(L, smi::stats::upool(data, pred, c, mc_settings(L, o, n)));
     return 1;
   });
 }
@@ -319,16 +319,9 @@ int m_upool(lua_State* L) {
 }  // namespace
 
 void open_metric(lua_State* L) {
-  if (luaL_newmetatable(L, kVerdictType)) {
-    const luaL_Reg meta[] = {{"__tostring", verdict_tostring}, {nullptr, nullptr}};
-    luaL_setfuncs(L, meta, 0);
-    lua_createtable(L, 0, 1);
-    lua_pushcfunction(L, verdict_curve);
-    lua_setfield(L, -2, "curve");
-    lua_setfield(L, -2, "__index");
-    lua::protect_metatable(L, -1, kVerdictType);
-  }
-  lua_pop(L, 1);
+  const luaL_Reg methods[] = {{"curve", verdict_curve}, {nullptr, nullptr}};
+  const luaL_Reg meta[] = {{"__tostring", verdict_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kVerdictType, methods, meta);
   const luaL_Reg fns[] = {{"pr", m_pr},
                           {"intersection", m_intersection},
                           {"area", m_area},

@@ -1,7 +1,7 @@
 // Entry point of the stats binding area (see modules.hpp).
-#include "modules.hpp"
-#include "stats/dist_box.hpp"
-#include "stats/open_parts.hpp"
+#include "bindings/modules.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/open_parts.hpp"
 
 namespace smi::bind {
 

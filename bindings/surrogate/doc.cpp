@@ -1,9 +1,9 @@
 // Reference texts of smi.doe, smi.kriging, smi.propagate and smi.screen (this folder). Defaults
 // are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp).
-#include "doc.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/screen.hpp"
+#include "bindings/doc.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 namespace smi::bind {
 namespace {
@@ -50,7 +50,7 @@ example:
 
 @ module smi.kriging
 Universal Kriging (DACE-compatible): smi.kriging.fit and smi.kriging.load give a model with the
-methods smi.Kriging:predict, :loo, :evaluate, :save.
+methods smi.kriging:predict, :loo, :evaluate, :save.
 
 @ smi.kriging.fit(X, y [, opts]) -> model
 Fits a Kriging model to the points X (rows) and responses y: regression trend plus a Gaussian
@@ -71,7 +71,7 @@ options:
   inputs = nil             -- input names (for smi.propagate, smi.screen and smi.calibrate)
   output = "y"             -- the response's name
   threads = ${threads}     -- worker threads
-returns: a model (smi.Kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
+returns: a model (smi.kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
   inputs, output, warnings, evaluations
 errors: X and y of different lengths; fewer points than trend terms; two identical points; an
   unknown trend, corr or option; inputs of the wrong count
@@ -84,7 +84,7 @@ example:
 
 @ smi.kriging.load(path) -> model
 Loads a model written by model:save (names of inputs and output included).
-returns: a model (smi.Kriging)
+returns: a model (smi.kriging)
 errors: the sandbox refuses the path; not a model file, or a newer format version
 example:
   local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
@@ -98,7 +98,7 @@ candidate with the largest weight x Kriging variance given the design and the ba
 variance needs no response, so the whole batch goes to the model, and a parallel evaluator, in
 one call). Weights say where the input distributions put their mass.
 options:
-  model = (required)      -- an smi.Model, a function of the sample matrix, or a model object
+  model = (required)      -- an smi.model, a function of the sample matrix, or a model object
   design = (required)     -- the initial points (mat, columns = the model's inputs)
   candidates = (required) -- the points it may add (mat, same columns)
   weights = 1             -- a vec, one per candidate (> 0; 0: never chosen)
@@ -120,7 +120,7 @@ example:
     candidates = smi.doe.lhs(200, {{0, 1}}, {seed = 2}), batch = 3, max = 30, q2 = 0.9999}
   print(r.reached, r.X:rows() <= 30)
 
-@ smi.Kriging:predict(X [, opts]) -> mean, mse
+@ smi.kriging:predict(X [, opts]) -> mean, mse
 Predictions at the rows of X, on both cores for large X.
 options:
   mse = true      -- also return the mean squared error (false: the mean only, faster)
@@ -131,7 +131,7 @@ example:
   local k = smi.kriging.fit(smi.mat{{0}, {0.5}, {1}}, smi.vec{0, 1, 0}, {theta = 1})
   print(k:predict(smi.mat{{0.25}}))
 
-@ smi.Kriging:loo() -> {residuals =, variance =, q2 =, rmse =}
+@ smi.kriging:loo() -> {residuals =, variance =, q2 =, rmse =}
 Closed-form leave-one-out cross-validation (no refit): residuals y_i - yhat_(-i), their variances,
 Q2 = 1 - PRESS / total sum of squares, and the RMSE.
 returns: a table of vecs and numbers
@@ -141,7 +141,7 @@ example:
   local k = smi.kriging.fit(X, X:col(1):map(math.sin))
   print(k:loo().q2 > 0.9)
 
-@ smi.Kriging:evaluate(X) -> {output = vec}
+@ smi.kriging:evaluate(X) -> {output = vec}
 The model's mean as a named model (the form smi.propagate and smi.calibrate call).
 returns: a table {<output name> = vec}
 errors: X with the wrong number of columns
@@ -149,7 +149,7 @@ example:
   local k = smi.kriging.fit(smi.mat{{0}, {1}}, smi.vec{1, 3}, {theta = 1, output = "f"})
   print(k:evaluate(smi.mat{{0}}).f)
 
-@ smi.Kriging:save(path)
+@ smi.kriging:save(path)
 Writes the model (text, version 2, with input and output names) for smi.kriging.load.
 returns: nothing
 errors: the sandbox refuses the path (smi.out(name) is always allowed); the file cannot be written
@@ -163,7 +163,7 @@ Monte Carlo propagation: n points drawn from the inputs pushed through the model
 matrices. The draws are common random numbers: the same seed gives the same points for any
 model, so two models (or two calibration steps) are compared without sampling noise.
 options:
-  model = (required)   -- an smi.Kriging, a table of them by output name, a function(X) returning
+  model = (required)   -- an smi.kriging, a table of them by output name, a function(X) returning
                        -- {name = vec}, or an smi.model.* model
   inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
   n = 10000            -- sample size, 1..2^28
@@ -215,9 +215,9 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const doe::LhsOptions lo;
-  const kriging::FitOptions fo;
-  const screen::Options so;
+  const smi::surrogate::doe::LhsOptions lo;
+  const smi::surrogate::kriging::FitOptions fo;
+  const smi::surrogate::screen::Options so;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"criterion", lo.criterion},

@@ -9,17 +9,18 @@
 #include <cstdio>
 #include <variant>
 
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/surrogate/open_parts.hpp"
+#include "kernels/surrogate/doe.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "stats/dist_box.hpp"
-#include "surrogate/doe.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
 
 struct Dim {
   double lo = 0, hi = 1;
-  DistributionPtr dist;
+  smi::stats::DistributionPtr dist;
 };
 
 std::vector<Dim> read_space(lua_State* L, int idx, const char* fname) {
@@ -38,7 +39,7 @@ std::vector<Dim> read_space(lua_State* L, int idx, const char* fname) {
   for (lua_Integer i = 1; i <= len; ++i) {
     lua_rawgeti(L, idx, i);
     Dim d;
-    if (DistributionPtr p = test_distribution(L, -1)) {
+    if (smi::stats::DistributionPtr p = test_distribution(L, -1)) {
       d.dist = p;
     } else if (lua_istable(L, -1) && lua_rawlen(L, -1) == 2) {
       lua_rawgeti(L, -1, 1);
@@ -86,14 +87,14 @@ int doe_lhs(lua_State* L) {
   const std::vector<Dim> space = read_space(L, 2, "smi.doe.lhs");
   lua::Options o(L, 3, "smi.doe.lhs");
   o.check_known({"seed", "criterion", "p", "iterations", "centered"});
-  doe::LhsOptions lo;
+  smi::surrogate::doe::LhsOptions lo;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   lo.criterion = o.string("criterion", "maximin");
   lo.p = o.number("p", lo.p);
   lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
   lo.centered = o.boolean("centered", lo.centered);
   return lua::protect(L, "smi.doe.lhs", [&] {
-    lua::push_mat(L, map_space(doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
+    lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
     return 1;
   });
 }
@@ -105,7 +106,7 @@ int doe_sobol(lua_State* L) {
   o.check_known({"skip"});
   const auto skip = static_cast<Eigen::Index>(o.integer("skip", 0));
   return lua::protect(L, "smi.doe.sobol", [&] {
-    lua::push_mat(L, map_space(doe::sobol(n, static_cast<Eigen::Index>(space.size()), skip), space));
+    lua::push_mat(L, map_space(smi::surrogate::doe::sobol(n, static_cast<Eigen::Index>(space.size()), skip), space));
     return 1;
   });
 }
@@ -136,7 +137,7 @@ int doe_full_factorial(lua_State* L) {
         u = (Eigen::VectorXd::LinSpaced(k, 0.0, static_cast<double>(k - 1)).array() + 0.5) / static_cast<double>(k);
       levels.push_back(d.dist ? d.dist->quantile(u) : Eigen::VectorXd(d.lo + (d.hi - d.lo) * u.array()));
     }
-    lua::push_mat(L, doe::full_factorial(levels));
+    lua::push_mat(L, smi::surrogate::doe::full_factorial(levels));
     return 1;
   });
 }
@@ -149,7 +150,7 @@ const luaL_Reg kFuncs[] = {
 void open_doe(lua_State* L) {
   lua_newtable(L);
   lua::set_funcs(L, kFuncs);
-  lua_pushinteger(L, doe::sobol_max_dim());
+  lua_pushinteger(L, smi::surrogate::doe::sobol_max_dim());
   lua_setfield(L, -2, "sobol_max_dim");
   lua_setfield(L, -2, "doe");
 }

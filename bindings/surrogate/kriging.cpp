@@ -1,4 +1,4 @@
-// smi.kriging.fit(X, y, opts) -> smi.Kriging;  smi.kriging.load(path) -> smi.Kriging
+// smi.kriging.fit(X, y, opts) -> smi.kriging;  smi.kriging.load(path) -> smi.kriging
 //   m:predict(X [, {mse = false}]) -> mean vec, mse vec   (whole matrix, both cores)
 //   m:loo() -> {residuals = vec, variance = vec, q2, rmse}
 //   m:save(path)                                           (sandbox: check_write)
@@ -12,9 +12,10 @@
 #include <fmt/format.h>
 #include <sstream>
 
+#include "bindings/surrogate/kriging_box.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/kriging_box.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
@@ -47,7 +48,7 @@ int k_fit(lua_State* L) {
   lua::Options o(L, 3, "smi.kriging.fit");
   o.check_known({"trend", "corr", "theta", "method", "theta0", "lower", "upper", "nugget", "starts", "seed",
                  "normalize", "inputs", "output", "threads"});
-  kriging::FitOptions fo;
+  smi::surrogate::kriging::FitOptions fo;
   KrigingBox box;
   std::string trend = o.string("trend", "constant"), corr = o.string("corr", "gauss");
   fo.method = o.string("method", "ml");
@@ -73,12 +74,12 @@ int k_fit(lua_State* L) {
   }
   box.output = o.string("output", "y");
   return lua::protect(L, "smi.kriging.fit", [&] {
-    fo.trend = kriging::parse_trend(trend);
-    fo.corr = kriging::parse_corr(corr);
+    fo.trend = smi::surrogate::kriging::parse_trend(trend);
+    fo.corr = smi::surrogate::kriging::parse_corr(corr);
     if (!box.inputs.empty() && static_cast<Eigen::Index>(box.inputs.size()) != X.cols())
       throw DimensionMismatch("inputs names " + std::to_string(box.inputs.size()) + " names for " +
                               std::to_string(X.cols()) + " columns of X");
-    box.model = kriging::fit(X, y, fo);
+    box.model = smi::surrogate::kriging::fit(X, y, fo);
     lua::push_box(L, kKrigingType, std::move(box));
     return 1;
   });
@@ -93,10 +94,10 @@ int k_predict(lua_State* L) {
   const int threads = static_cast<int>(o.integer("threads", kDefaultThreads));
   return lua::protect(L, "predict", [&] {
     if (!want_mse) {
-      lua::push_vec(L, kriging::predict_mean(k.model, X, threads));
+      lua::push_vec(L, smi::surrogate::kriging::predict_mean(k.model, X, threads));
       return 1;
     }
-    kriging::Prediction p = kriging::predict(k.model, X, threads);
+    smi::surrogate::kriging::Prediction p = smi::surrogate::kriging::predict(k.model, X, threads);
     lua::push_vec(L, std::move(p.mean));
     lua::push_vec(L, std::move(p.mse));
     return 2;
@@ -108,7 +109,7 @@ int k_evaluate(lua_State* L) {
   const Eigen::MatrixXd X = lua::to_matrix(L, 2, "X");
   return lua::protect(L, "evaluate", [&] {
     lua_createtable(L, 0, 1);
-    lua::push_vec(L, kriging::predict_mean(k.model, X));
+    lua::push_vec(L, smi::surrogate::kriging::predict_mean(k.model, X));
     lua_setfield(L, -2, k.output.c_str());
     return 1;
   });
@@ -117,7 +118,7 @@ int k_evaluate(lua_State* L) {
 int k_loo(lua_State* L) {
   KrigingBox& k = self(L);
   return lua::protect(L, "loo", [&] {
-    kriging::LooResult r = kriging::loo(k.model);
+    smi::surrogate::kriging::LooResult r = smi::surrogate::kriging::loo(k.model);
     lua_createtable(L, 0, 4);
     lua::set_vec(L, "residuals", std::move(r.residuals));
     lua::set_vec(L, "variance", std::move(r.variance));
@@ -132,7 +133,7 @@ int k_save(lua_State* L) {
   const std::string path = luaL_checkstring(L, 2);
   return lua::protect(L, "save", [&] {
     std::ostringstream text;
-    kriging::save(k.model, text, path, {k.inputs, k.output});  // rendered before the file is opened
+    smi::surrogate::kriging::save(k.model, text, path, {k.inputs, k.output});  // rendered before the file is opened
     const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
     if (!pathwalk::write_all(f.fd.get(), text.str()))
       throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
@@ -146,8 +147,8 @@ int k_load(lua_State* L) {
     const CheckedFile f = lua::policy(L).open_read(path);
     std::istringstream text(read_checked(f, path));
     KrigingBox box;
-    kriging::ModelNames names;
-    box.model = kriging::load(text, path, &names);
+    smi::surrogate::kriging::ModelNames names;
+    box.model = smi::surrogate::kriging::load(text, path, &names);
     box.inputs = std::move(names.inputs);
     if (!names.output.empty()) box.output = std::move(names.output);
     lua::push_box(L, kKrigingType, std::move(box));
@@ -160,8 +161,8 @@ int k_tostring(lua_State* L) {
   std::ostringstream os;
   os.precision(4);
   const auto& m = k.model;
-  os << "smi.Kriging(" << m.size() << " points, " << m.inputs() << " inputs, trend=" << kriging::trend_name(m.trend)
-     << ", corr=" << kriging::corr_name(m.corr) << ", theta=[";
+  os << "smi.kriging(" << m.size() << " points, " << m.inputs() << " inputs, trend=" << smi::surrogate::kriging::trend_name(m.trend)
+     << ", corr=" << smi::surrogate::kriging::corr_name(m.corr) << ", theta=[";
   for (Eigen::Index j = 0; j < m.theta.size(); ++j) os << (j ? ", " : "") << m.theta[j];
   os << "], sigma2=" << m.process_variance() << ", method=" << m.method << ")";
   lua_pushstring(L, os.str().c_str());
@@ -178,8 +179,8 @@ int k_field(lua_State* L) {
   else if (key == "beta") lua::push_vec(L, m.beta);
   else if (key == "evaluations") lua_pushinteger(L, m.evaluations);
   else if (key == "method") lua_pushstring(L, m.method.c_str());
-  else if (key == "trend") lua_pushstring(L, kriging::trend_name(m.trend));
-  else if (key == "corr") lua_pushstring(L, kriging::corr_name(m.corr));
+  else if (key == "trend") lua_pushstring(L, smi::surrogate::kriging::trend_name(m.trend));
+  else if (key == "corr") lua_pushstring(L, smi::surrogate::kriging::corr_name(m.corr));
   else if (key == "nugget") lua_pushnumber(L, m.nugget);
   else if (key == "n") lua_pushinteger(L, m.size());
   else if (key == "output") lua_pushstring(L, k.output.c_str());

@@ -1,19 +1,19 @@
 #pragma once
-// The Lua type smi.Kriging: a fitted model plus the names of its inputs and output, shared by
+// The Lua type smi.kriging: a fitted model plus the names of its inputs and output, shared by
 // the kriging, propagation and screening bindings.
 #include <cstddef>
 #include <string>
 #include <vector>
 #include <lua.hpp>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 namespace smi::bind::surrogate {
 
-inline constexpr const char* kKrigingType = "smi.Kriging";
+inline constexpr const char* kKrigingType = "smi.kriging";
 
 struct KrigingBox {
-  kriging::Model model;
+  smi::surrogate::kriging::Model model;
   std::vector<std::string> inputs;  // may be empty (unnamed)
   std::string output = "y";
 };
@@ -27,7 +27,7 @@ inline std::size_t heap_bytes(const KrigingBox& k) {
   return static_cast<std::size_t>(doubles) * sizeof(double);
 }
 
-/// nullptr when the value at idx is not an smi.Kriging (or is closed).
+/// nullptr when the value at idx is not an smi.kriging (or is closed).
 KrigingBox* test_kriging(lua_State* L, int idx);
 void open_kriging(lua_State* L);  // smi.kriging.fit / .load and the type
 

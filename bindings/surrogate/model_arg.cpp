@@ -1,15 +1,15 @@
 // Adapters from Lua model values to propagate::MatrixModel.
-#include "surrogate/model_arg.hpp"
+#include "bindings/surrogate/model_arg.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
 
-#include "core/errors.hpp"
+#include "bindings/stats/dist_box.hpp"
+#include "bindings/surrogate/kriging_box.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
-#include "stats/dist_box.hpp"
-#include "surrogate/kriging_box.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
@@ -83,7 +83,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
   if (KrigingBox* k = test_kriging(L, idx)) {
     m.outputs->push_back(k->output);
     m.input_names = k->inputs;
-    m.fn = [k](const Eigen::MatrixXd& X) -> Eigen::MatrixXd { return kriging::predict_mean(k->model, X); };
+    m.fn = [k](const Eigen::MatrixXd& X) -> Eigen::MatrixXd { return smi::surrogate::kriging::predict_mean(k->model, X); };
     return m;
   }
   if (lua_isfunction(L, idx)) {
@@ -128,7 +128,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
       while (lua_next(L, idx)) {
         KrigingBox* k = test_kriging(L, -1);
         if (lua_type(L, -2) != LUA_TSTRING || !k)
-          luaL_error(L, "%s: model table must map output names to smi.Kriging models (key %s)", fname,
+          luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname,
                      lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string");
         parts.emplace_back(lua_tostring(L, -2), k);
         lua_pop(L, 1);
@@ -140,27 +140,27 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
       m.fn = [parts](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
         Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(parts.size()));
         for (std::size_t j = 0; j < parts.size(); ++j)
-          Y.col(static_cast<Eigen::Index>(j)) = kriging::predict_mean(parts[j].second->model, X);
+          Y.col(static_cast<Eigen::Index>(j)) = smi::surrogate::kriging::predict_mean(parts[j].second->model, X);
         return Y;
       };
       return m;
     }
   }
-  luaL_error(L, "%s: model must be an smi.Kriging, a table of them by output name, a function(X) or an object "
+  luaL_error(L, "%s: model must be an smi.kriging, a table of them by output name, a function(X) or an object "
              "with :evaluate(X); got %s", fname, luaL_typename(L, idx));
   return m;
 }
 
-std::vector<propagate::Input> to_inputs(lua_State* L, int idx, const std::vector<std::string>& order,
+std::vector<smi::surrogate::propagate::Input> to_inputs(lua_State* L, int idx, const std::vector<std::string>& order,
                                         const char* fname) {
   if (!lua_istable(L, idx)) luaL_error(L, "%s: inputs must be a table of named distributions or constants", fname);
-  std::vector<propagate::Input> out;
+  std::vector<smi::surrogate::propagate::Input> out;
   auto read_value = [&](int vidx, const std::string& name) {
-    propagate::Input in;
+    smi::surrogate::propagate::Input in;
     in.name = name;
     if (lua_type(L, vidx) == LUA_TNUMBER)
       in.value = lua_tonumber(L, vidx);
-    else if (DistributionPtr d = test_distribution(L, vidx))
+    else if (smi::stats::DistributionPtr d = test_distribution(L, vidx))
       in.dist = d;
     else
       luaL_error(L, "%s: input '%s' must be an smi.dist or a number, got %s", fname, name.c_str(), luaL_typename(L, vidx));
@@ -215,7 +215,7 @@ ModelAndInputs read_model_and_inputs(lua_State* L, const lua::Options& o, const 
     lua_pop(L, 1);
   }
   if (o.push("inputs") == LUA_TNIL) luaL_error(L, "%s: field 'inputs' is required", fname);
-  std::vector<propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
+  std::vector<smi::surrogate::propagate::Input> inputs = to_inputs(L, lua_gettop(L), order, fname);
   lua_pop(L, 1);
   return {std::move(model), model_idx, std::move(inputs)};
 }

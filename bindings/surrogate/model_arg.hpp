@@ -1,19 +1,19 @@
 #pragma once
 // What smi.propagate and smi.screen accept as `model`, turned into one C++ callable on whole
-// matrices: an smi.Kriging (mean prediction), a table of them by output name, a Lua function
+// matrices: an smi.kriging (mean prediction), a table of them by output name, a Lua function
 // taking the sample matrix (returning a vec, or {name = vec}), or any object with the model
 // interface m:evaluate(X) -> {name = vec} (smi.model objects).
 #include <string>
 #include <vector>
 #include <lua.hpp>
 
+#include "kernels/surrogate/propagate.hpp"
 #include "luax/luax.hpp"
-#include "surrogate/propagate.hpp"
 
 namespace smi::bind::surrogate {
 
 struct ModelArg {
-  propagate::MatrixModel fn;
+  smi::surrogate::propagate::MatrixModel fn;
   /// Output names; for Lua functions and objects, filled by the first call.
   std::shared_ptr<std::vector<std::string>> outputs;
   /// Column order the model expects, when it says (Kriging `inputs`, smi.model's m.inputs).
@@ -26,7 +26,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname);
 /// Reads `inputs` (at absolute index idx): either an array {{"name", dist|number}, ...} or a
 /// map {name = dist|number}; a map is ordered by `order` when given, else by the model's input
 /// names, else by sorted names.
-std::vector<propagate::Input> to_inputs(lua_State* L, int idx, const std::vector<std::string>& order,
+std::vector<smi::surrogate::propagate::Input> to_inputs(lua_State* L, int idx, const std::vector<std::string>& order,
                                         const char* fname);
 
 /// The `model`, `order` and `inputs` fields shared by smi.propagate and smi.screen, read from
@@ -35,7 +35,7 @@ std::vector<propagate::Input> to_inputs(lua_State* L, int idx, const std::vector
 struct ModelAndInputs {
   ModelArg model;
   int model_idx;
-  std::vector<propagate::Input> inputs;
+  std::vector<smi::surrogate::propagate::Input> inputs;
 };
 ModelAndInputs read_model_and_inputs(lua_State* L, const lua::Options& o, const char* fname);
 

@@ -1,15 +1,9 @@
 // Entry point of the surrogate binding area (see modules.hpp): smi.doe, smi.kriging,
 // smi.propagate, smi.screen, smi.kriging.sequential.
-#include "modules.hpp"
+#include "bindings/modules.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 
 namespace smi::bind {
-namespace surrogate {
-void open_doe(lua_State* L);
-void open_kriging(lua_State* L);
-void open_propagate(lua_State* L);
-void open_screen(lua_State* L);
-void open_sequential(lua_State* L);
-}  // namespace surrogate
 
 void open_surrogate(lua_State* L) {
   surrogate::open_doe(L);

@@ -1,9 +1,10 @@
 // smi.propagate{model =, inputs =, n =, seed = [, order =]} -> {output = vec, ...}, X
 // Common random numbers: each input's column is its quantile of a fixed uniform column
 // (surrogate/propagate.hpp), and the model gets the whole sample in one call.
+#include "bindings/surrogate/model_arg.hpp"
+#include "bindings/surrogate/open_parts.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/model_arg.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -21,7 +22,7 @@ int propagate_call(lua_State* L) {
   if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   return lua::protect(L, fname, [&] {
-    Eigen::MatrixXd X = propagate::crn_sample(inputs, n, seed);
+    Eigen::MatrixXd X = smi::surrogate::propagate::crn_sample(inputs, n, seed);
     const Eigen::MatrixXd Y = model.fn(X);
     if (Y.rows() != X.rows()) throw DimensionMismatch("the model returned " + std::to_string(Y.rows()) + " rows for " + std::to_string(X.rows()) + " points");
     // A NaN passed on would make every statistic of the output NaN, or be dropped silently by

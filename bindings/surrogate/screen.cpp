@@ -11,16 +11,17 @@
 #include <cstdio>
 #include <string>
 
+#include "bindings/surrogate/model_arg.hpp"
+#include "bindings/surrogate/open_parts.hpp"
+#include "kernels/surrogate/screen.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/model_arg.hpp"
-#include "surrogate/screen.hpp"
-#include "surrogate/screen_surrogate.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
 
-constexpr const char* kScreenMeta = "smi.ScreenResult";
+constexpr const char* kScreenMeta = "smi.screen_result";
 
 int screen_tostring(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
@@ -66,12 +67,12 @@ int screen_tostring(lua_State* L) {
   return 1;
 }
 
-void push_result(lua_State* L, const screen::Result& r, lua_Integer n,
-                 const screen::SurrogateFitInfo* fit = nullptr, const std::vector<propagate::Input>* inputs = nullptr,
+void push_result(lua_State* L, const smi::surrogate::screen::Result& r, lua_Integer n,
+                 const smi::surrogate::screen::SurrogateFitInfo* fit = nullptr, const std::vector<smi::surrogate::propagate::Input>* inputs = nullptr,
                  lua_Integer runs = 0) {
   lua_createtable(L, static_cast<int>(r.rows.size()), 5);
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
-    const screen::Row& w = r.rows[i];
+    const smi::surrogate::screen::Row& w = r.rows[i];
     lua_createtable(L, 0, 10);
     lua::set_string(L, "input", w.input);
     lua::set_number(L, "e", w.e);
@@ -126,7 +127,7 @@ int screen_call(lua_State* L) {
   o.check_known({"model", "inputs", "n", "seed", "fix", "sobol", "bootstrap", "level", "output", "order", "grid",
                  "method", "runs", "basis", "q2_min", "delta", "classes"});
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
-  screen::Options so;
+  smi::surrogate::screen::Options so;
   so.n = static_cast<Eigen::Index>(o.integer("n", so.n));
   so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   so.fix = o.string("fix", "mean");
@@ -144,7 +145,7 @@ int screen_call(lua_State* L) {
       if (!lua_isnil(L, -1) && misplaced.empty()) misplaced = k;
       lua_pop(L, 1);
     }
-  screen::SurrogateOptions sso;
+  smi::surrogate::screen::SurrogateOptions sso;
   sso.runs = static_cast<Eigen::Index>(o.integer("runs", sso.runs));
   const std::string basis = o.string("basis", "quadratic");
   sso.q2_min = o.number("q2_min", 0.9);
@@ -155,15 +156,15 @@ int screen_call(lua_State* L) {
       throw InvalidArgument("method must be \"full\" or \"surrogate\", got '" + method + "'");
     if (!misplaced.empty())
       throw InvalidArgument("'" + misplaced + "' applies to method = \"surrogate\" only");
-    std::vector<screen::Result> res;
-    std::vector<screen::SurrogateFitInfo> fits;
+    std::vector<smi::surrogate::screen::Result> res;
+    std::vector<smi::surrogate::screen::SurrogateFitInfo> fits;
     if (surrogate) {
-      sso.basis = polyfit::parse_basis(basis);
-      screen::SurrogateResult sr = screen::screen_surrogate(inputs, model.fn, *model.outputs, so, sso);
+      sso.basis = smi::surrogate::polyfit::parse_basis(basis);
+      smi::surrogate::screen::SurrogateResult sr = smi::surrogate::screen::screen_surrogate(inputs, model.fn, *model.outputs, so, sso);
       res = std::move(sr.screening);
       fits = std::move(sr.fits);
     } else {
-      res = screen::screen(inputs, model.fn, *model.outputs, so);
+      res = smi::surrogate::screen::screen(inputs, model.fn, *model.outputs, so);
     }
     auto push = [&](std::size_t i) {
       if (surrogate)
@@ -195,11 +196,8 @@ int screen_call(lua_State* L) {
 }  // namespace
 
 void open_screen(lua_State* L) {
-  luaL_newmetatable(L, kScreenMeta);
-  lua_pushcfunction(L, screen_tostring);
-  lua_setfield(L, -2, "__tostring");
-  lua::protect_metatable(L, -1, kScreenMeta);
-  lua_pop(L, 1);
+  const luaL_Reg meta[] = {{"__tostring", screen_tostring}, {nullptr, nullptr}};
+  lua::register_table_type(L, kScreenMeta, nullptr, meta);
   lua_pushcfunction(L, screen_call);
   lua_setfield(L, -2, "screen");
 }

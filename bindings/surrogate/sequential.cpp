@@ -1,19 +1,19 @@
 // smi.kriging.sequential{model, design, candidates, weights, batch, max, q2, rmse, trend, corr,
 //                        seed, inputs}
-//   -> {X = mat, Y = {<output> = vec}, kriging = {<output> = smi.Kriging},
+//   -> {X = mat, Y = {<output> = vec}, kriging = {<output> = smi.kriging},
 //       history = {{points, q2 = {<output> = x}, rmse = {...}}, ...}, reached, stop}
-// The thin face of surrogate/sequential_design.hpp: the model (an smi.Model, a Lua function or a
+// The thin face of surrogate/sequential_design.hpp: the model (an smi.model, a Lua function or a
 // table of the model interface) runs on `design`, then on one batch of candidate rows at a time
 // (a parallel evaluator gets the whole batch) until every output's leave-one-out Q2 reaches `q2`
 // and its LOO RMSE `rmse[<output>]` (when given), or the design holds `max` points.
 #include <cmath>
 #include <limits>
 
+#include "bindings/surrogate/kriging_box.hpp"
+#include "bindings/surrogate/model_arg.hpp"
+#include "kernels/surrogate/sequential_design.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
-#include "surrogate/kriging_box.hpp"
-#include "surrogate/model_arg.hpp"
-#include "surrogate/sequential_design.hpp"
 
 namespace smi::bind::surrogate {
 namespace {
@@ -25,7 +25,7 @@ int sequential_call(lua_State* L) {
   o.check_known({"model", "design", "candidates", "weights", "batch", "max", "q2", "rmse", "trend", "corr", "seed", "inputs"});
   o.push("model");
   const int model_idx = lua_gettop(L);
-  if (lua_isnil(L, model_idx)) return luaL_error(L, "%s: 'model' is required (an smi.Model, a function or a model object)", fname);
+  if (lua_isnil(L, model_idx)) return luaL_error(L, "%s: 'model' is required (an smi.model, a function or a model object)", fname);
   ModelArg model = to_model(L, model_idx, fname);
   auto matrix = [&](const char* key) {
     if (o.push(key) == LUA_TNIL) luaL_error(L, "%s: '%s' is required", fname, key);
@@ -40,7 +40,7 @@ int sequential_call(lua_State* L) {
   else
     weights = lua::to_vector(L, -1, "weights");
   lua_pop(L, 1);
-  kriging::SequentialOptions so;
+  smi::surrogate::kriging::SequentialOptions so;
   so.batch = static_cast<Eigen::Index>(o.integer("batch", 10));
   so.max_points = static_cast<Eigen::Index>(o.integer("max", 100));
   so.q2_target = o.number("q2", 0.999);
@@ -58,8 +58,8 @@ int sequential_call(lua_State* L) {
   const int rmse_idx = lua_gettop(L);
   if (rmse_t != LUA_TNIL && rmse_t != LUA_TTABLE) return luaL_error(L, "%s: 'rmse' must be a table {<output> = target}", fname);
   return lua::protect(L, fname, [&] {
-    so.fit.trend = kriging::parse_trend(trend);
-    so.fit.corr = kriging::parse_corr(corr);
+    so.fit.trend = smi::surrogate::kriging::parse_trend(trend);
+    so.fit.corr = smi::surrogate::kriging::parse_corr(corr);
     if (!input_names.empty() && static_cast<Eigen::Index>(input_names.size()) != design.cols())
       throw DimensionMismatch(std::to_string(input_names.size()) + " input names for " + std::to_string(design.cols()) +
                               " columns of the design");
@@ -76,7 +76,7 @@ int sequential_call(lua_State* L) {
       }
     }
     bool served = false;
-    const kriging::SequentialResult r = kriging::sequential_design(design, candidates, weights, [&](const Eigen::MatrixXd& X) {
+    const smi::surrogate::kriging::SequentialResult r = smi::surrogate::kriging::sequential_design(design, candidates, weights, [&](const Eigen::MatrixXd& X) {
       if (!served) {
         served = true;
         return Y0;

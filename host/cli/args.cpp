@@ -6,7 +6,7 @@
 #include <cstring>
 #include <string>
 
-#include "core/defaults.hpp"
+#include "kernels/core/defaults.hpp"
 
 namespace smi::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "vm/runtime.hpp"
+#include "app/runtime.hpp"
 
 namespace smi::cli {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "app/runtime.hpp"
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "vm/runtime.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

@@ -12,8 +12,8 @@
 #include <sys/wait.h>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "eval/process.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/eval/process.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "core/errors.hpp"
-#include "core/json.hpp"
-#include "core/sha256.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/json.hpp"
+#include "kernels/core/sha256.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

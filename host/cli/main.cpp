@@ -9,11 +9,11 @@
 #include <unistd.h>
 #include <vector>
 
+#include "app/runtime.hpp"
 #include "cli/args.hpp"
 #include "cli/commands.hpp"
-#include "eval/process.hpp"
+#include "kernels/eval/process.hpp"
 #include "repl/repl.hpp"
-#include "vm/runtime.hpp"
 
 namespace {
 

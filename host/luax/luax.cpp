@@ -84,6 +84,19 @@ void register_type_raw(lua_State* L, const char* type, const luaL_Reg* methods, 
   lua_pop(L, 1);
 }
 
+void register_table_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods) {
+  if (luaL_newmetatable(L, type)) {  // sets __name, used by luaL_typeerror and tostring
+    if (methods) {
+      lua_newtable(L);
+      luaL_setfuncs(L, methods, 0);
+      lua_setfield(L, -2, "__index");
+    }
+    if (metamethods) luaL_setfuncs(L, metamethods, 0);
+    protect_metatable(L, -1, type);
+  }
+  lua_pop(L, 1);
+}
+
 void protect_metatable(lua_State* L, int idx, const char* type) {
   // getmetatable(x) returns a copy without __gc and __close: scripts keep reading __name (type
   // checks such as getmetatable(v).__name == "smi.vec") and the other metamethods, but cannot

@@ -23,7 +23,7 @@
 #include <string>
 #include <lua.hpp>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::lua {
 
@@ -181,6 +181,12 @@ void register_type(lua_State* L, const char* type, const luaL_Reg* methods, cons
                    FieldGetter getter = nullptr) {
   register_type_raw(L, type, methods, metamethods, &box_gc<T>, &box_close<T>, getter);
 }
+
+/// Registers the metatable of a plain Lua value (a result table such as a verdict) under `type`:
+/// __name = type, __index = a table of `methods` (none: no __index), the `metamethods`, then
+/// protect_metatable. A second call for the same type changes nothing. Boxes use register_type;
+/// these two are the only ways a binding makes a metatable. Stack: unchanged.
+void register_table_type(lua_State* L, const char* type, const luaL_Reg* methods, const luaL_Reg* metamethods);
 
 /// Sets __metatable on the metatable at idx (call it when the metatable is complete): getmetatable()
 /// then returns a copy without __gc and __close, so a script can read __name and friends but can

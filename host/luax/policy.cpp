@@ -302,6 +302,12 @@ void set_policy(lua_State* L, Policy* p) {
   lua_pushlightuserdata(L, p);
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kPolicyKey);
 }
+
+void* exit_sentinel() {
+  static char tag;
+  return &tag;
+}
+
 }  // namespace lua
 
 }  // namespace smi

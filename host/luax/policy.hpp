@@ -9,9 +9,9 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "core/defaults.hpp"
-#include "core/errors.hpp"
-#include "core/path_walk.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/path_walk.hpp"
 
 namespace smi {
 
@@ -120,6 +120,9 @@ namespace lua {
 Policy& policy(lua_State* L);
 /// Stores `p` (not owned; must outlive the state) in the registry.
 void set_policy(lua_State* L, Policy* p);
+/// The error value that ends a run quietly (os.exit, Policy::request_exit): a light userdata the
+/// runtime's message handler recognises. Raised by the sandbox's os.exit and the limits' hook.
+void* exit_sentinel();
 /// Loads the text of a checked file as a text chunk named `chunkname` ("@path"), skipping a
 /// UTF-8 BOM and a first "#" line as luaL_loadfilex does. Returns the load status; pushes the
 /// chunk or the message.

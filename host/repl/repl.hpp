@@ -2,7 +2,7 @@
 // The read-eval-print loop (lua.c's doREPL over the runtime's sandboxed state): try the line
 // as an expression first ("return <line>"), keep reading while the chunk is incomplete (the
 // parser stops at <eof>), print the results with the bounded printer.
-#include "vm/runtime.hpp"
+#include "app/runtime.hpp"
 
 namespace smi::repl {
 

@@ -3,7 +3,6 @@
 #include <cstring>
 
 #include "luax/policy.hpp"
-#include "vm/limits.hpp"
 
 namespace smi::sandbox {
 namespace {
@@ -41,10 +40,8 @@ int os_exit(lua_State* L) {
     code = lua_toboolean(L, 1) ? 0 : 1;
   else
     code = static_cast<int>(luaL_optinteger(L, 1, 0));
-  vm::Limits& lim = vm::limits(L);
-  lim.exit_code = code;
-  vm::trip(L, vm::Abort::exit);
-  lua_pushlightuserdata(L, vm::exit_sentinel());
+  if (const Policy& pol = lua::policy(L); pol.request_exit) pol.request_exit(code);
+  lua_pushlightuserdata(L, lua::exit_sentinel());
   return lua_error(L);
 }
 

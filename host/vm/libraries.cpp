@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/policy.hpp"
 
 #ifndef SMI_VERSION

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/sha256.hpp"
+#include "kernels/core/sha256.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "vm/searchers.hpp"

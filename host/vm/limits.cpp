@@ -4,7 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "core/cancel.hpp"
+#include "kernels/core/cancel.hpp"
+#include "luax/policy.hpp"
 
 namespace smi::vm {
 namespace {
@@ -45,7 +46,7 @@ void hook(lua_State* L, lua_Debug*) {
   }
   arm_sticky(L, lim);
   if (lim.abort == Abort::exit) {
-    lua_pushlightuserdata(L, exit_sentinel());
+    lua_pushlightuserdata(L, lua::exit_sentinel());
     lua_error(L);
   }
   char buf[256];
@@ -173,11 +174,6 @@ const char* signal_name(int sig) {
     case SIGHUP: return "SIGHUP";
     default: return "a signal";
   }
-}
-
-void* exit_sentinel() {
-  static char tag;
-  return &tag;
 }
 
 }  // namespace smi::vm

@@ -60,7 +60,4 @@ void release_sigint();
 /// "SIGINT", "SIGTERM", "SIGHUP".
 const char* signal_name(int sig);
 
-/// Light userdata raised by os.exit; the host recognises it and leaves quietly.
-void* exit_sentinel();
-
 }  // namespace smi::vm

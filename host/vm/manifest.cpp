@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "core/path_walk.hpp"
+#include "kernels/core/path_walk.hpp"
 
 #include <cctype>
 #include <cstdlib>
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <lua.hpp>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::vm {
 namespace {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "vm/embedded_stdlib.hpp"

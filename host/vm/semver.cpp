@@ -2,7 +2,7 @@
 
 #include <cctype>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::vm {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "core/cancel.hpp"
+#include "kernels/core/cancel.hpp"
 
 namespace smi::vm {
 

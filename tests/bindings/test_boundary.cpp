@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "core/descriptive.hpp"
+#include "app/runtime.hpp"
+#include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
-#include "vm/runtime.hpp"
 
 namespace {
 

@@ -87,7 +87,7 @@ local ok, err = pcall(function()
   elseif fn == "io.output" then io.output(path); io.write("x"); io.close()
   elseif fn == "smi.csv.write" then smi.csv.write(path, {a = {1}})
   elseif fn == "smi.json.write" then smi.json.write(path, {a = 1})
-  elseif fn == "smi.Kriging:save" then smi.kriging.fit({{0}, {1}, {2}}, {0, 1, 4}, {theta = {1}}):save(path)
+  elseif fn == "smi.kriging:save" then smi.kriging.fit({{0}, {1}, {2}}, {0, 1, 4}, {theta = {1}}):save(path)
   elseif fn == "os.remove" then assert(os.remove(path))
   elseif fn == "os.rename.from" then assert(os.rename(path, smi.out("stolen.txt")))
   elseif fn == "os.rename.to" then local f = io.open(smi.out("mine.txt"), "w"); f:write("x"); f:close()
@@ -97,7 +97,7 @@ end)
 print(fn, ok, err)
 LUA
 n=0
-for fn in io.open.w io.open.a io.output smi.csv.write smi.json.write smi.Kriging:save; do
+for fn in io.open.w io.open.a io.output smi.csv.write smi.json.write smi.kriging:save; do
   n=$((n + 1))
   ln -s "$WORK/outside/planted$n.txt" out/dangling$n
   run "write $fn through a dangling link in the output folder" 0 "$SMI" --out out study/write.lua "$fn" out/dangling$n

@@ -13,8 +13,8 @@ run "doc NAME: defaults from BoundedKdeOptions" 0 "$SMI" doc smi.kde_bd
 has_out 'critical_area = 0.95'
 has_out 'max_added = -1'
 has_out 'grid_nodes = 4001'
-run "doc METHOD" 0 "$SMI" doc smi.Kriging:predict
-has_out 'smi.Kriging:predict(X [, opts]) -> mean, mse'
+run "doc METHOD" 0 "$SMI" doc smi.kriging:predict
+has_out 'smi.kriging:predict(X [, opts]) -> mean, mse'
 run "doc WORD searches" 0 "$SMI" doc bandwidth
 has_out "entries mention 'bandwidth'"
 has_out 'smi.kde_ebd'

@@ -48,7 +48,7 @@ T.case("an option table's __index that closes the Kriging during predict (was a 
   local mu = m:predict({{0.3}, {0.85}}, opts)
   T.near(mu[1], 1.3372431829, 1e-9)  -- spec 8.4, as in test_kriging.lua
   T.near(mu[2], 0.0607423314, 1e-9)
-  T.raises(function() return m:predict({{0.3}}) end, "smi.Kriging is closed")
+  T.raises(function() return m:predict({{0.3}}) end, "smi.kriging is closed")
 end)
 
 T.case("a model function that closes its own model while evaluate runs", function()

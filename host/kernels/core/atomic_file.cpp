@@ -1,4 +1,4 @@
-#include "core/atomic_file.hpp"
+#include "kernels/core/atomic_file.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi {
 namespace {

@@ -1,9 +1,9 @@
-#include "core/cancel.hpp"
+#include "kernels/core/cancel.hpp"
 
 #include <atomic>
 #include <cstdio>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::cancel {
 namespace {

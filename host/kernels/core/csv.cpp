@@ -1,9 +1,9 @@
-#include "core/csv.hpp"
+#include "kernels/core/csv.hpp"
 
 #include <cstdlib>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::csv {
 namespace {

@@ -1,10 +1,10 @@
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi {
 

@@ -1,4 +1,4 @@
-#include "core/json.hpp"
+#include "kernels/core/json.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -7,8 +7,8 @@
 #include <cstring>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/number_text.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/number_text.hpp"
 
 namespace smi::json {
 

@@ -1,4 +1,4 @@
-#include "core/machine.hpp"
+#include "kernels/core/machine.hpp"
 
 #include <algorithm>
 #include <thread>

@@ -1,4 +1,4 @@
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "core/path_walk.hpp"
+#include "kernels/core/path_walk.hpp"
 
 #include <cerrno>
 #include <climits>

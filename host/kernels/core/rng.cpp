@@ -1,7 +1,7 @@
-#include "core/rng.hpp"
+#include "kernels/core/rng.hpp"
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
 
 namespace smi {
 namespace {

@@ -1,12 +1,12 @@
 #include <unistd.h>
-#include "core/sha256.hpp"
+#include "kernels/core/sha256.hpp"
 
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi {
 

@@ -1,4 +1,4 @@
-#include "core/thread_pool.hpp"
+#include "kernels/core/thread_pool.hpp"
 
 #include <atomic>
 #include <exception>
@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/cancel.hpp"
-#include "core/machine.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/machine.hpp"
 
 namespace smi::pool {
 

@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <functional>
 
-#include "core/machine.hpp"
+#include "kernels/core/machine.hpp"
 
 namespace smi::pool {
 

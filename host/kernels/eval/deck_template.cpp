@@ -1,4 +1,4 @@
-#include "eval/deck_template.hpp"
+#include "kernels/eval/deck_template.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,6 @@
-#include "eval/evaluator.hpp"
+#include "kernels/eval/evaluator.hpp"
 
-#include "core/csv.hpp"
+#include "kernels/core/csv.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -9,12 +9,12 @@
 #include <set>
 #include <unordered_map>
 
-#include "eval/pending.hpp"
-#include "eval/process.hpp"
-#include "eval/scheduler.hpp"
-#include "core/sha256.hpp"
-#include "eval/text_parsers.hpp"
-#include "eval/work_dir.hpp"
+#include "kernels/core/sha256.hpp"
+#include "kernels/eval/pending.hpp"
+#include "kernels/eval/process.hpp"
+#include "kernels/eval/scheduler.hpp"
+#include "kernels/eval/text_parsers.hpp"
+#include "kernels/eval/work_dir.hpp"
 
 namespace smi::eval {
 namespace fs = std::filesystem;

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/path_walk.hpp"
-#include "eval/deck_template.hpp"
-#include "eval/executor.hpp"
-#include "eval/store.hpp"
+#include "kernels/core/path_walk.hpp"
+#include "kernels/eval/deck_template.hpp"
+#include "kernels/eval/executor.hpp"
+#include "kernels/eval/store.hpp"
 
 namespace smi::eval {
 

@@ -1,11 +1,11 @@
-#include "eval/executor.hpp"
+#include "kernels/eval/executor.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "eval/slurm_cli.hpp"
-#include "eval/slurm_executor.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/eval/slurm_cli.hpp"
+#include "kernels/eval/slurm_executor.hpp"
 
 namespace smi::eval {
 namespace {

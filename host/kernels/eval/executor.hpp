@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "eval/scheduler.hpp"
+#include "kernels/eval/scheduler.hpp"
 
 namespace smi::eval {
 

@@ -1,4 +1,4 @@
-#include "eval/f06.hpp"
+#include "kernels/eval/f06.hpp"
 
 #include <fmt/format.h>
 #include <sstream>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/text_parsers.hpp"
+#include "kernels/eval/text_parsers.hpp"
 
 namespace smi::eval {
 

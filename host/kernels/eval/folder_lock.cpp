@@ -1,4 +1,4 @@
-#include "eval/folder_lock.hpp"
+#include "kernels/eval/folder_lock.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -13,7 +13,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::eval {
 namespace fs = std::filesystem;

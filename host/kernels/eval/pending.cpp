@@ -1,9 +1,9 @@
-#include "eval/pending.hpp"
+#include "kernels/eval/pending.hpp"
 
 #include <fmt/format.h>
 #include <sqlite3.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::eval {
 namespace {

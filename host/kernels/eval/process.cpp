@@ -1,4 +1,4 @@
-#include "eval/process.hpp"
+#include "kernels/eval/process.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -16,7 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 extern char** environ;
 

@@ -1,4 +1,4 @@
-#include "eval/progress_line.hpp"
+#include "kernels/eval/progress_line.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "eval/evaluator.hpp"
+#include "kernels/eval/evaluator.hpp"
 
 namespace smi::eval {
 

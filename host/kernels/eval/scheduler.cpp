@@ -1,6 +1,6 @@
-#include "eval/scheduler.hpp"
+#include "kernels/eval/scheduler.hpp"
 
-#include "core/machine.hpp"
+#include "kernels/core/machine.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::eval {
 namespace {

@@ -12,7 +12,7 @@
 #include <sys/types.h>
 #include <vector>
 
-#include "eval/process.hpp"
+#include "kernels/eval/process.hpp"
 
 namespace smi::eval {
 

@@ -1,4 +1,4 @@
-#include "eval/slurm_cli.hpp"
+#include "kernels/eval/slurm_cli.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "eval/process.hpp"
+#include "kernels/eval/process.hpp"
 
 extern char** environ;
 

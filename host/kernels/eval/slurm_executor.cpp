@@ -1,4 +1,4 @@
-#include "eval/slurm_executor.hpp"
+#include "kernels/eval/slurm_executor.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,10 +12,10 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "core/atomic_file.hpp"
-#include "eval/pending.hpp"
-#include "eval/process.hpp"
-#include "eval/work_dir.hpp"
+#include "kernels/core/atomic_file.hpp"
+#include "kernels/eval/pending.hpp"
+#include "kernels/eval/process.hpp"
+#include "kernels/eval/work_dir.hpp"
 
 namespace smi::eval {
 namespace fs = std::filesystem;

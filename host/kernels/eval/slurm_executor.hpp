@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/executor.hpp"
-#include "eval/slurm_cli.hpp"
+#include "kernels/eval/executor.hpp"
+#include "kernels/eval/slurm_cli.hpp"
 
 namespace smi::eval {
 

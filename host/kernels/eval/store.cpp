@@ -1,4 +1,4 @@
-#include "eval/store.hpp"
+#include "kernels/eval/store.hpp"
 
 #include <cstdlib>
 #include <filesystem>

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 struct sqlite3;
 struct sqlite3_stmt;

@@ -1,4 +1,4 @@
-#include "eval/text_parsers.hpp"
+#include "kernels/eval/text_parsers.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,7 +11,7 @@
 #include <string_view>
 #include <sstream>
 
-#include "core/csv.hpp"
+#include "kernels/core/csv.hpp"
 
 namespace smi::eval {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/csv.hpp"
-#include "core/errors.hpp"
+#include "kernels/core/csv.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::eval {
 

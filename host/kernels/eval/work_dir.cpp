@@ -1,4 +1,4 @@
-#include "eval/work_dir.hpp"
+#include "kernels/eval/work_dir.hpp"
 
 #include <cerrno>
 #include <fcntl.h>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <fstream>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::eval {
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/path_walk.hpp"
+#include "kernels/core/path_walk.hpp"
 
 namespace smi::eval {
 

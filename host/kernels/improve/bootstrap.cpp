@@ -1,12 +1,12 @@
-#include "improve/bootstrap.hpp"
+#include "kernels/improve/bootstrap.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
 
 namespace smi::improve {
 

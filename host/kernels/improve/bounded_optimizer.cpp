@@ -1,4 +1,4 @@
-#include "improve/bounded_optimizer.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
 
 #include <fmt/format.h>
 
@@ -9,9 +9,9 @@
 #include <limits>
 #include <nlopt.hpp>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/core/thread_pool.hpp"
 
 namespace smi::improve {
 

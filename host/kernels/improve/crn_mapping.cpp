@@ -1,4 +1,4 @@
-#include "improve/crn_mapping.hpp"
+#include "kernels/improve/crn_mapping.hpp"
 
 #include <fmt/format.h>
 
@@ -7,10 +7,10 @@
 #include <numeric>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/families.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
 
 namespace smi::improve {
 
@@ -60,29 +60,29 @@ std::string family_name(InputFamily f) {
   return "?";
 }
 
-DistributionPtr input_distribution(InputFamily family, double mean, double std, const InputShape& shape, std::string_view what) {
+stats::DistributionPtr input_distribution(InputFamily family, double mean, double std, const InputShape& shape, std::string_view what) {
   if (family == InputFamily::constant || !(std > 0.0)) return nullptr;
   try {
     switch (family) {
-      case InputFamily::normal: return std::make_shared<Normal>(mean, std);
-      case InputFamily::lognormal: return std::make_shared<LogNormal>(LogNormal::from_moments(mean, std));
-      case InputFamily::uniform: return std::make_shared<Uniform>(Uniform::from_moments(mean, std));
+      case InputFamily::normal: return std::make_shared<stats::Normal>(mean, std);
+      case InputFamily::lognormal: return std::make_shared<stats::LogNormal>(stats::LogNormal::from_moments(mean, std));
+      case InputFamily::uniform: return std::make_shared<stats::Uniform>(stats::Uniform::from_moments(mean, std));
       case InputFamily::constant: return nullptr;
-      case InputFamily::truncnormal: return std::make_shared<TruncNormal>(mean, std, shape.lower, shape.upper);
+      case InputFamily::truncnormal: return std::make_shared<stats::TruncNormal>(mean, std, shape.lower, shape.upper);
       case InputFamily::gumbel: {
         const double scale = std * std::sqrt(6.0) / M_PI;
-        return std::make_shared<Gumbel>(mean - kEulerGamma * scale, scale);
+        return std::make_shared<stats::Gumbel>(mean - kEulerGamma * scale, scale);
       }
       case InputFamily::gamma: {
         const double m = mean - shape.loc;
         if (!(m > 0.0)) throw InvalidArgument(fmt::format("gamma needs mean > loc = {}, got mean = {}", shape.loc, mean));
-        return std::make_shared<Gamma>(m * m / (std * std), std * std / m, shape.loc);
+        return std::make_shared<stats::Gamma>(m * m / (std * std), std * std / m, shape.loc);
       }
       case InputFamily::weibull: {
         const double m = mean - shape.loc;
         if (!(m > 0.0)) throw InvalidArgument(fmt::format("weibull needs mean > loc = {}, got mean = {}", shape.loc, mean));
         const double k = weibull_shape_for_cv(std / m, what);
-        return std::make_shared<Weibull>(k, m / std::exp(std::lgamma(1.0 + 1.0 / k)), shape.loc);
+        return std::make_shared<stats::Weibull>(k, m / std::exp(std::lgamma(1.0 + 1.0 / k)), shape.loc);
       }
       case InputFamily::beta: {
         const double lo = std::isfinite(shape.lower) ? shape.lower : 0.0, hi = std::isfinite(shape.upper) ? shape.upper : 1.0;
@@ -92,13 +92,13 @@ DistributionPtr input_distribution(InputFamily family, double mean, double std, 
                                             "got mean = {}, std = {}",
                                             lo, hi, w * std::sqrt(std::max(0.0, m * (1.0 - m))), mean, std));
         const double nu = m * (1.0 - m) / v - 1.0;
-        return std::make_shared<Beta>(m * nu, (1.0 - m) * nu, lo, hi);
+        return std::make_shared<stats::Beta>(m * nu, (1.0 - m) * nu, lo, hi);
       }
       case InputFamily::triangular: {
         const double c = shape.mode_at;
         if (!(c >= 0.0 && c <= 1.0)) throw InvalidArgument(fmt::format("triangular mode_at must be in [0, 1], got {}", c));
         const double w = std / std::sqrt((1.0 - c + c * c) / 18.0), lo = mean - w * (1.0 + c) / 3.0;
-        return std::make_shared<Triangular>(lo, lo + c * w, lo + w);
+        return std::make_shared<stats::Triangular>(lo, lo + c * w, lo + w);
       }
     }
   } catch (const InvalidArgument& e) {
@@ -144,7 +144,7 @@ Eigen::VectorXd map_standard_normal(InputFamily family, double mean, double std,
       return x;
     }
     default: {
-      const DistributionPtr d = input_distribution(family, mean, std, shape, what);
+      const stats::DistributionPtr d = input_distribution(family, mean, std, shape, what);
       if (!d) return Eigen::VectorXd::Constant(z.size(), mean);  // std = 0: the point mass
       Eigen::VectorXd x(z.size());
       for (Eigen::Index i = 0; i < z.size(); ++i) x[i] = z[i] <= 0 ? d->quantile(normal_cdf(z[i])) : d->isf(normal_cdf(-z[i]));

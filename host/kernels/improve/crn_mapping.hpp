@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 namespace smi::improve {
 
@@ -33,7 +33,7 @@ struct InputShape {
 /// The distribution of an input of `family` with calibrated (mean, std) and fixed `shape`;
 /// throws InvalidArgument naming `what` when (mean, std) is impossible for the family (e.g. a
 /// beta std above what [lower, upper] allows). Constant and std = 0 give nullptr.
-DistributionPtr input_distribution(InputFamily family, double mean, double std, const InputShape& shape, std::string_view what);
+stats::DistributionPtr input_distribution(InputFamily family, double mean, double std, const InputShape& shape, std::string_view what);
 
 /// "normal" -> InputFamily::normal ...; throws InvalidArgument naming `what` and the choices.
 InputFamily parse_family(std::string_view name, std::string_view what);

@@ -1,11 +1,11 @@
-#include "improve/decision_matrix.hpp"
+#include "kernels/improve/decision_matrix.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::improve {
 

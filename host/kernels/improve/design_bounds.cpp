@@ -1,10 +1,10 @@
-#include "improve/design_bounds.hpp"
+#include "kernels/improve/design_bounds.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -1,4 +1,4 @@
-#include "improve/directions.hpp"
+#include "kernels/improve/directions.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -1,10 +1,10 @@
-#include "improve/identifiability.hpp"
+#include "kernels/improve/identifiability.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "improve/bounded_optimizer.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
 
 namespace smi::improve {
 

@@ -1,9 +1,9 @@
-#include "improve/input_derivatives.hpp"
+#include "kernels/improve/input_derivatives.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
 namespace smi::improve {
 

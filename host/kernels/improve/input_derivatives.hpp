@@ -10,7 +10,7 @@
 // cheap and smooth), so a family added to crn_mapping works here before it has a closed form.
 #include <Eigen/Core>
 
-#include "improve/crn_mapping.hpp"
+#include "kernels/improve/crn_mapping.hpp"
 
 namespace smi::improve {
 

@@ -15,16 +15,16 @@
 #include <cmath>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "improve/input_derivatives.hpp"
-#include "improve/statistical_objective.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
-#include "surrogate/fast_exp.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/improve/input_derivatives.hpp"
+#include "kernels/improve/statistical_objective.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
 
 namespace smi::improve {
 
@@ -128,7 +128,7 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
       }
       t = (x.segment(g0, g1 - g0).array() - y[i]) / h;
       e = 0.5 * t.square();
-      smi::kriging::exp_neg_inplace(e.data(), static_cast<long>(e.size()));  // vectorised exp(−t²/2)
+      smi::surrogate::kriging::exp_neg_inplace(e.data(), static_cast<long>(e.size()));  // vectorised exp(−t²/2)
       e *= a.segment(g0, g1 - g0).array();
       gy[i] = norm * (e * t).sum();
       acc_h += (e * (t.square() - 1.0)).sum();
@@ -210,7 +210,7 @@ void kernel_sums_uniform(const Eigen::VectorXd& y, double h, double lo, double d
 /// PR's outside-mass terms F(lo) + 1 − F(hi) (each only where it is positive, as the value
 /// clamps them) added to gy and gh: F(x) = 1/N Σ Φ((x − y_i)/h), so ∂F/∂y_i = −φ(t)/(N h) and
 /// ∂F/∂h = −Σ φ(t) t/(N h). `F` holds the KDE's CDF at lo and hi.
-void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const Grid& g, const Eigen::VectorXd& F, Eigen::VectorXd& gy, double& gh) {
+void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const stats::Grid& g, const Eigen::VectorXd& F, Eigen::VectorXd& gy, double& gh) {
   const Eigen::Index N = y.size();
   const double n = static_cast<double>(N);
   for (Eigen::Index i = 0; i < N; ++i) {
@@ -230,14 +230,14 @@ void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const Grid& g
 /// One response's PR (L1 area between f_exp `fe` and the KDE of y on grid g, plus both
 /// densities' mass outside the grid; `exp_outside` is f_exp's, a constant) and its gradient in
 /// y (set in gy) and in the bandwidth h (added to gh).
-double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const Grid& g, const Eigen::VectorXd& fe, double exp_outside, int threads,
+double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const stats::Grid& g, const Eigen::VectorXd& fe, double exp_outside, int threads,
                             Eigen::VectorXd& gy, double& gh) {
-  const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, threads);
+  const Eigen::VectorXd fp = stats::kde_pdf_grid(y, h, g, threads);
   Eigen::VectorXd ends(2);
   ends << g.lo, g.hi;
-  const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
+  const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
   const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
-  const double part = l1_area_on_grid(fe, fp, g) + outside + exp_outside;
+  const double part = stats::l1_area_on_grid(fe, fp, g) + outside + exp_outside;
   // ∂PR/∂fp_g = −w_g sign(fe_g − fp_g), trapezoid weights w_g.
   Eigen::VectorXd a(g.n);
   for (Eigen::Index k = 0; k < g.n; ++k) {
@@ -257,7 +257,7 @@ double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const Grid& g, c
 /// (set in gy) and in the bandwidth h (added to gh).
 double loglik_part_and_gradient(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& data, double floor, std::atomic<long>& floored,
                                 int threads, Eigen::VectorXd& gy, double& gh) {
-  const Eigen::VectorXd f = kde_pdf(y, h, data, 1);
+  const Eigen::VectorXd f = stats::kde_pdf(y, h, data, 1);
   double s = 0.0;
   Eigen::VectorXd a(f.size());
   for (Eigen::Index i = 0; i < f.size(); ++i) {
@@ -296,7 +296,7 @@ bool StatisticalObjective::has_gradient() const {
 }
 
 std::vector<Eigen::MatrixXd> StatisticalObjective::model_jacobian(const Eigen::MatrixXd& X) const {
-  if (!jacobian_) throw InvalidArgument("the model has no gradient (an smi.Kriging, or an object with m:gradient(X), has one)");
+  if (!jacobian_) throw InvalidArgument("the model has no gradient (an smi.kriging, or an object with m:gradient(X), has one)");
   const std::vector<Eigen::MatrixXd> J = jacobian_(X);
   if (J.size() != responses_.size())
     throw DimensionMismatch(fmt::format("the model's gradient covers {} responses, the calibration has {}", J.size(), responses_.size()));
@@ -329,7 +329,7 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
     if (!(sd > 0.0))
       throw InvalidArgument(fmt::format("response '{}': the model output is constant ({}) over the CRN sample, so it has no density "
                                         "(check that the calibrated inputs reach the model)", r.name, y[0]));
-    const double h = bandwidth_by_name(y, opt_.bandwidth);
+    const double h = stats::bandwidth_by_name(y, opt_.bandwidth);
     Eigen::VectorXd gy;
     double gh = 0.0;
     if (opt_.metric == MetricKind::pr)

@@ -1,4 +1,4 @@
-#include "improve/overlap_start.hpp"
+#include "kernels/improve/overlap_start.hpp"
 
 #include <Eigen/Cholesky>
 
@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/descriptive.hpp"
-#include "improve/input_derivatives.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/improve/input_derivatives.hpp"
 
 namespace smi::improve {
 

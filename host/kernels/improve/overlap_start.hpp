@@ -8,8 +8,8 @@
 // (f_exp's mean and sd for responses given as a PDF). The same model runs on the same CRN.
 #include <Eigen/Core>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::improve {
 

@@ -1,4 +1,4 @@
-#include "improve/profile_intervals.hpp"
+#include "kernels/improve/profile_intervals.hpp"
 
 #include <fmt/format.h>
 
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <map>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/special.hpp"
 
 namespace smi::improve {
 
@@ -24,7 +24,7 @@ double likelihood_ratio_delta(double level, int observations, int parameters) {
     throw InvalidArgument(fmt::format("intervals: {} observations for {} parameters: the small-sample delta needs more observations than "
                                       "parameters (leave observations out for the plain likelihood-ratio interval)", observations, parameters));
   const double m = static_cast<double>(observations - parameters);
-  const double t = student_t_quantile(0.5 * (1.0 + level), m);
+  const double t = stats::student_t_quantile(0.5 * (1.0 + level), m);
   return 0.5 * static_cast<double>(observations) * std::log1p(t * t / m);
 }
 

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "improve/bounded_optimizer.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
 
 namespace smi::improve {
 

@@ -1,15 +1,15 @@
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
 namespace smi::improve {
 
@@ -34,7 +34,7 @@ double predicted_bandwidth(ConstVec y, const std::string& rule, const std::strin
   if (!(hi > lo))
     throw InvalidArgument(fmt::format("response '{}': the model output is constant ({}) over the CRN sample, so it has no density "
                                       "(check that the calibrated inputs reach the model)", response, lo));
-  return bandwidth_by_name(y, rule);
+  return stats::bandwidth_by_name(y, rule);
 }
 
 }  // namespace
@@ -94,7 +94,7 @@ void StatisticalObjective::prepare_responses(const Eigen::VectorXd& start) {
   Eigen::MatrixXd y0;  // one model run at the start fixes the default grids
   for (ResponseSpec& r : responses_) {
     if (!r.f_exp) {
-      r.f_exp = make_kde(r.data, bandwidth_normal_reference(r.data));
+      r.f_exp = stats::make_kde(r.data, stats::bandwidth_normal_reference(r.data));
       r.f_exp_from_data = true;
     }
     if (!r.grid) {
@@ -103,17 +103,17 @@ void StatisticalObjective::prepare_responses(const Eigen::VectorXd& start) {
       const Eigen::VectorXd y = y0.col(j);
       const double hp = predicted_bandwidth(y, opt_.bandwidth, r.name);
       double lo = y.minCoeff() - 6.0 * hp, hi = y.maxCoeff() + 6.0 * hp;
-      if (auto* kde = dynamic_cast<const Kde*>(r.f_exp.get())) {
+      if (auto* kde = dynamic_cast<const stats::Kde*>(r.f_exp.get())) {
         lo = std::min(lo, kde->data().minCoeff() - 6.0 * kde->bandwidth());
         hi = std::max(hi, kde->data().maxCoeff() + 6.0 * kde->bandwidth());
       } else {
         lo = std::min(lo, r.f_exp->quantile(1e-10));
         hi = std::max(hi, r.f_exp->quantile(1.0 - 1e-10));
       }
-      r.grid = Grid{lo, hi, opt_.grid_nodes};
+      r.grid = stats::Grid{lo, hi, opt_.grid_nodes};
     }
     r.grid->validate();
-    f_exp_grid_.push_back(pdf_grid(*r.f_exp, *r.grid));
+    f_exp_grid_.push_back(stats::pdf_grid(*r.f_exp, *r.grid));
     exp_outside_.push_back(std::max(0.0, r.f_exp->cdf(r.grid->lo)) + std::max(0.0, 1.0 - r.f_exp->cdf(r.grid->hi)));
   }
 }
@@ -162,15 +162,15 @@ Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const 
     const Eigen::VectorXd y = Y.col(j);
     const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
     if (opt_.metric == MetricKind::pr) {
-      const Grid& g = *r.grid;
-      const Eigen::VectorXd fp = kde_pdf_grid(y, h, g, opt_.threads);
+      const stats::Grid& g = *r.grid;
+      const Eigen::VectorXd fp = stats::kde_pdf_grid(y, h, g, opt_.threads);
       Eigen::VectorXd ends(2);
       ends << g.lo, g.hi;
-      const Eigen::VectorXd F = kde_cdf(y, h, ends, 1);
+      const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
       const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
-      e.parts[j] = l1_area_on_grid(f_exp_grid_[static_cast<std::size_t>(j)], fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
+      e.parts[j] = stats::l1_area_on_grid(f_exp_grid_[static_cast<std::size_t>(j)], fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
     } else {
-      const Eigen::VectorXd f = kde_pdf(y, h, r.data, 1);
+      const Eigen::VectorXd f = stats::kde_pdf(y, h, r.data, 1);
       double s = 0.0;
       for (Eigen::Index i = 0; i < f.size(); ++i) {
         if (!(f[i] > opt_.density_floor)) ++*floored_;

@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/crn_mapping.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/crn_mapping.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
 
 namespace smi::improve {
 
@@ -37,8 +37,8 @@ struct InputSpec {
 struct ResponseSpec {
   std::string name;
   Eigen::VectorXd data;     ///< the experimental observations
-  DistributionPtr f_exp;    ///< experimental PDF; null = Gaussian KDE of data, normal-reference h
-  std::optional<Grid> grid; ///< PR grid; null = fixed at construction (see StatisticalObjective)
+  stats::DistributionPtr f_exp;    ///< experimental PDF; null = Gaussian KDE of data, normal-reference h
+  std::optional<stats::Grid> grid; ///< PR grid; null = fixed at construction (see StatisticalObjective)
   bool f_exp_from_data = false;  ///< set when f_exp is built from data (then rebuilt by with_data)
 
   /// The measured mean and standard deviation: of the data when there are two or more points,

@@ -1,13 +1,13 @@
-#include "stats/bandwidth.hpp"
+#include "kernels/stats/bandwidth.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/pair_sums.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/pair_sums.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 double n_pow(ConstVec x, double e) { return std::pow(static_cast<double>(x.size()), e); }
@@ -147,4 +147,4 @@ double bandwidth_by_name(ConstVec x, std::string_view rule) {
   throw InvalidArgument(fmt::format("unknown bandwidth rule '{}'; use a number or one of: {}", rule, list));
 }
 
-}  // namespace smi
+}  // namespace smi::stats

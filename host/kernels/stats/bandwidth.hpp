@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// Normal reference ("silverman", default): h = (4/(3n))^{1/5} sd = 1.05922 sd n^{-1/5}.
 double bandwidth_normal_reference(ConstVec x);
@@ -35,4 +35,4 @@ double bandwidth_by_name(ConstVec x, std::string_view rule);
 /// The rule names accepted by bandwidth_by_name (for error messages and docs).
 const std::vector<std::string>& bandwidth_rule_names();
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,8 +1,8 @@
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
 #include <cmath>
 
-namespace smi {
+namespace smi::stats {
 
 double Distribution::logpdf(double x) const { return std::log(pdf(x)); }
 double Distribution::logcdf(double x) const {
@@ -37,4 +37,4 @@ Eigen::VectorXd Distribution::sample(Rng& rng, Eigen::Index n) const {
   return y;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

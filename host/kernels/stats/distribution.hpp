@@ -9,9 +9,9 @@
 #include <string_view>
 #include <utility>
 
-#include "core/rng.hpp"
+#include "kernels/core/rng.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 class Distribution {
  public:
@@ -54,4 +54,4 @@ class Distribution {
 
 using DistributionPtr = std::shared_ptr<const Distribution>;
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,13 +1,13 @@
-#include "stats/ecdf.hpp"
+#include "kernels/stats/ecdf.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Ecdf::Ecdf(Eigen::VectorXd data) : t_(std::move(data)) {
   require_size(t_, 1, "data");
@@ -64,4 +64,4 @@ void Ecdf::steps(Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   }
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -2,9 +2,9 @@
 // The empirical distribution of a sample: CDF steps i/n (right-continuous), quantile the
 // smallest x with S_n(x) >= p (type 1), sampling = bootstrap. It has no density: pdf() throws
 // (use a KDE for densities).
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 class Ecdf : public Distribution {
  public:
@@ -32,4 +32,4 @@ class Ecdf : public Distribution {
   Eigen::VectorXd t_;
 };
 
-}  // namespace smi
+}  // namespace smi::stats

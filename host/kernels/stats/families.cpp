@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/families.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/special.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSqrt3 = 1.7320508075688772935;
@@ -245,4 +245,4 @@ std::vector<std::pair<std::string, double>> Triangular::params() const {
   return {{"lower", a_}, {"mode", c_}, {"upper", b_}};
 }
 
-}  // namespace smi
+}  // namespace smi::stats

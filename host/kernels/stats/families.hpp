@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// Shared by the families: quantile and isf by bracketed Newton/bisection (used unless a family
 /// has a closed form) on cdf below the median and on sf above it, so both tails keep their
@@ -215,4 +215,4 @@ class Triangular : public Parametric {
   double a_, c_, b_;
 };
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/families.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/special.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEulerGamma = 0.57721566490153286061;
@@ -151,4 +151,4 @@ std::vector<std::pair<std::string, double>> Beta::params() const {
   return {{"alpha", a_}, {"beta", b_}, {"lower", lo_}, {"upper", hi_}};
 }
 
-}  // namespace smi
+}  // namespace smi::stats

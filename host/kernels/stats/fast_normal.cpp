@@ -1,10 +1,10 @@
-#include "stats/fast_normal.hpp"
+#include "kernels/stats/fast_normal.hpp"
 
 #include <vector>
 
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
-namespace smi::detail {
+namespace smi::stats::detail {
 
 const double* phi_table() {
   // Built once (thread-safe static init) from the full-precision Φ and φ of core/normal.hpp.
@@ -20,4 +20,4 @@ const double* phi_table() {
   return tab.data();
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

@@ -3,7 +3,7 @@
 // 6-term Taylor expansion about the nearest node (|d| <= 1/128): Φ(x0 + d) = Φ(x0) +
 // φ(x0) Σ_{m=1..6} (−1)^{m−1} He_{m−1}(x0) d^m / m!. Truncation error < 1e-17; the absolute
 // error is that of the table entries (1e-16). Outside [−9, 9] it returns 0 or 1 (Φ(−9) = 1e-19).
-namespace smi::detail {
+namespace smi::stats::detail {
 
 inline constexpr double kPhiTableLo = -9.0;
 inline constexpr double kPhiTableInvStep = 64.0;
@@ -29,4 +29,4 @@ inline double fast_normal_cdf(double z, const double* tab) {
   return tab[2 * k] + tab[2 * k + 1] * poly;
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

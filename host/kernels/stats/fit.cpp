@@ -1,16 +1,16 @@
-#include "stats/fit.hpp"
+#include "kernels/stats/fit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/families.hpp"
-#include "stats/metrics.hpp"
-#include "stats/nelder_mead.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/metrics.hpp"
+#include "kernels/stats/nelder_mead.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -138,4 +138,4 @@ std::vector<FitResult> fit(ConstVec data, const std::vector<std::string>& famili
   return out;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

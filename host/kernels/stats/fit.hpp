@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 struct FitResult {
   std::string family;
@@ -30,4 +30,4 @@ const std::vector<std::string>& fit_family_names();
 /// KS statistic of data against d.
 double ks_statistic(ConstVec data, const Distribution& d);
 
-}  // namespace smi
+}  // namespace smi::stats

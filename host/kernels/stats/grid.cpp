@@ -1,11 +1,11 @@
-#include "stats/grid.hpp"
+#include "kernels/stats/grid.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Eigen::VectorXd Grid::nodes() const {
   Eigen::VectorXd x(n);
@@ -36,4 +36,4 @@ Grid Grid::covering(ConstVec data, double h_max, Eigen::Index n) {
   return covering(data.minCoeff(), data.maxCoeff(), h_max, n);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -5,10 +5,10 @@
 #include <Eigen/Core>
 #include <initializer_list>
 
-#include "core/defaults.hpp"
-#include "core/descriptive.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/core/descriptive.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 struct Grid {
   double lo = 0.0;
@@ -34,4 +34,4 @@ struct Grid {
   static Grid covering(double data_lo, double data_hi, double h_max, Eigen::Index n = 4001);
 };
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,15 +1,15 @@
 // The Kde distribution object (sums in kde_sums.cpp).
-#include "stats/kde.hpp"
+#include "kernels/stats/kde.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/bandwidth.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/stats/bandwidth.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 Kde::Kde(Eigen::VectorXd data, double h, KdeOptions opt) : t_(std::move(data)), h_(h), opt_(opt) {
   require_size(t_, 1, "data");
@@ -121,4 +121,4 @@ std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, double h, KdeOptions 
   return std::make_shared<Kde>(data, h, opt);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

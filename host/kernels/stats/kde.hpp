@@ -14,12 +14,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/defaults.hpp"
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// Kernels beyond |y − t|/h > kKdeCutoff are skipped: exp(−kKdeCutoff²/2) < 1e-17.
 inline constexpr double kKdeCutoff = 8.9;
@@ -106,4 +106,4 @@ class Kde : public Distribution {
 std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, const std::string& rule, KdeOptions opt = {});
 std::shared_ptr<Kde> make_kde(const Eigen::VectorXd& data, double h, KdeOptions opt = {});
 
-}  // namespace smi
+}  // namespace smi::stats

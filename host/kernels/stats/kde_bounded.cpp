@@ -1,14 +1,14 @@
-#include "stats/kde_bounded.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/metrics.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 void check_options(const BoundedKdeOptions& o) {
@@ -107,4 +107,4 @@ BoundedKdeResult kde_ebd(const Eigen::VectorXd& x, double alpha, bool unbiased, 
   return kde_bounded(x, l, u, o);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

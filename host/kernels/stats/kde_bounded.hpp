@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "stats/kde.hpp"
+#include "kernels/stats/kde.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// Every rule of the stopping loop (defaults are the spec's Decision).
 struct BoundedKdeOptions {
@@ -42,4 +42,4 @@ BoundedKdeResult kde_bounded(const Eigen::VectorXd& x, double lower, double uppe
 /// KDE-ebd: bounds from ebd_bounds(x, alpha, unbiased).
 BoundedKdeResult kde_ebd(const Eigen::VectorXd& x, double alpha, bool unbiased, const BoundedKdeOptions& o);
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "stats/fast_normal.hpp"
-#include "stats/kde.hpp"
-#include "stats/kde_uniform_grid.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/stats/fast_normal.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_uniform_grid.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 // Below this many data points the loop runs over data outside and over a block of x inside
@@ -183,4 +183,4 @@ Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, int threads
   return kde_pdf(data, h, g.nodes(), threads);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

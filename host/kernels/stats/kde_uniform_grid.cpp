@@ -1,15 +1,15 @@
-#include "stats/kde_uniform_grid.hpp"
+#include "kernels/stats/kde_uniform_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "stats/fast_normal.hpp"
-#include "stats/kde.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/stats/fast_normal.hpp"
+#include "kernels/stats/kde.hpp"
 
-namespace smi::detail {
+namespace smi::stats::detail {
 namespace {
 
 constexpr Eigen::Index kBlock = 64;
@@ -127,4 +127,4 @@ void uniform_cdf_sums(ConstVec t, double h, ConstVec x, double dx, Eigen::Vector
   });
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

@@ -10,9 +10,9 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
-namespace smi::detail {
+namespace smi::stats::detail {
 
 /// Spacing of x when x is uniform to rounding (|x_j − (x_0 + jΔ)| <= 8 ulp of max|x|), M >= 128.
 std::optional<double> uniform_spacing(ConstVec x);
@@ -23,4 +23,4 @@ void uniform_pdf_sums(ConstVec t, double h, ConstVec x, double dx, Eigen::Vector
 /// Unnormalised Σ_i Φ((x_j − t_i)/h) for sorted t and uniform x with spacing dx <= h/256.
 void uniform_cdf_sums(ConstVec t, double h, ConstVec x, double dx, Eigen::VectorXd& out, int threads);
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

@@ -1,16 +1,16 @@
-#include "stats/metrics.hpp"
+#include "kernels/stats/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
-#include "core/errors.hpp"
-#include "stats/ecdf.hpp"
-#include "stats/kde.hpp"
-#include "stats/quadrature.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/ecdf.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/quadrature.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 /// [lo, hi] holding all but ~1e-10 of d's mass (a KDE: data range ± 6h, §0).
@@ -200,4 +200,4 @@ double loglik(ConstVec y, const Distribution& d, double floor, int* floored) {
   return s;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -7,12 +7,12 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
-#include "stats/grid.hpp"
-#include "stats/pdf_overlap.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// The PDF of d at the nodes of g (one vectorised call). A node where the pdf is infinite (a
 /// support bound of gamma shape < 1, beta α < 1, Weibull k < 1) gets the mean density of its
@@ -65,4 +65,4 @@ double area_metric(const Distribution& a, const Distribution& b);
 /// observation on a singular support bound: the likelihood is unbounded).
 double loglik(ConstVec y, const Distribution& d, double floor = 1e-300, int* floored = nullptr);
 
-}  // namespace smi
+}  // namespace smi::stats

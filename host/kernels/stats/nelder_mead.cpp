@@ -1,11 +1,11 @@
-#include "stats/nelder_mead.hpp"
+#include "kernels/stats/nelder_mead.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <vector>
 
-namespace smi::detail {
+namespace smi::stats::detail {
 namespace {
 
 Eigen::VectorXd run(const std::function<double(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x0,
@@ -58,4 +58,4 @@ Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>&
   return x;
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

@@ -1,8 +1,8 @@
-#include "stats/pair_sums.hpp"
+#include "kernels/stats/pair_sums.hpp"
 
 #include <cmath>
 
-namespace smi::detail {
+namespace smi::stats::detail {
 
 PairSums::PairSums(ConstVec x) {
   const Eigen::Index n = x.size();
@@ -33,4 +33,4 @@ PairSums::PairSums(ConstVec x) {
   w_[0] = std::max(0.0, 0.5 * (sq - static_cast<double>(n)));
 }
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

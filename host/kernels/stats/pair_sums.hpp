@@ -5,9 +5,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/descriptive.hpp"
+#include "kernels/core/descriptive.hpp"
 
-namespace smi::detail {
+namespace smi::stats::detail {
 
 class PairSums {
  public:
@@ -31,4 +31,4 @@ class PairSums {
   std::vector<double> w_;  // binned: pair weight at distance m·delta
 };
 
-}  // namespace smi::detail
+}  // namespace smi::stats::detail

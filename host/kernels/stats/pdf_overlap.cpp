@@ -1,13 +1,13 @@
-#include "stats/pdf_overlap.hpp"
+#include "kernels/stats/pdf_overlap.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "stats/kde.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/kde.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 constexpr int kQuantileScan = 400;      // scan points per analytic distribution
@@ -112,4 +112,4 @@ PdfOverlap pdf_overlap(const Distribution& a, const Distribution& b, double lo, 
   return out;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 struct PdfOverlap {
   double l1 = 0.0;            ///< ∫|f_a − f_b| over the window, in [0, 2]
@@ -32,4 +32,4 @@ PdfOverlap pdf_overlap(const Distribution& a, const Distribution& b, double lo =
 /// relative precision of upper-tail masses); u, v may be infinite.
 double mass_between(const Distribution& d, double u, double v);
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,10 +1,10 @@
-#include "stats/quadrature.hpp"
+#include "kernels/stats/quadrature.hpp"
 
 #include <cmath>
 #include <queue>
 #include <vector>
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 // Kronrod 15-point nodes (positive half) and weights, Gauss 7-point weights at the odd-indexed
@@ -63,4 +63,4 @@ double integrate(const std::function<double(double)>& f, double a, double b, dou
   return s;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

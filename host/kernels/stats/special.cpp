@@ -1,12 +1,12 @@
-#include "stats/special.hpp"
+#include "kernels/stats/special.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/normal.hpp"
+#include "kernels/core/normal.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 constexpr double kEps = 1e-16;
 constexpr double kTiny = 1e-300;
@@ -170,4 +170,4 @@ double normal_mass_width(double a, double w) {
   return s * hw;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -3,7 +3,7 @@
 // with its complement computed directly (not as 1 − the other) so that upper tails keep their
 // relative precision, and in log space for the log-CDFs.
 
-namespace smi {
+namespace smi::stats {
 
 /// Lower and upper regularised incomplete gamma, P + Q = 1, each to full relative precision.
 struct GammaPQ {
@@ -42,4 +42,4 @@ double normal_mass(double a, double b);
 /// (x − lower)/σ is known to full relative precision while a + w is not.
 double normal_mass_width(double a, double w);
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,4 +1,4 @@
-#include "stats/upool.hpp"
+#include "kernels/stats/upool.hpp"
 
 #include <atomic>
 
@@ -10,14 +10,14 @@
 #include <thread>
 #include <tuple>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "core/thread_pool.hpp"
-#include "stats/quadrature.hpp"
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/stats/quadrature.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 /// ∫_a^b |u − c| du = F(b) − F(a) with F(u) = (u − c)|u − c|/2: branch-free and exact.
@@ -262,4 +262,4 @@ void upool_curve(const UpoolVerdict& v, Eigen::VectorXd& x, Eigen::VectorXd& y) 
   x[2 * n + 1] = 1.0, y[2 * n + 1] = 1.0;
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "core/defaults.hpp"
-#include "core/descriptive.hpp"
-#include "stats/distribution.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi {
+namespace smi::stats {
 
 /// Exact U for the u-values (any order; values outside [0,1] are an error). Uses the
 /// antiderivative (u − c)|u − c|/2 of |u − c| on each ECDF step, so ties need no special case.
@@ -65,4 +65,4 @@ UpoolVerdict upool_from_u(Eigen::VectorXd u, double confidence = 0.95, const Upo
 /// Plot series for a verdict: the ECDF of u as a step curve (x, y), the diagonal is y = x.
 void upool_curve(const UpoolVerdict& v, Eigen::VectorXd& x, Eigen::VectorXd& y);
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -1,9 +1,9 @@
-#include "stats/upool_asymptotic.hpp"
+#include "kernels/stats/upool_asymptotic.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace smi {
+namespace smi::stats {
 namespace {
 
 struct Row {
@@ -12,7 +12,7 @@ struct Row {
 
 // Made by `bench_upool_fit fit` (see the header); do not edit by hand.
 constexpr Row kTable[] = {
-#include "stats/upool_asymptotic_table.inc"
+#include "kernels/stats/upool_asymptotic_table.inc"
 };
 constexpr int kRows = static_cast<int>(sizeof kTable / sizeof kTable[0]);
 
@@ -63,4 +63,4 @@ double upool_asymptotic_pvalue(int n, double u) {
   return 1.0 - ((1.0 - w) * kTable[i].p + w * kTable[i + 1].p);
 }
 
-}  // namespace smi
+}  // namespace smi::stats

@@ -14,7 +14,7 @@
 // P(A > x) ∝ exp(−6x²) (the largest variance of a linear functional of B is 1/12).
 #include <vector>
 
-namespace smi {
+namespace smi::stats {
 
 /// Largest n for which upool_threshold / upool_pvalue run the Monte Carlo (a few seconds at
 /// 10^6 sets); above it they use this fitted form.
@@ -27,4 +27,4 @@ double upool_asymptotic_threshold(int n, double confidence);
 /// P_H0(U >= u) from the fitted form.
 double upool_asymptotic_pvalue(int n, double u);
 
-}  // namespace smi
+}  // namespace smi::stats

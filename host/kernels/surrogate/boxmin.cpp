@@ -1,13 +1,13 @@
 // boxmin: start, then kmax rounds of explore + move (spec §4 lists the comparisons).
-#include "surrogate/boxmin.hpp"
+#include "kernels/surrogate/boxmin.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 struct State {
@@ -137,4 +137,4 @@ BoxminResult boxmin(const Eigen::VectorXd& theta0, const Eigen::VectorXd& lo, co
   return {s.t, s.f, s.nv};
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

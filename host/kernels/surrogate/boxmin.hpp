@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <functional>
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 struct BoxminResult {
   Eigen::VectorXd theta;
@@ -17,4 +17,4 @@ struct BoxminResult {
 BoxminResult boxmin(const Eigen::VectorXd& theta0, const Eigen::VectorXd& lo, const Eigen::VectorXd& up,
                     const std::function<double(const Eigen::VectorXd&)>& f);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,12 +1,12 @@
 // Correlation families and their slopes; cross correlations on whole blocks of points.
-#include "surrogate/correlation.hpp"
+#include "kernels/surrogate/correlation.hpp"
 
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "surrogate/fast_exp.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 Corr parse_corr(const std::string& name) {
   if (name == "gauss" || name == "corrgauss") return Corr::gauss;
@@ -99,4 +99,4 @@ Eigen::MatrixXd cross_correlation(Corr c, const Eigen::VectorXd& theta, const Ei
   return s;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

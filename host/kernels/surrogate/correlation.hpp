@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 enum class Corr { gauss, exp, matern32, matern52 };
 
@@ -30,4 +30,4 @@ void corr_slope(Corr c, const Eigen::ArrayXd& s, Eigen::ArrayXd& out);
 Eigen::MatrixXd cross_correlation(Corr c, const Eigen::VectorXd& theta, const Eigen::MatrixXd& X,
                                   const Eigen::MatrixXd& S);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,24 +1,24 @@
 // Given-data Borgonovo delta (see delta.hpp).
-#include "surrogate/delta.hpp"
+#include "kernels/surrogate/delta.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
-namespace smi::delta {
+namespace smi::surrogate::delta {
 namespace {
 
 // 1/2 sum over classes of (n_m / n) L1(f_Y, f_m); `order` lists the rows sorted by the input.
 double delta_of_order(const std::vector<Eigen::Index>& order, const Eigen::VectorXd& y, Eigen::Index M,
-                      const Eigen::VectorXd& fy, const Grid& g) {
+                      const Eigen::VectorXd& fy, const stats::Grid& g) {
   const Eigen::Index n = y.size();
   double d = 0;
   for (Eigen::Index c = 0; c < M; ++c) {
@@ -27,7 +27,7 @@ double delta_of_order(const std::vector<Eigen::Index>& order, const Eigen::Vecto
     for (Eigen::Index i = a; i < b; ++i) yc(i - a) = y(order[static_cast<std::size_t>(i)]);
     double area;
     if (yc.maxCoeff() > yc.minCoeff())
-      area = l1_area_on_grid(kde_pdf_grid(yc, bandwidth_normal_reference(yc), g, 1), fy, g);
+      area = stats::l1_area_on_grid(stats::kde_pdf_grid(yc, stats::bandwidth_normal_reference(yc), g, 1), fy, g);
     else
       area = 2.0;  // a point mass against a continuous PDF
     d += static_cast<double>(b - a) / static_cast<double>(n) * area;
@@ -56,10 +56,10 @@ Result estimate(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Option
   r.delta = Eigen::VectorXd::Zero(X.cols());
   if (!(y.maxCoeff() > y.minCoeff())) return r;
   // Common grid: wide enough for the widest class bandwidth (about (n/M)^-1/5 of the spread).
-  const double hy = bandwidth_normal_reference(y);
+  const double hy = stats::bandwidth_normal_reference(y);
   const double hwide = hy * std::pow(static_cast<double>(r.classes), 0.2) * 3.0;
-  const Grid g = Grid::covering(y.minCoeff(), y.maxCoeff(), hwide, opt.grid);
-  const Eigen::VectorXd fy = kde_pdf_grid(y, hy, g);
+  const stats::Grid g = stats::Grid::covering(y.minCoeff(), y.maxCoeff(), hwide, opt.grid);
+  const Eigen::VectorXd fy = stats::kde_pdf_grid(y, hy, g);
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   for (Eigen::Index j = 0; j < X.cols(); ++j) {
     if (!(X.col(j).maxCoeff() > X.col(j).minCoeff())) continue;
@@ -76,4 +76,4 @@ Result estimate(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Option
   return r;
 }
 
-}  // namespace smi::delta
+}  // namespace smi::surrogate::delta

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-namespace smi::delta {
+namespace smi::surrogate::delta {
 
 struct Options {
   Eigen::Index classes = 0;  // M; 0 = SALib's rule min(ceil(n^(2 / (7 + tanh((1500 - n) / 500)))), 48)
@@ -30,4 +30,4 @@ Eigen::Index default_classes(Eigen::Index n);
 /// X: n x k sample, y: n outputs at its rows.
 Result estimate(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Options& opt = {});
 
-}  // namespace smi::delta
+}  // namespace smi::surrogate::delta

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace smi::doe {
+namespace smi::surrogate::doe {
 
 /// Space-filling criterion optimized by the enhanced stochastic evolutionary (ESE) search of
 /// Jin, Chen & Sudjianto (2005). phip: minimise phi_p = (sum_{i<j} d_ij^-p)^(1/p) (Morris &
@@ -41,4 +41,4 @@ Eigen::MatrixXd full_factorial(const std::vector<Eigen::VectorXd>& levels);
 /// Maps U in [0,1]^d to lo + (hi - lo) * U column by column.
 Eigen::MatrixXd scale_to_bounds(const Eigen::MatrixXd& U, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi);
 
-}  // namespace smi::doe
+}  // namespace smi::surrogate::doe

@@ -1,14 +1,14 @@
 // Vectorized exp(-x): 2^k * exp(r), k = round(-x / ln 2), |r| <= ln2 / 2, Taylor to r^13
 // (truncation < 5e-18 relative). An AVX2 version written with intrinsics (selected at run
 // time by CPU detection) and a scalar version with the same arithmetic for other CPUs.
-#include "surrogate/fast_exp.hpp"
+#include "kernels/surrogate/fast_exp.hpp"
 
 #include <immintrin.h>
 
 #include <bit>
 #include <cstdint>
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr double kLog2e = 1.4426950408889634074;
@@ -61,4 +61,4 @@ void exp_neg_inplace(double* x, long n) {
   for (long i = 0; i < n; ++i) x[i] = exp_neg_scalar(x[i]);
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

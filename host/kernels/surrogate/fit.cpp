@@ -7,14 +7,14 @@
 #include <numeric>
 #include <sstream>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/boxmin.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/likelihood.hpp"
-#include "surrogate/ml_search.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/boxmin.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/likelihood.hpp"
+#include "kernels/surrogate/ml_search.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr Eigen::Index kSubsetAbove = 400, kSubset = 250;
@@ -272,4 +272,4 @@ Model assemble(const detail::Problem& pb, const Eigen::VectorXd& theta, double n
   return md;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,12 +1,12 @@
 // AVX2 + FMA kernel of fused_mean.hpp: 8 points per step (two vectors share each design
 // point's broadcasts), exp(-s) by the same reduction and degree-13 polynomial as fast_exp.cpp.
-#include "surrogate/fused_mean.hpp"
+#include "kernels/surrogate/fused_mean.hpp"
 
 #include <immintrin.h>
 
 #include <algorithm>
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr double kLog2e = 1.4426950408889634074;
@@ -101,4 +101,4 @@ void fused_gauss_sum(const Eigen::MatrixXd& Xw, const RowMatrix& Sw, const Eigen
   std::copy(tmp, tmp + (nr - i), out + i);
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

@@ -5,7 +5,7 @@
 // differences (no |x|^2 + |s|^2 - 2 x.s cancellation). AVX2 + FMA, chosen at run time.
 #include <Eigen/Core>
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -15,4 +15,4 @@ bool fused_gauss_available();
 /// that row only (not on how the rows are blocked). Requires fused_gauss_available().
 void fused_gauss_sum(const Eigen::MatrixXd& Xw, const RowMatrix& Sw, const Eigen::VectorXd& gamma, double* out);
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

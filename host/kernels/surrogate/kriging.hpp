@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "core/defaults.hpp"
-#include "surrogate/correlation.hpp"
-#include "surrogate/regression.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/surrogate/correlation.hpp"
+#include "kernels/surrogate/regression.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 struct FitOptions {
   Trend trend = Trend::constant;
@@ -101,4 +101,4 @@ Model load(const std::string& path, ModelNames* names = nullptr);
 void save(const Model& m, std::ostream& os, const std::string& path, const ModelNames& names = {});
 Model load(std::istream& is, const std::string& path, ModelNames* names = nullptr);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

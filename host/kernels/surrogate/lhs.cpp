@@ -6,12 +6,12 @@
 #include <cmath>
 #include <limits>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/doe.hpp"
 
-namespace smi::doe {
+namespace smi::surrogate::doe {
 namespace {
 
 /// d^-p from a squared distance, exact for the even integer exponents used by default.
@@ -208,4 +208,4 @@ Eigen::MatrixXd full_factorial(const std::vector<Eigen::VectorXd>& levels) {
   return X;
 }
 
-}  // namespace smi::doe
+}  // namespace smi::surrogate::doe

@@ -2,16 +2,16 @@
 // With W = R^-1 - gamma gamma^T / sigma2 (normalised units), the envelope theorem for the GLS
 // beta gives d(m ln sigma2 + ln|R|)/d theta_k = sum_ij W_ij dR_ij/dtheta_k, and every family
 // has dR_ij/dtheta_k = g'(s_ij) D_k,ij, so the whole gradient is one GEMV over the pairs.
-#include "surrogate/likelihood.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr Eigen::Index kLeaf = 48;  // below this, plain triangular solves beat the recursion
@@ -144,4 +144,4 @@ Eigen::VectorXd log_psi_gradient(const Problem& pb, const Factors& f, const Eige
   return g;
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

@@ -4,9 +4,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 
 /// Normalised data plus the per-pair distances D (pairs i > j, column by column).
 struct Problem {
@@ -32,9 +32,9 @@ Factors factorize(const Problem& pb, const Eigen::VectorXd& theta, double nugget
 Eigen::VectorXd log_psi_gradient(const Problem& pb, const Factors& f, const Eigen::VectorXd& theta, double nugget,
                                  bool with_nugget);
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 /// Fills md's factors at (theta, nugget) from the problem (md already holds the scalings).
 Model assemble(const detail::Problem& pb, const Eigen::VectorXd& theta, double nugget, Model md);
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

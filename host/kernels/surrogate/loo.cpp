@@ -3,9 +3,9 @@
 // is gamma_i / Qt_ii and its variance sigma2 / Qt_ii (normalised units).
 #include <cmath>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 LooResult loo(const Model& md) {
   const Eigen::Index m = md.size();
@@ -23,4 +23,4 @@ LooResult loo(const Model& md) {
   return r;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

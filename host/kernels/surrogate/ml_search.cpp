@@ -1,6 +1,6 @@
 // Multistart L-BFGS on ln psi in log-parameters.
-#include "core/cancel.hpp"
-#include "surrogate/ml_search.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/surrogate/ml_search.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <numeric>
 #include <vector>
 
-#include "surrogate/doe.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/surrogate/doe.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 namespace {
 
 constexpr double kNuggetLo = 1e-10, kNuggetHi = 1.0;
@@ -177,4 +177,4 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   return res;
 }
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

@@ -5,9 +5,9 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "surrogate/likelihood.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
-namespace smi::kriging::detail {
+namespace smi::surrogate::kriging::detail {
 
 struct MlResult {
   Eigen::VectorXd theta;
@@ -23,4 +23,4 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
                    bool estimate_nugget, int starts, std::uint64_t seed, int threads,
                    const MlResult* start = nullptr, int maxeval = 0);
 
-}  // namespace smi::kriging::detail
+}  // namespace smi::surrogate::kriging::detail

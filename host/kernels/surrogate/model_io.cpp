@@ -13,11 +13,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/likelihood.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 void put(std::ostream& os, double v) {
@@ -174,4 +174,4 @@ Model load(std::istream& is, const std::string& path, ModelNames* names) {
   return assemble(pb, theta, nugget, std::move(md));
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,14 +1,14 @@
 // Ridge polynomial with closed-form leave-one-out selection (see poly_ridge.hpp).
-#include "surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
 
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi::polyfit {
+namespace smi::surrogate::polyfit {
 namespace {
 
 // Standardised basis without intercept: z_j, and z_j^2 - 1 for the quadratic basis.
@@ -122,4 +122,4 @@ Fit fit(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, Basis basis, double 
   return f;
 }
 
-}  // namespace smi::polyfit
+}  // namespace smi::surrogate::polyfit

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace smi::polyfit {
+namespace smi::surrogate::polyfit {
 
 enum class Basis { linear, quadratic };
 Basis parse_basis(const std::string& name);
@@ -35,4 +35,4 @@ struct Fit {
 /// t = -10, -9.5, ..., 1, with the smallest PRESS; a `lambda` >= 0 given is used as is.
 Fit fit(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, Basis basis, double lambda = -1);
 
-}  // namespace smi::polyfit
+}  // namespace smi::surrogate::polyfit

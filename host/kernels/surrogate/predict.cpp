@@ -7,12 +7,12 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-#include "surrogate/fused_mean.hpp"
-#include "surrogate/kriging.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/surrogate/fused_mean.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr Eigen::Index kBlock = 128;  // a block's correlations (128 x m) stay in L2 for m ~ 1000
@@ -111,4 +111,4 @@ Prediction predict(const Model& md, const Eigen::MatrixXd& X, int threads) {
   return out;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

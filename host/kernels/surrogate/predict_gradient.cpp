@@ -6,11 +6,11 @@
 // share GEMMs as in prediction.
 #include <algorithm>
 
-#include "core/errors.hpp"
-#include "surrogate/kriging.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 namespace {
 
 constexpr Eigen::Index kBlock = 128;
@@ -81,4 +81,4 @@ Eigen::MatrixXd predict_gradient(const Model& md, const Eigen::MatrixXd& X, int 
   return out;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,14 +1,14 @@
 // Common-random-number samples for propagation, screening and calibration.
-#include "surrogate/propagate.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/core/thread_pool.hpp"
 
-namespace smi::propagate {
+namespace smi::surrogate::propagate {
 
 Eigen::VectorXd crn_uniforms(const std::string& name, Eigen::Index n, std::uint64_t seed, const std::string& stream) {
   Rng rng = Rng::derive(seed, stream + "/" + name);
@@ -38,7 +38,7 @@ Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std
   const Eigen::Index per = (n + kChunk - 1) / kChunk;
   pool::parallel_for(k * per, threads, [&](long t) {
     const long c = t / per;
-    const DistributionPtr& dist = inputs[static_cast<std::size_t>(c)].dist;
+    const stats::DistributionPtr& dist = inputs[static_cast<std::size_t>(c)].dist;
     if (!dist) return;
     const Eigen::Index r0 = (t % per) * kChunk, nr = std::min(kChunk, n - r0);
     X.col(c).segment(r0, nr) = dist->quantile(Eigen::VectorXd(X.col(c).segment(r0, nr)));
@@ -51,4 +51,4 @@ Eigen::MatrixXd crn_sample(const std::vector<Input>& inputs, Eigen::Index n, std
   return X;
 }
 
-}  // namespace smi::propagate
+}  // namespace smi::surrogate::propagate

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "stats/distribution.hpp"
+#include "kernels/stats/distribution.hpp"
 
-namespace smi::propagate {
+namespace smi::surrogate::propagate {
 
 /// A named input: a distribution, or a constant when dist is null.
 struct Input {
   std::string name;
-  DistributionPtr dist;
+  stats::DistributionPtr dist;
   double value = 0.0;
 };
 
@@ -30,4 +30,4 @@ Eigen::VectorXd crn_uniforms(const std::string& name, Eigen::Index n, std::uint6
 /// A model on whole matrices: rows are points; returns one column per output.
 using MatrixModel = std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>;
 
-}  // namespace smi::propagate
+}  // namespace smi::surrogate::propagate

@@ -1,9 +1,9 @@
 // Polynomial trend bases in DACE's column order.
-#include "surrogate/regression.hpp"
+#include "kernels/surrogate/regression.hpp"
 
-#include "core/errors.hpp"
+#include "kernels/core/errors.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 Trend parse_trend(const std::string& name) {
   if (name == "constant" || name == "regpoly0") return Trend::constant;
@@ -43,4 +43,4 @@ Eigen::MatrixXd trend_basis(Trend t, const Eigen::MatrixXd& X) {
   return F;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

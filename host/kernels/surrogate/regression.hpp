@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 enum class Trend { constant, linear, quadratic };
 
@@ -14,4 +14,4 @@ Eigen::Index trend_size(Trend t, Eigen::Index n);
 /// F (rows = points): [1], [1, x], or [1, x, x_k x_l for k <= l in DACE's order].
 Eigen::MatrixXd trend_basis(Trend t, const Eigen::MatrixXd& X);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

@@ -1,18 +1,18 @@
 // The PDF-area screening of spec §3 on one CRN base sample, plus Sobol' indices.
-#include "surrogate/screen.hpp"
+#include "kernels/surrogate/screen.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/grid.hpp"
-#include "stats/kde.hpp"
-#include "stats/metrics.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/grid.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/metrics.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 namespace {
 
 Eigen::MatrixXd run(const propagate::MatrixModel& model, const Eigen::MatrixXd& X, std::size_t q, const char* what) {
@@ -64,18 +64,18 @@ void pdf_area_indices(const std::vector<propagate::Input>& inputs, const Eigen::
                       const std::vector<Eigen::MatrixXd>& yfix, std::size_t o, const Options& opt, Result& res) {
   const std::size_t k = inputs.size();
   // Common §0 grid over every sample involved, with the largest bandwidth.
-  const double hy = bandwidth_normal_reference(y);
+  const double hy = stats::bandwidth_normal_reference(y);
   double h_max = hy, lo = y.minCoeff(), hi = y.maxCoeff();
   std::vector<double> hk(k, 0.0);
   for (std::size_t j = 0; j < k; ++j) {
     if (!inputs[j].dist) continue;
     const Eigen::VectorXd yk = yfix[j].col(static_cast<Eigen::Index>(o));
     if (!spread(yk)) continue;
-    hk[j] = bandwidth_normal_reference(yk);
+    hk[j] = stats::bandwidth_normal_reference(yk);
     h_max = std::max(h_max, hk[j]), lo = std::min(lo, yk.minCoeff()), hi = std::max(hi, yk.maxCoeff());
   }
-  const Grid g = Grid::covering(lo, hi, h_max, opt.grid);
-  const Eigen::VectorXd fg = kde_pdf_grid(y, hy, g);
+  const stats::Grid g = stats::Grid::covering(lo, hi, h_max, opt.grid);
+  const Eigen::VectorXd fg = stats::kde_pdf_grid(y, hy, g);
   double total = 0;
   for (std::size_t j = 0; j < k; ++j) {
     Row& r = res.rows[j];
@@ -86,7 +86,7 @@ void pdf_area_indices(const std::vector<propagate::Input>& inputs, const Eigen::
     else if (!spread(yk))
       r.e = 2;  // a point mass against a continuous PDF (spec §3)
     else
-      r.e = l1_area_on_grid(kde_pdf_grid(yk, hk[j], g), fg, g);
+      r.e = stats::l1_area_on_grid(stats::kde_pdf_grid(yk, hk[j], g), fg, g);
     total += r.e;
   }
   for (auto& r : res.rows) r.ne = total > 0 ? r.e / total : 0;
@@ -143,4 +143,4 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
   return results;
 }
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/defaults.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 
 struct Options {
   Eigen::Index n = 10000;
@@ -49,4 +49,4 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
 void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const Eigen::MatrixXd& fAB, int bootstrap,
                    double level, std::uint64_t seed, std::vector<Row>& rows);
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

@@ -1,14 +1,14 @@
 // Surrogate screening (see screen_surrogate.hpp).
-#include "surrogate/screen_surrogate.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/doe.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 
 Eigen::MatrixXd surrogate_design(const std::vector<propagate::Input>& inputs, Eigen::Index runs, std::uint64_t seed) {
   const Eigen::Index k = static_cast<Eigen::Index>(inputs.size());
@@ -91,4 +91,4 @@ SurrogateResult screen_surrogate(const std::vector<propagate::Input>& inputs, co
   return res;
 }
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

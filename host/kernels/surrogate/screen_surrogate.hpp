@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "surrogate/delta.hpp"
-#include "surrogate/poly_ridge.hpp"
-#include "surrogate/screen.hpp"
+#include "kernels/surrogate/delta.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/screen.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 
 struct SurrogateOptions {
   Eigen::Index runs = 300;   // model runs for the surrogate
@@ -51,4 +51,4 @@ SurrogateResult screen_surrogate(const std::vector<propagate::Input>& inputs, co
                                  const std::vector<std::string>& outputs, const Options& opt,
                                  const SurrogateOptions& sopt);
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

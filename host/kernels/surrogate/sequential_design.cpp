@@ -1,16 +1,16 @@
 // Sequential Kriging designs: the greedy batch choice by weighted Kriging variance, and the loop
 // that fits, checks the leave-one-out targets and asks the model for the next batch.
-#include "surrogate/sequential_design.hpp"
+#include "kernels/surrogate/sequential_design.hpp"
 
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "core/errors.hpp"
-#include "surrogate/correlation.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/correlation.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 namespace {
 
@@ -142,4 +142,4 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
   return r;
 }
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

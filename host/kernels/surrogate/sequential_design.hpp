@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-namespace smi::kriging {
+namespace smi::surrogate::kriging {
 
 /// `batch` distinct rows of `candidates` (in the models' input units), chosen greedily: each the
 /// candidate with the largest weight x max over models of the Kriging variance ratio
@@ -51,4 +51,4 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
                                    const Eigen::VectorXd& weights, const DesignModel& model,
                                    const SequentialOptions& opt);
 
-}  // namespace smi::kriging
+}  // namespace smi::surrogate::kriging

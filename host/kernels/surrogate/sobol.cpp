@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "core/errors.hpp"
-#include "surrogate/doe.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/doe.hpp"
 
-namespace smi::doe {
+namespace smi::surrogate::doe {
 namespace {
 
 struct Direction {
@@ -107,4 +107,4 @@ Eigen::MatrixXd sobol(Eigen::Index n, Eigen::Index d, Eigen::Index skip) {
   return X;
 }
 
-}  // namespace smi::doe
+}  // namespace smi::surrogate::doe

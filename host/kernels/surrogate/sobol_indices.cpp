@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/cancel.hpp"
-#include "core/descriptive.hpp"
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/screen.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/screen.hpp"
 
-namespace smi::screen {
+namespace smi::surrogate::screen {
 namespace {
 
 struct Est {
@@ -75,4 +75,4 @@ void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const E
   }
 }
 
-}  // namespace smi::screen
+}  // namespace smi::surrogate::screen

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "core/rng.hpp"
+#include "kernels/core/rng.hpp"
 #include "solve.hpp"
 
 namespace {

@@ -25,8 +25,9 @@ local function page_of(name)
   end
   if best then return best end
   local top = name:match("^(smi%.[%w_]+)") or "smi"
-  -- a userdata type's methods live on its module's page (smi.Kriging:predict on smi.kriging)
-  local home = { ["smi.Kriging"] = "smi.kriging", ["smi.Model"] = "smi.model", ["smi.verdict"] = "smi.metric" }
+  -- a type's methods live on the page of the module that makes it; types are named after that
+  -- module (smi.kriging:predict on smi.kriging), but for the verdicts of smi.metric
+  local home = { ["smi.verdict"] = "smi.metric" }
   return home[top] or top
 end
 

@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 #include <thread>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/machine.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/machine.hpp"
 
 using namespace smi;
 

@@ -2,8 +2,8 @@
 // separator, quotes and line breaks; CRLF; a BOM; and the writer's quoting reading back.
 #include <catch2/catch.hpp>
 
-#include "core/csv.hpp"
-#include "core/errors.hpp"
+#include "kernels/core/csv.hpp"
+#include "kernels/core/errors.hpp"
 
 namespace csv = smi::csv;
 

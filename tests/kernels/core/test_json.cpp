@@ -5,8 +5,8 @@
 #include <limits>
 #include <random>
 
-#include "core/errors.hpp"
-#include "core/json.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/json.hpp"
 
 namespace json = smi::json;
 

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <string>
 
-#include "core/descriptive.hpp"
-#include "core/normal.hpp"
-#include "core/rng.hpp"
+#include "kernels/core/descriptive.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
 
 TEST_CASE("normal quantile and cdf agree with scipy.special") {
   std::ifstream in(std::string(SMI_TEST_REFERENCE_DIR) + "/normal_quantile.csv");

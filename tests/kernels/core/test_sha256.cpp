@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "core/sha256.hpp"
+#include "kernels/core/sha256.hpp"
 
 using smi::Sha256;
 using smi::sha256_hex;

@@ -7,9 +7,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "core/thread_pool.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
 
 using namespace smi;
 

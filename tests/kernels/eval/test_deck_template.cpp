@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "eval/deck_template.hpp"
+#include "kernels/eval/deck_template.hpp"
 
 using namespace smi::eval;
 

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "eval/f06.hpp"
+#include "kernels/eval/f06.hpp"
 
 using namespace smi::eval;
 

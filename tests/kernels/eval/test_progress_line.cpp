@@ -1,7 +1,7 @@
 // Progress and dry-run lines: the numbers they print are the ones computed.
 #include <catch2/catch.hpp>
 
-#include "eval/progress_line.hpp"
+#include "kernels/eval/progress_line.hpp"
 
 using namespace smi::eval;
 

@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "eval/executor.hpp"
-#include "eval/pending.hpp"
-#include "eval/store.hpp"
-#include "eval/process.hpp"
-#include "eval/slurm_cli.hpp"
-#include "eval/slurm_executor.hpp"
+#include "kernels/eval/executor.hpp"
+#include "kernels/eval/pending.hpp"
+#include "kernels/eval/process.hpp"
+#include "kernels/eval/slurm_cli.hpp"
+#include "kernels/eval/slurm_executor.hpp"
+#include "kernels/eval/store.hpp"
 
 using namespace smi::eval;
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <unistd.h>
 
-#include "eval/store.hpp"
+#include "kernels/eval/store.hpp"
 
 #include <fstream>
 #include <sqlite3.h>

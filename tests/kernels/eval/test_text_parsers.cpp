@@ -1,7 +1,7 @@
 // Regular-expression and CSV readers of solver output.
 #include <catch2/catch.hpp>
 
-#include "eval/text_parsers.hpp"
+#include "kernels/eval/text_parsers.hpp"
 
 using namespace smi::eval;
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/errors.hpp"
-#include "improve/bounded_optimizer.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
 
 using namespace smi::improve;
 

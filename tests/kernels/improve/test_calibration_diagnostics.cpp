@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "improve/bootstrap.hpp"
-#include "improve/design_bounds.hpp"
-#include "improve/identifiability.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/design_bounds.hpp"
+#include "kernels/improve/identifiability.hpp"
 
 using namespace smi::improve;
 

@@ -3,8 +3,8 @@
 // with 6501 nodes.
 #include <catch2/catch.hpp>
 
-#include "improve/bounded_optimizer.hpp"
-#include "improve/statistical_objective.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 using namespace smi::improve;
 
@@ -21,7 +21,7 @@ StatisticalObjective spec_objective(double mu0 = 30.0, double s0 = 0.5) {
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
-  r.grid = smi::Grid{27.0, 33.5, 6501};
+  r.grid = smi::stats::Grid{27.0, 33.5, 6501};
   StatisticalOptions o;
   o.n = 2000;
   o.crn = CrnKind::quantiles;
@@ -76,7 +76,7 @@ TEST_CASE("negative log-likelihood metric and mass outside the grid") {
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
-  r.grid = smi::Grid{27.0, 33.5, 6501};
+  r.grid = smi::stats::Grid{27.0, 33.5, 6501};
   StatisticalOptions o;
   o.crn = CrnKind::quantiles;
   // Far from the data the prediction leaves the grid: PR must saturate at 2, not drop.

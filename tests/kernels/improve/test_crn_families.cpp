@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/normal.hpp"
-#include "improve/crn_mapping.hpp"
-#include "stats/families.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/improve/crn_mapping.hpp"
+#include "kernels/stats/families.hpp"
 
 using namespace smi::improve;
 

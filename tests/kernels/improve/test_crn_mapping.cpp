@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/normal.hpp"
-#include "improve/crn_mapping.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/improve/crn_mapping.hpp"
 
 using namespace smi::improve;
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "improve/directions.hpp"
+#include "kernels/improve/directions.hpp"
 
 using namespace smi::improve;
 

@@ -6,12 +6,12 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "improve/bounded_optimizer.hpp"
-#include "improve/input_derivatives.hpp"
-#include "improve/overlap_start.hpp"
-#include "improve/statistical_objective.hpp"
-#include "stats/bandwidth.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/input_derivatives.hpp"
+#include "kernels/improve/overlap_start.hpp"
+#include "kernels/improve/statistical_objective.hpp"
+#include "kernels/stats/bandwidth.hpp"
 
 using namespace smi::improve;
 
@@ -95,7 +95,7 @@ TEST_CASE("PR gradient on a fine grid (the blocked kernel sums, step <= h/64) ag
   // The fine-grid path is taken: every response's grid step is below its bandwidth / 64.
   const Eigen::MatrixXd Y = f.predict(t);
   for (Eigen::Index j = 0; j < 2; ++j)
-    REQUIRE(f.responses()[static_cast<std::size_t>(j)].grid->step() <= smi::bandwidth_by_name(Y.col(j), "silverman") / 64.0);
+    REQUIRE(f.responses()[static_cast<std::size_t>(j)].grid->step() <= smi::stats::bandwidth_by_name(Y.col(j), "silverman") / 64.0);
   Eigen::VectorXd g;
   const Evaluation e = f.value_and_gradient(t, g);
   CHECK(e.value == f(t).value);

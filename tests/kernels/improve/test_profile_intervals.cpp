@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "improve/profile_intervals.hpp"
-#include "stats/special.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/improve/profile_intervals.hpp"
+#include "kernels/stats/special.hpp"
 
 using namespace smi::improve;
 
@@ -16,11 +16,11 @@ TEST_CASE("½ χ²₁ quantiles") {
 }
 
 TEST_CASE("Student t quantiles and the small-sample delta against SciPy (tests/reference/student_t_quantile.py)") {
-  CHECK(smi::student_t_quantile(0.95, 22) == Approx(1.717144374380242).epsilon(1e-9));
-  CHECK(smi::student_t_quantile(0.975, 3) == Approx(3.182446305284263).epsilon(1e-9));
-  CHECK(smi::student_t_quantile(0.05, 1) == Approx(-6.313751514800938).epsilon(1e-9));
-  CHECK(smi::student_t_quantile(0.999, 2.5) == Approx(13.822193110834316).epsilon(1e-9));
-  CHECK(smi::student_t_quantile(0.6, 100) == Approx(0.25402218245699415).epsilon(1e-9));
+  CHECK(smi::stats::student_t_quantile(0.95, 22) == Approx(1.717144374380242).epsilon(1e-9));
+  CHECK(smi::stats::student_t_quantile(0.975, 3) == Approx(3.182446305284263).epsilon(1e-9));
+  CHECK(smi::stats::student_t_quantile(0.05, 1) == Approx(-6.313751514800938).epsilon(1e-9));
+  CHECK(smi::stats::student_t_quantile(0.999, 2.5) == Approx(13.822193110834316).epsilon(1e-9));
+  CHECK(smi::stats::student_t_quantile(0.6, 100) == Approx(0.25402218245699415).epsilon(1e-9));
   CHECK(likelihood_ratio_delta(0.9, 25, 3) == Approx(1.5721830735804492).epsilon(1e-9));
   CHECK(likelihood_ratio_delta(0.95, 30, 2) == Approx(2.094552536206453).epsilon(1e-9));
   // Large n: back to ½ χ²₁.

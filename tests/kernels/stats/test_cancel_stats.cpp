@@ -3,11 +3,11 @@
 // worker threads, instead of running on (49 s past --timeout 3 before).
 #include <catch2/catch.hpp>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "stats/kde.hpp"
-#include "core/thread_pool.hpp"
-#include "stats/upool.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/thread_pool.hpp"
+#include "kernels/stats/kde.hpp"
+#include "kernels/stats/upool.hpp"
 
 using namespace smi;
 
@@ -22,18 +22,18 @@ TEST_CASE("a KDE sum over large data stops at the deadline, on any thread") {
   Eigen::VectorXd data = Eigen::VectorXd::LinSpaced(200000, 0, 1);
   Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(5000, 0, 1).array().square();  // not uniform: direct sums
   PastDeadline d;
-  REQUIRE_THROWS_WITH(kde_pdf(data, 0.01, x, 2), Catch::StartsWith("timeout: "));
-  REQUIRE_THROWS_AS(kde_pdf(data, 0.01, x, 1), Interrupted);
+  REQUIRE_THROWS_WITH(stats::kde_pdf(data, 0.01, x, 2), Catch::StartsWith("timeout: "));
+  REQUIRE_THROWS_AS(stats::kde_pdf(data, 0.01, x, 1), Interrupted);
 }
 
 TEST_CASE("the u-pooling Monte Carlo stops when interrupted") {
   cancel::reset();
   cancel::request_interrupt();
-  UpoolMcSettings s;
+  stats::UpoolMcSettings s;
   s.replications = 100000;
   s.seed = 99;  // a sample no other test caches
-  REQUIRE_THROWS_WITH(upool_null_sample(5000, s), "interrupted");  // the Monte Carlo (sort path)
-  REQUIRE_THROWS_WITH(upool_threshold(40, 0.95, s), "interrupted");  // through the threshold (network path)
+  REQUIRE_THROWS_WITH(stats::upool_null_sample(5000, s), "interrupted");  // the Monte Carlo (sort path)
+  REQUIRE_THROWS_WITH(stats::upool_threshold(40, 0.95, s), "interrupted");  // through the threshold (network path)
   cancel::reset();
 }
 

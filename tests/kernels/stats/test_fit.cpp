@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "stats/families.hpp"
-#include "stats/fit.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/stats/fit.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
@@ -48,7 +48,7 @@ TEST_CASE("MLE fits agree with SciPy") {
   REQUIRE(y30.size() == 30);
   for (const auto& r : rs) {
     INFO(r.set << " " << r.family);
-    const auto f = smi::fit_family(r.set == "x9" ? x9 : y30, r.family);
+    const auto f = smi::stats::fit_family(r.set == "x9" ? x9 : y30, r.family);
     // Our optimum is at least as good as SciPy's (its optimiser stops at ~1e-5 relative).
     CHECK(f.loglik >= r.loglik - 1e-6);
     CHECK_THAT(f.loglik, WithinAbs(r.loglik, 1e-4));
@@ -65,34 +65,34 @@ TEST_CASE("MLE fits agree with SciPy") {
 TEST_CASE("fit ranks by AIC and reports KS; bad input") {
   Eigen::VectorXd x(9);
   x << 30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20;
-  const auto r = smi::fit(x, {"normal", "gumbel", "weibull"});
+  const auto r = smi::stats::fit(x, {"normal", "gumbel", "weibull"});
   REQUIRE(r.size() == 3);
   CHECK(r[0].aic <= r[1].aic);
   CHECK(r[1].aic <= r[2].aic);
   CHECK_THAT(r[0].aic, WithinAbs(2 * r[0].k - 2 * r[0].loglik, 1e-12));
   // KS of the fitted normal: max |F(x_(i)) − i/n| computed by hand for the smallest point.
-  const auto n = smi::fit_family(x, "normal");
+  const auto n = smi::stats::fit_family(x, "normal");
   CHECK(n.ks >= std::abs(n.dist->cdf(29.75) - 1.0 / 9.0));
-  CHECK_THROWS_WITH(smi::fit(x, {"normul"}), Catch::Contains("unknown family 'normul'"));
-  CHECK_THROWS_WITH(smi::fit_family(Eigen::VectorXd::Constant(4, 1.0), "normal"), Catch::Contains("all 4 data values are equal"));
+  CHECK_THROWS_WITH(smi::stats::fit(x, {"normul"}), Catch::Contains("unknown family 'normul'"));
+  CHECK_THROWS_WITH(smi::stats::fit_family(Eigen::VectorXd::Constant(4, 1.0), "normal"), Catch::Contains("all 4 data values are equal"));
 }
 
 TEST_CASE("family closed forms") {
-  const smi::Weibull w(2.0, 3.0);
+  const smi::stats::Weibull w(2.0, 3.0);
   CHECK_THAT(w.mean(), WithinAbs(3.0 * std::sqrt(M_PI) / 2.0, 1e-14));
   CHECK_THAT(w.quantile(w.cdf(4.2)), WithinAbs(4.2, 1e-12));
-  const smi::Gamma g(2.5, 1.5);
+  const smi::stats::Gamma g(2.5, 1.5);
   CHECK_THAT(g.quantile(g.cdf(5.0)), WithinAbs(5.0, 1e-10));
-  const smi::Gamma g2(2.0, 1.5);  // shape 2: F(x) = 1 − e^{−x/θ}(1 + x/θ)
+  const smi::stats::Gamma g2(2.0, 1.5);  // shape 2: F(x) = 1 − e^{−x/θ}(1 + x/θ)
   CHECK_THAT(g2.cdf(3.0), WithinAbs(1.0 - std::exp(-2.0) * 3.0, 1e-14));
-  const smi::Gamma e(1.0, 2.0);  // exponential
+  const smi::stats::Gamma e(1.0, 2.0);  // exponential
   CHECK_THAT(e.cdf(3.0), WithinAbs(1.0 - std::exp(-1.5), 1e-14));
-  const smi::Beta b(2.0, 2.0);
+  const smi::stats::Beta b(2.0, 2.0);
   CHECK_THAT(b.cdf(0.25), WithinAbs(3 * 0.0625 - 2 * 0.015625, 1e-14));  // 3x² − 2x³
   CHECK_THAT(b.stddev(), WithinAbs(std::sqrt(0.05), 1e-14));
-  const smi::Triangular t(0.0, 0.5, 2.0);
+  const smi::stats::Triangular t(0.0, 0.5, 2.0);
   CHECK_THAT(t.quantile(t.cdf(1.3)), WithinAbs(1.3, 1e-14));
-  CHECK_THROWS_WITH(smi::Normal(0.0, -1.0), Catch::Contains("std must be a positive finite number, got -1"));
-  CHECK_THROWS_WITH(smi::Uniform(2.0, 1.0), Catch::Contains("lower (2) must be < upper (1)"));
-  CHECK_THROWS_WITH(smi::Triangular(0.0, 3.0, 2.0), Catch::Contains("mode (3) must lie in"));
+  CHECK_THROWS_WITH(smi::stats::Normal(0.0, -1.0), Catch::Contains("std must be a positive finite number, got -1"));
+  CHECK_THROWS_WITH(smi::stats::Uniform(2.0, 1.0), Catch::Contains("lower (2) must be < upper (1)"));
+  CHECK_THROWS_WITH(smi::stats::Triangular(0.0, 3.0, 2.0), Catch::Contains("mode (3) must lie in"));
 }

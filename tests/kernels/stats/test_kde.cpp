@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
@@ -26,38 +26,38 @@ Eigen::VectorXd ys() {
 
 TEST_CASE("bandwidth rules match spec 8.1") {
   const auto x = spec_x();
-  CHECK_THAT(smi::bandwidth_normal_reference(x), WithinAbs(0.2481836818, 1e-10));
-  CHECK_THAT(smi::bandwidth_normal_106(x), WithinAbs(0.2483655413, 1e-10));
-  CHECK_THAT(smi::bandwidth_robust(x), WithinAbs(0.1861048387, 1e-10));
-  CHECK_THAT(smi::bandwidth_scott(x), WithinAbs(0.2343071145, 1e-10));
-  CHECK_THAT(smi::bandwidth_mad(x), WithinAbs(0.2529864728, 1e-10));
-  CHECK_THAT(smi::bandwidth_by_name(x, "silverman"), WithinAbs(0.2481836818, 1e-10));
-  CHECK_THROWS_WITH(smi::bandwidth_by_name(x, "silvermann"), Catch::Contains("unknown bandwidth rule 'silvermann'"));
+  CHECK_THAT(smi::stats::bandwidth_normal_reference(x), WithinAbs(0.2481836818, 1e-10));
+  CHECK_THAT(smi::stats::bandwidth_normal_106(x), WithinAbs(0.2483655413, 1e-10));
+  CHECK_THAT(smi::stats::bandwidth_robust(x), WithinAbs(0.1861048387, 1e-10));
+  CHECK_THAT(smi::stats::bandwidth_scott(x), WithinAbs(0.2343071145, 1e-10));
+  CHECK_THAT(smi::stats::bandwidth_mad(x), WithinAbs(0.2529864728, 1e-10));
+  CHECK_THAT(smi::stats::bandwidth_by_name(x, "silverman"), WithinAbs(0.2481836818, 1e-10));
+  CHECK_THROWS_WITH(smi::stats::bandwidth_by_name(x, "silvermann"), Catch::Contains("unknown bandwidth rule 'silvermann'"));
 }
 
 TEST_CASE("bandwidth rules reject degenerate data") {
   Eigen::VectorXd one(1);
   one << 1.0;
-  CHECK_THROWS_WITH(smi::bandwidth_normal_reference(one), Catch::Contains("at least 2"));
-  CHECK_THROWS_WITH(smi::bandwidth_normal_reference(Eigen::VectorXd::Constant(5, 2.0)), Catch::Contains("all 5 data values are equal"));
+  CHECK_THROWS_WITH(smi::stats::bandwidth_normal_reference(one), Catch::Contains("at least 2"));
+  CHECK_THROWS_WITH(smi::stats::bandwidth_normal_reference(Eigen::VectorXd::Constant(5, 2.0)), Catch::Contains("all 5 data values are equal"));
   Eigen::VectorXd bad = spec_x();
   bad[3] = std::nan("");
-  CHECK_THROWS_WITH(smi::bandwidth_scott(bad), Catch::Contains("data[4] is NaN"));
+  CHECK_THROWS_WITH(smi::stats::bandwidth_scott(bad), Catch::Contains("data[4] is NaN"));
 }
 
 TEST_CASE("LSCV and Sheather-Jones are near the normal reference for a large normal sample") {
   smi::Rng rng(7);
   const Eigen::VectorXd x = rng.normal(1500);
-  const double h0 = smi::bandwidth_normal_reference(x);
-  CHECK_THAT(smi::bandwidth_sheather_jones(x), WithinRel(h0, 0.15));
-  CHECK_THAT(smi::bandwidth_lscv(x), WithinRel(h0, 0.35));
+  const double h0 = smi::stats::bandwidth_normal_reference(x);
+  CHECK_THAT(smi::stats::bandwidth_sheather_jones(x), WithinRel(h0, 0.15));
+  CHECK_THAT(smi::stats::bandwidth_lscv(x), WithinRel(h0, 0.35));
   // Binned pair sums (n > 2000) agree with the exact ones to well under the rules' noise.
   const Eigen::VectorXd big = rng.normal(4000);
-  CHECK_THAT(smi::bandwidth_sheather_jones(big), WithinRel(smi::bandwidth_normal_reference(big), 0.15));
+  CHECK_THAT(smi::stats::bandwidth_sheather_jones(big), WithinRel(smi::stats::bandwidth_normal_reference(big), 0.15));
 }
 
 TEST_CASE("KDE pdf and cdf match spec 8.1") {
-  const smi::Kde k(spec_x(), 0.2481836818);
+  const smi::stats::Kde k(spec_x(), 0.2481836818);
   const Eigen::VectorXd pdf = k.pdf(ys()), cdf = k.cdf(ys());
   const double epdf[] = {0.1947599356, 0.8497143052, 0.8960452764, 0.7055000550, 0.2380421025};
   const double ecdf[] = {0.0274396137, 0.2950008950, 0.5193601822, 0.7227971682, 0.9534190121};
@@ -71,7 +71,7 @@ TEST_CASE("KDE pdf and cdf match spec 8.1") {
 }
 
 TEST_CASE("one-kernel KDE is the normal distribution (closed form)") {
-  const smi::Kde k(Eigen::VectorXd::Constant(1, 2.0), 0.5);
+  const smi::stats::Kde k(Eigen::VectorXd::Constant(1, 2.0), 0.5);
   for (double y : {-1.0, 1.3, 2.0, 2.7, 4.9}) {
     CHECK_THAT(k.pdf(y), WithinAbs(smi::normal_pdf((y - 2.0) / 0.5) / 0.5, 1e-15));
     CHECK_THAT(k.cdf(y), WithinAbs(smi::normal_cdf((y - 2.0) / 0.5), 2e-16));
@@ -81,11 +81,11 @@ TEST_CASE("one-kernel KDE is the normal distribution (closed form)") {
 TEST_CASE("large-N exact sums, binned path and fast CDF agree with direct summation") {
   smi::Rng rng(3);
   const Eigen::VectorXd t = rng.normal(3000);
-  const double h = smi::bandwidth_normal_reference(t);
+  const double h = smi::stats::bandwidth_normal_reference(t);
   const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(101, -5.0, 5.0);
-  const Eigen::VectorXd p = smi::kde_pdf(t, h, x), c = smi::kde_cdf(t, h, x);
+  const Eigen::VectorXd p = smi::stats::kde_pdf(t, h, x), c = smi::stats::kde_cdf(t, h, x);
   const double bin = h * std::sqrt(8.0 * 1e-6);
-  const Eigen::VectorXd pb = smi::kde_pdf_binned(t, h, x, bin);
+  const Eigen::VectorXd pb = smi::stats::kde_pdf_binned(t, h, x, bin);
   for (Eigen::Index j = 0; j < x.size(); ++j) {
     double sp = 0, sc = 0;
     for (Eigen::Index i = 0; i < t.size(); ++i) {
@@ -96,10 +96,10 @@ TEST_CASE("large-N exact sums, binned path and fast CDF agree with direct summat
     sc /= t.size();
     CHECK_THAT(p[j], WithinAbs(sp, 1e-14));
     CHECK_THAT(c[j], WithinAbs(sc, 1e-14));
-    CHECK(std::abs(pb[j] - sp) <= smi::binned_error_bound(h, bin));
+    CHECK(std::abs(pb[j] - sp) <= smi::stats::binned_error_bound(h, bin));
   }
   // Threads do not change the numbers.
-  CHECK((smi::kde_pdf(t, h, x, 1).array() == smi::kde_pdf(t, h, x, 2).array()).all());
+  CHECK((smi::stats::kde_pdf(t, h, x, 1).array() == smi::stats::kde_pdf(t, h, x, 2).array()).all());
 }
 
 TEST_CASE("uniform-grid recurrences agree with direct sums") {
@@ -107,7 +107,7 @@ TEST_CASE("uniform-grid recurrences agree with direct sums") {
   x9 << 30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20;
   const double h = 0.2481836818;
   const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(200001, 28.0, 32.5);  // spacing h/1100
-  const Eigen::VectorXd p = smi::kde_pdf(x9, h, y), c = smi::kde_cdf(x9, h, y);
+  const Eigen::VectorXd p = smi::stats::kde_pdf(x9, h, y), c = smi::stats::kde_cdf(x9, h, y);
   double ep = 0, ec = 0;
   for (Eigen::Index j = 0; j < y.size(); j += 7) {
     double sp = 0, sc = 0;
@@ -120,12 +120,12 @@ TEST_CASE("uniform-grid recurrences agree with direct sums") {
   }
   CHECK(ep < 1e-12);
   CHECK(ec < 1e-13);
-  CHECK((smi::kde_cdf(x9, h, y, 1).array() == smi::kde_cdf(x9, h, y, 2).array()).all());
+  CHECK((smi::stats::kde_cdf(x9, h, y, 1).array() == smi::stats::kde_cdf(x9, h, y, 2).array()).all());
   // Coarsest spacings that still take the recurrences (h/65 for the pdf, h/257 for the cdf).
   for (double per_h : {65.0, 257.0}) {
     const Eigen::Index m = static_cast<Eigen::Index>(4.5 / (h / per_h)) + 1;
     const Eigen::VectorXd g = Eigen::VectorXd::LinSpaced(m, 28.0, 28.0 + (m - 1) * (h / per_h));
-    const Eigen::VectorXd gp = smi::kde_pdf(x9, h, g), gc = smi::kde_cdf(x9, h, g);
+    const Eigen::VectorXd gp = smi::stats::kde_pdf(x9, h, g), gc = smi::stats::kde_cdf(x9, h, g);
     for (Eigen::Index j = 0; j < m; j += 3) {
       double sp = 0, sc = 0;
       for (Eigen::Index i = 0; i < 9; ++i) {
@@ -136,5 +136,5 @@ TEST_CASE("uniform-grid recurrences agree with direct sums") {
       CHECK(std::abs(gc[j] - sc / 9) < 1e-13);
     }
   }
-  CHECK((smi::kde_pdf(x9, h, y, 1).array() == smi::kde_pdf(x9, h, y, 2).array()).all());
+  CHECK((smi::stats::kde_pdf(x9, h, y, 1).array() == smi::stats::kde_pdf(x9, h, y, 2).array()).all());
 }

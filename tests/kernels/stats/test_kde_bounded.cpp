@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "stats/bandwidth.hpp"
-#include "stats/kde_bounded.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde_bounded.hpp"
 
 using Catch::Matchers::WithinAbs;
 
@@ -17,10 +17,10 @@ Eigen::VectorXd spec_x() {
 }  // namespace
 
 TEST_CASE("ebd bounds (spec 8.1)") {
-  auto [l, u] = smi::ebd_bounds(spec_x(), 0.1);
+  auto [l, u] = smi::stats::ebd_bounds(spec_x(), 0.1);
   CHECK_THAT(l, WithinAbs(29.4147178852, 1e-9));
   CHECK_THAT(u, WithinAbs(31.2352821148, 1e-9));
-  std::tie(l, u) = smi::ebd_bounds(spec_x(), 0.05);
+  std::tie(l, u) = smi::stats::ebd_bounds(spec_x(), 0.05);
   CHECK_THAT(l, WithinAbs(29.2958065869, 1e-9));
   CHECK_THAT(u, WithinAbs(31.3541934131, 1e-9));
   // Widening factor c − 1 = α^{−1/n} − 1 on data [0, 1].
@@ -28,16 +28,16 @@ TEST_CASE("ebd bounds (spec 8.1)") {
                                           {10, 0.2589254}, {20, 0.1220185}, {50, 0.0471285}};
   for (const auto& [n, w] : table) {
     const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
-    CHECK_THAT(smi::ebd_bounds(x, 0.1).second - 1.0, WithinAbs(w, 1e-7));
+    CHECK_THAT(smi::stats::ebd_bounds(x, 0.1).second - 1.0, WithinAbs(w, 1e-7));
   }
-  CHECK_THROWS_WITH(smi::ebd_bounds(spec_x(), 1.5), Catch::Contains("alpha must be in (0, 1)"));
-  CHECK_THROWS_WITH(smi::ebd_bounds(Eigen::VectorXd::Constant(3, 1.0), 0.1), Catch::Contains("all 3 data values are equal"));
+  CHECK_THROWS_WITH(smi::stats::ebd_bounds(spec_x(), 1.5), Catch::Contains("alpha must be in (0, 1)"));
+  CHECK_THROWS_WITH(smi::stats::ebd_bounds(Eigen::VectorXd::Constant(3, 1.0), 0.1), Catch::Contains("all 3 data values are equal"));
 }
 
 TEST_CASE("stopping loop: pooled bandwidth, IA history, options") {
-  smi::BoundedKdeOptions o;
+  smi::stats::BoundedKdeOptions o;
   o.seed = 5;
-  const auto r = smi::kde_ebd(spec_x(), 0.1, false, o);
+  const auto r = smi::stats::kde_ebd(spec_x(), 0.1, false, o);
   REQUIRE(r.added >= 1);
   REQUIRE(r.converged);
   CHECK(r.ia_history.back() >= 0.95);
@@ -45,18 +45,18 @@ TEST_CASE("stopping loop: pooled bandwidth, IA history, options") {
   CHECK(r.kde->data().size() == 9 + r.added);
   Eigen::VectorXd t(9 + r.added);
   t << spec_x(), r.added_points;
-  CHECK_THAT(r.kde->bandwidth(), WithinAbs(smi::bandwidth_normal_reference(t), 1e-15));
+  CHECK_THAT(r.kde->bandwidth(), WithinAbs(smi::stats::bandwidth_normal_reference(t), 1e-15));
   for (Eigen::Index i = 0; i < r.added_points.size(); ++i) {
     CHECK(r.added_points[i] >= r.lower);
     CHECK(r.added_points[i] <= r.upper);
   }
   // Deterministic placement, max_added, step.
-  smi::BoundedKdeOptions d;
+  smi::stats::BoundedKdeOptions d;
   d.deterministic = true;
   d.critical_area = 1.0;
   d.max_added = 4;
   d.step = 2;
-  const auto rd = smi::kde_bounded(spec_x(), 29.0, 31.0, d);
+  const auto rd = smi::stats::kde_bounded(spec_x(), 29.0, 31.0, d);
   CHECK(rd.added == 4);
   CHECK_FALSE(rd.converged);
   CHECK(rd.ia_history.size() == 2);
@@ -70,11 +70,11 @@ TEST_CASE("added count for X ~ N(0,1), n = 9: mean about 1.8 (spec 8.1, loose)")
   int twenty_one = 0;
   const int runs = 300;
   for (int s = 0; s < runs; ++s) {
-    smi::BoundedKdeOptions o;
+    smi::stats::BoundedKdeOptions o;
     o.seed = static_cast<std::uint64_t>(s);
     o.grid_nodes = 2001;
-    total += smi::kde_ebd(rng.normal(9), 0.1, false, o).added;
-    twenty_one += smi::kde_ebd(rng.normal(20), 0.1, false, o).added == 1;
+    total += smi::stats::kde_ebd(rng.normal(9), 0.1, false, o).added;
+    twenty_one += smi::stats::kde_ebd(rng.normal(20), 0.1, false, o).added == 1;
   }
   CHECK(total / runs > 1.5);
   CHECK(total / runs < 2.2);

@@ -2,10 +2,10 @@
 // the Kriging likelihood search and block prediction throw smi::Interrupted with the reason.
 #include <catch2/catch.hpp>
 
-#include "core/cancel.hpp"
-#include "core/errors.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
 using namespace smi;
 
@@ -18,20 +18,20 @@ struct Interrupt {
 
 TEST_CASE("LHS optimisation stops when interrupted") {
   cancel::reset();
-  doe::LhsOptions o;
+  surrogate::doe::LhsOptions o;
   o.iterations = 100000;
   Interrupt i;
-  REQUIRE_THROWS_WITH(doe::lhs(300, 10, 1, o), "interrupted");
+  REQUIRE_THROWS_WITH(surrogate::doe::lhs(300, 10, 1, o), "interrupted");
 }
 
 TEST_CASE("a Kriging ML fit and a prediction stop when the deadline has passed") {
   cancel::reset();
-  Eigen::MatrixXd X = doe::lhs(40, 2, 3);
+  Eigen::MatrixXd X = surrogate::doe::lhs(40, 2, 3);
   Eigen::VectorXd y = X.col(0).array().sin() + X.col(1).array().square();
-  const kriging::Model m = kriging::fit(X, y);  // before: runs to the end
+  const surrogate::kriging::Model m = surrogate::kriging::fit(X, y);  // before: runs to the end
   cancel::set_deadline(cancel::Clock::now() - std::chrono::milliseconds(1), 1);
-  REQUIRE_THROWS_WITH(kriging::fit(X, y), Catch::StartsWith("timeout: "));
-  REQUIRE_THROWS_AS(kriging::predict(m, X, 2), Interrupted);
+  REQUIRE_THROWS_WITH(surrogate::kriging::fit(X, y), Catch::StartsWith("timeout: "));
+  REQUIRE_THROWS_AS(surrogate::kriging::predict(m, X, 2), Interrupted);
   cancel::reset();
-  REQUIRE(kriging::predict(m, X, 2).mean.size() == 40);
+  REQUIRE(surrogate::kriging::predict(m, X, 2).mean.size() == 40);
 }

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "surrogate/doe.hpp"
+#include "kernels/surrogate/doe.hpp"
 
-using namespace smi::doe;
+using namespace smi::surrogate::doe;
 
 TEST_CASE("Sobol' points equal SciPy's unscrambled sequence in every supported dimension") {
   REQUIRE(sobol_max_dim() == 37);

@@ -3,13 +3,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "stats/families.hpp"
-#include "surrogate/fused_mean.hpp"
-#include "surrogate/kriging.hpp"
-#include "surrogate/propagate.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/surrogate/fused_mean.hpp"
+#include "kernels/surrogate/kriging.hpp"
+#include "kernels/surrogate/propagate.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("fused Gaussian sum equals the direct sum in long double") {
   if (!detail::fused_gauss_available()) return;  // CPU without AVX2/FMA: the GEMM path is used
@@ -59,13 +59,13 @@ TEST_CASE("predict_mean equals predict's mean and the correlation-matrix form") 
 }
 
 TEST_CASE("crn_sample does not depend on the thread count") {
-  std::vector<smi::propagate::Input> in = {{"a", std::make_shared<smi::Normal>(1.0, 2.0), 0.0},
+  std::vector<smi::surrogate::propagate::Input> in = {{"a", std::make_shared<smi::stats::Normal>(1.0, 2.0), 0.0},
                                            {"c", nullptr, 3.5},
-                                           {"b", std::make_shared<smi::Normal>(0.0, 1.0), 0.0}};
-  const Eigen::MatrixXd s1 = smi::propagate::crn_sample(in, 100003, 7, "base", 1);
-  const Eigen::MatrixXd s2 = smi::propagate::crn_sample(in, 100003, 7, "base", 2);
+                                           {"b", std::make_shared<smi::stats::Normal>(0.0, 1.0), 0.0}};
+  const Eigen::MatrixXd s1 = smi::surrogate::propagate::crn_sample(in, 100003, 7, "base", 1);
+  const Eigen::MatrixXd s2 = smi::surrogate::propagate::crn_sample(in, 100003, 7, "base", 2);
   CHECK(s1 == s2);
   CHECK((s1.col(1).array() == 3.5).all());
-  const Eigen::VectorXd u = smi::propagate::crn_uniforms("b", 100003, 7, "base");
+  const Eigen::VectorXd u = smi::surrogate::propagate::crn_uniforms("b", 100003, 7, "base");
   CHECK(s1.col(2) == in[2].dist->quantile(u));
 }

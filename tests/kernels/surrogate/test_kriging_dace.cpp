@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 

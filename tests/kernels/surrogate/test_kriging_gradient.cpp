@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "surrogate/likelihood.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/likelihood.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("d ln psi / d ln theta matches central differences") {
   smi::Rng rng(7);

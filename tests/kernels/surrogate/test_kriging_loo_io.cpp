@@ -6,10 +6,10 @@
 #include <iterator>
 #include <cstdio>
 
-#include "core/rng.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 namespace {
 Eigen::VectorXd f(const Eigen::MatrixXd& X) {

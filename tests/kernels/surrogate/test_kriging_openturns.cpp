@@ -6,9 +6,9 @@
 #include <map>
 #include <sstream>
 
-#include "surrogate/kriging.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("predictions and MSE equal OpenTURNS at fixed theta") {
   std::ifstream f(SMI_TEST_REFERENCE_DIR "/kriging_openturns.csv");

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
-#include "surrogate/kriging.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/kriging.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("predict_gradient matches central differences of predict_mean") {
   smi::Rng g(7);

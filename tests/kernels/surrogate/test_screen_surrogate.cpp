@@ -7,12 +7,12 @@
 #include <cmath>
 #include <memory>
 
-#include "core/normal.hpp"
-#include "core/rng.hpp"
-#include "stats/families.hpp"
-#include "surrogate/delta.hpp"
-#include "surrogate/poly_ridge.hpp"
-#include "surrogate/screen_surrogate.hpp"
+#include "kernels/core/normal.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/stats/families.hpp"
+#include "kernels/surrogate/delta.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
 
 using namespace smi;
 
@@ -25,13 +25,13 @@ double area_two_normals(double s1, double s2) {
   return 4 * (normal_cdf(c / s2) - normal_cdf(c / s1));
 }
 
-std::vector<propagate::Input> normals(int k) {
-  std::vector<propagate::Input> in;
-  for (int i = 0; i < k; ++i) in.push_back({"x" + std::to_string(i + 1), std::make_shared<Normal>(0.0, 1.0)});
+std::vector<surrogate::propagate::Input> normals(int k) {
+  std::vector<surrogate::propagate::Input> in;
+  for (int i = 0; i < k; ++i) in.push_back({"x" + std::to_string(i + 1), std::make_shared<stats::Normal>(0.0, 1.0)});
   return in;
 }
 
-const screen::Row& row(const screen::Result& r, const std::string& name) {
+const surrogate::screen::Row& row(const surrogate::screen::Result& r, const std::string& name) {
   for (const auto& w : r.rows)
     if (w.input == name) return w;
   FAIL("no row " << name);
@@ -46,7 +46,7 @@ TEST_CASE("ridge polynomial: PRESS equals brute-force leave-one-out at the same 
   Eigen::VectorXd y = 1.0 + 2.0 * X.col(0).array() - X.col(1).array().square() + 0.3 * X.col(2).array();
   y += 0.2 * rng.normal(40);
   for (double lam : {0.0, 3.0}) {
-    const polyfit::Fit f = polyfit::fit(X, y, polyfit::Basis::quadratic, lam);
+    const surrogate::polyfit::Fit f = surrogate::polyfit::fit(X, y, surrogate::polyfit::Basis::quadratic, lam);
     double press = 0;
     for (Eigen::Index i = 0; i < X.rows(); ++i) {
       Eigen::MatrixXd Xi(X.rows() - 1, X.cols());
@@ -75,9 +75,9 @@ TEST_CASE("ridge polynomial: PRESS equals brute-force leave-one-out at the same 
     CHECK(f.q2 == Approx(1 - press / (y.array() - y.mean()).square().sum()).epsilon(1e-9));
   }
   // Automatic choice: no worse than either weight above.
-  const polyfit::Fit a = polyfit::fit(X, y, polyfit::Basis::quadratic);
-  CHECK(a.press <= polyfit::fit(X, y, polyfit::Basis::quadratic, 0.0).press * (1 + 1e-12));
-  CHECK(a.press <= polyfit::fit(X, y, polyfit::Basis::quadratic, 3.0).press * (1 + 1e-12));
+  const surrogate::polyfit::Fit a = surrogate::polyfit::fit(X, y, surrogate::polyfit::Basis::quadratic);
+  CHECK(a.press <= surrogate::polyfit::fit(X, y, surrogate::polyfit::Basis::quadratic, 0.0).press * (1 + 1e-12));
+  CHECK(a.press <= surrogate::polyfit::fit(X, y, surrogate::polyfit::Basis::quadratic, 3.0).press * (1 + 1e-12));
 }
 
 TEST_CASE("surrogate screening of a linear model: eq.-3 areas match the two-normal closed form", "[screen_surrogate]") {
@@ -88,14 +88,14 @@ TEST_CASE("surrogate screening of a linear model: eq.-3 areas match the two-norm
     for (int j = 0; j < 4; ++j) Y.col(0) += a[j] * X.col(j);
     return Y;
   };
-  screen::Options opt;
+  surrogate::screen::Options opt;
   opt.n = 20000;
   opt.seed = 11;
   opt.sobol = false;
-  screen::SurrogateOptions so;
+  surrogate::screen::SurrogateOptions so;
   so.runs = 40;
-  so.basis = polyfit::Basis::linear;
-  const auto res = screen::screen_surrogate(in, model, {"y"}, opt, so);
+  so.basis = surrogate::polyfit::Basis::linear;
+  const auto res = surrogate::screen::screen_surrogate(in, model, {"y"}, opt, so);
   REQUIRE(res.fits.size() == 1);
   CHECK(res.model_runs == 40);
   CHECK(res.fits[0].q2 > 1 - 1e-9);
@@ -111,7 +111,7 @@ TEST_CASE("surrogate screening of a linear model: eq.-3 areas match the two-norm
   CHECK(res.screening[0].rows[1].input == "x2");
   CHECK(res.screening[0].rows[2].input == "x3");
   // The same indices as the full screening of the model on the same CRN sample.
-  const auto full = screen::screen(in, model, {"y"}, opt);
+  const auto full = surrogate::screen::screen(in, model, {"y"}, opt);
   for (int j = 0; j < 4; ++j) {
     const std::string n = "x" + std::to_string(j + 1);
     CHECK(row(res.screening[0], n).e == Approx(row(full[0], n).e).margin(1e-6));
@@ -120,9 +120,9 @@ TEST_CASE("surrogate screening of a linear model: eq.-3 areas match the two-norm
 
 TEST_CASE("surrogate screening of a quadratic model equals the full screening on the same CRN sample",
           "[screen_surrogate]") {
-  std::vector<propagate::Input> in = {{"u", std::make_shared<Uniform>(-1.0, 2.0)},
-                                      {"g", std::make_shared<Normal>(5.0, 0.5)},
-                                      {"l", std::make_shared<LogNormal>(LogNormal::from_log_params(0.2, 0.3))},
+  std::vector<surrogate::propagate::Input> in = {{"u", std::make_shared<stats::Uniform>(-1.0, 2.0)},
+                                      {"g", std::make_shared<stats::Normal>(5.0, 0.5)},
+                                      {"l", std::make_shared<stats::LogNormal>(stats::LogNormal::from_log_params(0.2, 0.3))},
                                       {"c", nullptr, 4.0}};
   auto model = [](const Eigen::MatrixXd& X) {
     Eigen::MatrixXd Y(X.rows(), 2);
@@ -131,14 +131,14 @@ TEST_CASE("surrogate screening of a quadratic model equals the full screening on
     Y.col(1) = 3 * X.col(2).array() - 0.7 * (X.col(1).array() - 5).square();
     return Y;
   };
-  screen::Options opt;
+  surrogate::screen::Options opt;
   opt.n = 4000;
   opt.seed = 3;
   opt.bootstrap = 0;
-  screen::SurrogateOptions so;
+  surrogate::screen::SurrogateOptions so;
   so.runs = 30;
-  const auto res = screen::screen_surrogate(in, model, {"a", "b"}, opt, so);
-  const auto full = screen::screen(in, model, {"a", "b"}, opt);
+  const auto res = surrogate::screen::screen_surrogate(in, model, {"a", "b"}, opt, so);
+  const auto full = surrogate::screen::screen(in, model, {"a", "b"}, opt);
   for (int o = 0; o < 2; ++o) {
     CHECK(res.fits[static_cast<std::size_t>(o)].q2 > 1 - 1e-9);
     for (std::size_t i = 0; i < full[static_cast<std::size_t>(o)].rows.size(); ++i) {
@@ -158,20 +158,20 @@ TEST_CASE("a poor surrogate is reported with its Q2", "[screen_surrogate]") {
     Y.col(0) = (4 * X.col(0)).array().sin() * X.col(1).array() + 0.1 * X.col(2).array();
     return Y;
   };
-  screen::Options opt;
+  surrogate::screen::Options opt;
   opt.n = 2000;
   opt.sobol = false;
-  screen::SurrogateOptions so;
+  surrogate::screen::SurrogateOptions so;
   so.runs = 60;
-  const auto res = screen::screen_surrogate(in, model, {"y"}, opt, so);
+  const auto res = surrogate::screen::screen_surrogate(in, model, {"y"}, opt, so);
   CHECK(res.fits[0].q2 < 0.5);
   REQUIRE(!res.screening[0].warnings.empty());
   CHECK_THAT(res.screening[0].warnings[0], Catch::Contains("Q2") && Catch::Contains("'y'") && Catch::Contains("method"));
   // Too few runs for delta's classes: a clear error naming the way out.
   so.runs = 12;
-  CHECK_THROWS_WITH(screen::screen_surrogate(in, model, {"y"}, opt, so), Catch::Contains("delta = false"));
+  CHECK_THROWS_WITH(surrogate::screen::screen_surrogate(in, model, {"y"}, opt, so), Catch::Contains("delta = false"));
   so.delta = false;
-  CHECK_NOTHROW(screen::screen_surrogate(in, model, {"y"}, opt, so));
+  CHECK_NOTHROW(surrogate::screen::screen_surrogate(in, model, {"y"}, opt, so));
 }
 
 TEST_CASE("given-data Borgonovo delta of a linear model against its definition integrated numerically",
@@ -181,8 +181,8 @@ TEST_CASE("given-data Borgonovo delta of a linear model against its definition i
   const Eigen::Index n = 20000;
   const Eigen::MatrixXd X = rng.normal_matrix(n, 4);
   const Eigen::VectorXd y = 3 * X.col(0) + 2 * X.col(1) + X.col(2);
-  const delta::Result d = delta::estimate(X, y);
-  CHECK(d.classes == delta::default_classes(n));
+  const surrogate::delta::Result d = surrogate::delta::estimate(X, y);
+  CHECK(d.classes == surrogate::delta::default_classes(n));
   const double a[3] = {3, 2, 1};
   for (int j = 0; j < 3; ++j) {
     const double s = std::sqrt(14.0), sc = std::sqrt(14.0 - a[j] * a[j]);

@@ -5,12 +5,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/errors.hpp"
-#include "core/rng.hpp"
-#include "surrogate/doe.hpp"
-#include "surrogate/sequential_design.hpp"
+#include "kernels/core/errors.hpp"
+#include "kernels/core/rng.hpp"
+#include "kernels/surrogate/doe.hpp"
+#include "kernels/surrogate/sequential_design.hpp"
 
-using namespace smi::kriging;
+using namespace smi::surrogate::kriging;
 
 TEST_CASE("select_batch picks the largest weighted Kriging variance, written out for two design points") {
   // 1-D, gauss, theta = 4, no normalisation: r(d) = exp(-4 d^2); design {0.2, 0.8}.
@@ -71,12 +71,12 @@ TEST_CASE("a sequential design meets its target with fewer points than fixed hyp
   smi::Rng rng(11);
   Eigen::MatrixXd T(500, 2);  // test points drawn from the input distribution
   for (int i = 0; i < 500; ++i) T.row(i) << 0.3 + 0.08 * rng.normal(), 0.65 + 0.08 * rng.normal();
-  const Eigen::MatrixXd cand = smi::doe::lhs(2000, 2, 5, {"none"});
+  const Eigen::MatrixXd cand = smi::surrogate::doe::lhs(2000, 2, 5, {"none"});
   SequentialOptions o;
   o.batch = 4, o.max_points = 80, o.q2_target = 0.9999;
   o.fit.trend = Trend::linear, o.fit.seed = 3;
   int calls = 0;
-  const SequentialResult r = sequential_design(smi::doe::lhs(8, 2, 7), cand, density(cand), [&](const Eigen::MatrixXd& X) {
+  const SequentialResult r = sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, density(cand), [&](const Eigen::MatrixXd& X) {
     ++calls;
     return f(X);
   }, o);
@@ -91,7 +91,7 @@ TEST_CASE("a sequential design meets its target with fewer points than fixed hyp
   // where the distribution puts its mass is larger than n
   Eigen::Index need = 0;
   for (Eigen::Index m = n; m <= 3 * n && need == 0; m += 4) {
-    const Eigen::MatrixXd X = smi::doe::lhs(m, 2, 7);
+    const Eigen::MatrixXd X = smi::surrogate::doe::lhs(m, 2, 7);
     FitOptions fo = o.fit;
     if (test_rmse({fit(X, f(X).col(0), fo)}, T) <= seq) need = m;
   }
@@ -100,16 +100,16 @@ TEST_CASE("a sequential design meets its target with fewer points than fixed hyp
 }
 
 TEST_CASE("sequential_design stops at max_points and names bad input") {
-  const Eigen::MatrixXd cand = smi::doe::lhs(200, 2, 5, {"none"});
+  const Eigen::MatrixXd cand = smi::surrogate::doe::lhs(200, 2, 5, {"none"});
   SequentialOptions o;
   o.batch = 5, o.max_points = 18, o.q2_target = 1.0 + 1e-9;  // unreachable
-  const SequentialResult r = sequential_design(smi::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, o);
+  const SequentialResult r = sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, o);
   CHECK_FALSE(r.reached);
   CHECK(r.X.rows() == 18);  // 8, 13, 18
   CHECK(r.history.size() == 3);
   SequentialOptions small = o;
   small.max_points = 4;  // below the initial design
-  CHECK_THROWS_AS(sequential_design(smi::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, small), smi::InvalidArgument);
-  CHECK_THROWS_AS(sequential_design(smi::doe::lhs(8, 2, 7), Eigen::MatrixXd::Zero(5, 3), Eigen::VectorXd::Ones(5), f, o),
+  CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, small), smi::InvalidArgument);
+  CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), Eigen::MatrixXd::Zero(5, 3), Eigen::VectorXd::Ones(5), f, o),
                   smi::DimensionMismatch);
 }

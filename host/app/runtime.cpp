@@ -1,5 +1,5 @@
-#include "vm/runtime.hpp"
-#include "vm/docs.hpp"
+#include "app/runtime.hpp"
+#include "app/docs.hpp"
 
 #include <cctype>
 #include <chrono>
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/atomic_file.hpp"
-#include "core/cancel.hpp"
-#include "eval/folder_lock.hpp"
-#include "modules.hpp"
+#include "bindings/modules.hpp"
+#include "kernels/core/atomic_file.hpp"
+#include "kernels/core/cancel.hpp"
+#include "kernels/eval/folder_lock.hpp"
 #include "luax/luax.hpp"
 #include "sandbox/sandbox.hpp"
 #include "vm/library_lua.hpp"
@@ -44,7 +44,7 @@ const char* removed_hint(const char* msg) {
 /// Message handler of every chunk: message plus traceback. An os.exit request passes through
 /// untouched; a non-string error is described; a call of a removed function says why.
 int msghandler(lua_State* L) {
-  if (lua_touserdata(L, 1) == exit_sentinel()) return 1;
+  if (lua_touserdata(L, 1) == lua::exit_sentinel()) return 1;
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
@@ -267,6 +267,8 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
     if (limits_.interrupted && limits_.interrupted != SIGINT)
       return std::string("interrupted by ") + signal_name(limits_.interrupted);
     if (limits_.interrupted || limits_.abort == Abort::interrupt) return "interrupted";
+    // os.exit from a parse function (or --dry-run's request_exit): stop as Ctrl-C would
+    if (limits_.abort == Abort::exit) return "interrupted";
     if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
       trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
     char buf[200];

@@ -7,7 +7,7 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "core/defaults.hpp"
+#include "kernels/core/defaults.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 #include "vm/libraries.hpp"

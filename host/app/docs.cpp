@@ -7,10 +7,10 @@
 #include <exception>
 #include <string>
 
-#include "doc.hpp"
+#include "app/docs.hpp"
+#include "app/runtime.hpp"
+#include "bindings/doc.hpp"
 #include "luax/luax.hpp"
-#include "vm/docs.hpp"
-#include "vm/runtime.hpp"
 
 namespace smi::vm {
 namespace {
@@ -119,7 +119,7 @@ int smi_docs(lua_State* L) {
   std::vector<bind::DocText> texts;
   const int r = lua::protect(L, "smi._docs", [&] {
     texts = bind::binding_docs();
-    texts.push_back({"host/vm/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
+    texts.push_back({"host/app/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
     return 0;
   });
   lua_createtable(L, 0, 2);
