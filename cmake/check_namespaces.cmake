@@ -5,7 +5,6 @@
 # (smi::surrogate::kriging, smi::stats::detail); core is the shared vocabulary in smi and its
 # components (smi::cancel, smi::pool, ...), and opens no other area's namespace. Run by the test
 # layout.namespace_check (tests/layout/). Each violation: "<file>:<line>: namespace <name> -- <rule>".
-# After a merge, tools/migrate/qualify_namespaces.py converts files still in the old namespaces.
 
 cmake_minimum_required(VERSION 3.25)
 
@@ -54,5 +53,5 @@ endforeach()
 
 if(_count GREATER 0)
   message(NOTICE "${_violations}")
-  message(FATAL_ERROR "${_count} kernel namespace(s) outside their area; the rule is in cmake/check_namespaces.cmake (tools/migrate/qualify_namespaces.py converts old ones)")
+  message(FATAL_ERROR "${_count} kernel namespace(s) outside their area; the rule is in cmake/check_namespaces.cmake and the README (Layout)")
 endif()

@@ -6,7 +6,7 @@
 -- refinements, the conclusion and the solver runs. Made by tests/reference/study_full_path.sh
 -- (which runs that study, about 5 minutes on 2 cores), so CI never pays the 9,400 runs.
 -- usage: smi-lua --allow-read DIR --allow-write OUTDIR tests/reference/study_full_path.lua RESULTS.json OUT.json
-local R = smi.json.read(assert(arg[1], "usage: study_full_path.lua RESULTS.json OUT.json"))
+local R = smi.json.read((assert(arg[1], "usage: study_full_path.lua RESULTS.json OUT.json")))  -- one argument: assert returns two
 local out_file = assert(arg[2], "usage: study_full_path.lua RESULTS.json OUT.json")
 local S = R.steps
 local sc = S.screening.result
