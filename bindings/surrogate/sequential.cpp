@@ -8,6 +8,8 @@
 // and its LOO RMSE `rmse[<output>]` (when given), or the design holds `max` points.
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "bindings/surrogate/kriging_box.hpp"
 #include "bindings/surrogate/model_arg.hpp"
@@ -18,6 +20,100 @@
 namespace smi::bind::surrogate {
 namespace {
 
+namespace kr = smi::surrogate::kriging;
+
+// The options the kernel reads from the call's table (defaults: the kernel's SequentialOptions);
+// the trend and correlation names stay text until inside protect (their parse throws).
+struct SequentialArgs {
+  kr::SequentialOptions so;
+  std::string trend = "constant", corr = "gauss";
+  std::vector<std::string> input_names;
+  Eigen::MatrixXd design, candidates;
+  Eigen::VectorXd weights;
+};
+
+SequentialArgs read_sequential_args(lua_State* L, lua::Options& o, const ModelArg& model, const char* fname) {
+  SequentialArgs a;
+  auto matrix = [&](const char* key) {
+    if (o.push(key) == LUA_TNIL) luaL_error(L, "%s: '%s' is required", fname, key);
+    Eigen::MatrixXd m = lua::to_matrix(L, -1, key);
+    lua_pop(L, 1);
+    return m;
+  };
+  a.design = matrix("design");
+  a.candidates = matrix("candidates");
+  if (o.push("weights") == LUA_TNIL) a.weights = Eigen::VectorXd::Ones(a.candidates.rows());
+  else a.weights = lua::to_vector(L, -1, "weights");
+  lua_pop(L, 1);
+  a.so.batch = static_cast<Eigen::Index>(o.integer("batch", static_cast<lua_Integer>(a.so.batch)));
+  a.so.max_points = static_cast<Eigen::Index>(o.integer("max", static_cast<lua_Integer>(a.so.max_points)));
+  a.so.q2_target = o.number("q2", a.so.q2_target);
+  a.so.fit.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  a.trend = o.string("trend", a.trend);
+  a.corr = o.string("corr", a.corr);
+  if (o.has("inputs")) {
+    o.push("inputs");
+    a.input_names = lua::to_strings(L, -1, "inputs");
+    lua_pop(L, 1);
+  } else {
+    a.input_names = model.input_names;
+  }
+  return a;
+}
+
+// rmse = {<output> = target}: read once the model's first call has named its outputs.
+void read_rmse_targets(lua_State* L, int rmse_idx, const std::vector<std::string>& outputs, kr::SequentialOptions& so) {
+  so.rmse_target = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(outputs.size()), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t j = 0; j < outputs.size(); ++j) {
+    lua_getfield(L, rmse_idx, outputs[j].c_str());
+    if (lua_isnumber(L, -1)) so.rmse_target(static_cast<Eigen::Index>(j)) = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+}
+
+// {<output> = f(j)} for each output name.
+template <class F>
+void push_per_output(lua_State* L, const std::vector<std::string>& outs, F&& push_value) {
+  lua_createtable(L, 0, static_cast<int>(outs.size()));
+  for (std::size_t j = 0; j < outs.size(); ++j) {
+    push_value(j);
+    lua_setfield(L, -2, outs[j].c_str());
+  }
+}
+
+// The result table: X, Y, kriging, history, reached, stop.
+void push_sequential_result(lua_State* L, const kr::SequentialResult& r, const std::vector<std::string>& outs,
+                            const std::vector<std::string>& input_names) {
+  lua_createtable(L, 0, 6);
+  lua::push_mat(L, r.X);
+  lua_setfield(L, -2, "X");
+  push_per_output(L, outs, [&](std::size_t j) { lua::push_vec(L, r.Y.col(static_cast<Eigen::Index>(j))); });
+  lua_setfield(L, -2, "Y");
+  push_per_output(L, outs, [&](std::size_t j) {
+    KrigingBox box;
+    box.model = r.models[j];
+    box.inputs = input_names;
+    box.output = outs[j];
+    lua::push_box(L, kKrigingType, std::move(box));
+  });
+  lua_setfield(L, -2, "kriging");
+  lua_createtable(L, static_cast<int>(r.history.size()), 0);
+  for (std::size_t i = 0; i < r.history.size(); ++i) {
+    const auto& h = r.history[i];
+    lua_createtable(L, 0, 3);
+    lua::set_integer(L, "points", static_cast<lua_Integer>(h.points));
+    push_per_output(L, outs, [&](std::size_t j) { lua_pushnumber(L, h.q2(static_cast<Eigen::Index>(j))); });
+    lua_setfield(L, -2, "q2");
+    push_per_output(L, outs, [&](std::size_t j) { lua_pushnumber(L, h.rmse(static_cast<Eigen::Index>(j))); });
+    lua_setfield(L, -2, "rmse");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "history");
+  lua_pushboolean(L, r.reached);
+  lua_setfield(L, -2, "reached");
+  lua::set_string(L, "stop", r.stop);
+}
+
 int sequential_call(lua_State* L) {
   constexpr const char* fname = "smi.kriging.sequential";
   luaL_checktype(L, 1, LUA_TTABLE);
@@ -27,99 +123,29 @@ int sequential_call(lua_State* L) {
   const int model_idx = lua_gettop(L);
   if (lua_isnil(L, model_idx)) return luaL_error(L, "%s: 'model' is required (an smi.model, a function or a model object)", fname);
   ModelArg model = to_model(L, model_idx, fname);
-  auto matrix = [&](const char* key) {
-    if (o.push(key) == LUA_TNIL) luaL_error(L, "%s: '%s' is required", fname, key);
-    Eigen::MatrixXd m = lua::to_matrix(L, -1, key);
-    lua_pop(L, 1);
-    return m;
-  };
-  const Eigen::MatrixXd design = matrix("design"), candidates = matrix("candidates");
-  Eigen::VectorXd weights;
-  if (o.push("weights") == LUA_TNIL)
-    weights = Eigen::VectorXd::Ones(candidates.rows());
-  else
-    weights = lua::to_vector(L, -1, "weights");
-  lua_pop(L, 1);
-  smi::surrogate::kriging::SequentialOptions so;
-  so.batch = static_cast<Eigen::Index>(o.integer("batch", 10));
-  so.max_points = static_cast<Eigen::Index>(o.integer("max", 100));
-  so.q2_target = o.number("q2", 0.999);
-  so.fit.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
-  const std::string trend = o.string("trend", "constant"), corr = o.string("corr", "gauss");
-  std::vector<std::string> input_names;
-  if (o.has("inputs")) {
-    o.push("inputs");
-    input_names = lua::to_strings(L, -1, "inputs");
-    lua_pop(L, 1);
-  } else {
-    input_names = model.input_names;
-  }
+  SequentialArgs a = read_sequential_args(L, o, model, fname);
   const int rmse_t = o.push("rmse");
   const int rmse_idx = lua_gettop(L);
   if (rmse_t != LUA_TNIL && rmse_t != LUA_TTABLE) return luaL_error(L, "%s: 'rmse' must be a table {<output> = target}", fname);
   return lua::protect(L, fname, [&] {
-    so.fit.trend = smi::surrogate::kriging::parse_trend(trend);
-    so.fit.corr = smi::surrogate::kriging::parse_corr(corr);
-    if (!input_names.empty() && static_cast<Eigen::Index>(input_names.size()) != design.cols())
-      throw DimensionMismatch(std::to_string(input_names.size()) + " input names for " + std::to_string(design.cols()) +
+    a.so.fit.trend = kr::parse_trend(a.trend);
+    a.so.fit.corr = kr::parse_corr(a.corr);
+    if (!a.input_names.empty() && static_cast<Eigen::Index>(a.input_names.size()) != a.design.cols())
+      throw DimensionMismatch(std::to_string(a.input_names.size()) + " input names for " + std::to_string(a.design.cols()) +
                               " columns of the design");
     // The model's first call (the initial design) fills its output names, which the RMSE
     // targets are read by; the kernel then gets those outputs back on its own first call.
-    const Eigen::MatrixXd Y0 = model.fn(design);
-    if (rmse_t != LUA_TNIL) {
-      so.rmse_target = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(model.outputs->size()),
-                                                 std::numeric_limits<double>::quiet_NaN());
-      for (std::size_t j = 0; j < model.outputs->size(); ++j) {
-        lua_getfield(L, rmse_idx, (*model.outputs)[j].c_str());
-        if (lua_isnumber(L, -1)) so.rmse_target(static_cast<Eigen::Index>(j)) = lua_tonumber(L, -1);
-        lua_pop(L, 1);
-      }
-    }
+    const Eigen::MatrixXd Y0 = model.fn(a.design);
+    if (rmse_t != LUA_TNIL) read_rmse_targets(L, rmse_idx, *model.outputs, a.so);
     bool served = false;
-    const smi::surrogate::kriging::SequentialResult r = smi::surrogate::kriging::sequential_design(design, candidates, weights, [&](const Eigen::MatrixXd& X) {
+    const kr::SequentialResult r = kr::sequential_design(a.design, a.candidates, a.weights, [&](const Eigen::MatrixXd& X) {
       if (!served) {
         served = true;
         return Y0;
       }
       return model.fn(X);
-    }, so);
-    const auto& outs = *model.outputs;
-    lua_createtable(L, 0, 6);
-    lua::push_mat(L, r.X);
-    lua_setfield(L, -2, "X");
-    lua_createtable(L, 0, static_cast<int>(outs.size()));
-    for (std::size_t j = 0; j < outs.size(); ++j) {
-      lua::push_vec(L, r.Y.col(static_cast<Eigen::Index>(j)));
-      lua_setfield(L, -2, outs[j].c_str());
-    }
-    lua_setfield(L, -2, "Y");
-    lua_createtable(L, 0, static_cast<int>(outs.size()));
-    for (std::size_t j = 0; j < outs.size(); ++j) {
-      KrigingBox box;
-      box.model = r.models[j];
-      box.inputs = input_names;
-      box.output = outs[j];
-      lua::push_box(L, kKrigingType, std::move(box));
-      lua_setfield(L, -2, outs[j].c_str());
-    }
-    lua_setfield(L, -2, "kriging");
-    lua_createtable(L, static_cast<int>(r.history.size()), 0);
-    for (std::size_t i = 0; i < r.history.size(); ++i) {
-      const auto& h = r.history[i];
-      lua_createtable(L, 0, 3);
-      lua::set_integer(L, "points", static_cast<lua_Integer>(h.points));
-      for (const char* key : {"q2", "rmse"}) {
-        const Eigen::VectorXd& v = key[0] == 'q' ? h.q2 : h.rmse;
-        lua_createtable(L, 0, static_cast<int>(outs.size()));
-        for (std::size_t j = 0; j < outs.size(); ++j) lua::set_number(L, outs[j].c_str(), v(static_cast<Eigen::Index>(j)));
-        lua_setfield(L, -2, key);
-      }
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-    }
-    lua_setfield(L, -2, "history");
-    lua_pushboolean(L, r.reached);
-    lua_setfield(L, -2, "reached");
-    lua::set_string(L, "stop", r.stop);
+    }, a.so);
+    push_sequential_result(L, r, *model.outputs, a.input_names);
     return 1;
   });
 }
