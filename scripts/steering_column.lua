@@ -69,23 +69,31 @@ local opt = options.parse(arg, {
   { name = "multistart", type = "integer", default = 1, min = 1,
     meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
   { name = "prior", type = "path",
-    meaning = "a Lua file returning smi.calibrate prior entries (the analyst's knowledge, e.g. a weighed mass); none by default" },
+    meaning = "a Lua file returning smi.calibrate prior entries (the analyst's knowledge, e.g. a weighed"
+      .. " mass); none by default" },
   { name = "max-refinements", type = "integer", default = 2, min = 0,
     meaning = "how many refinements (revised trials) to try after an invalid trial" },
   { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" },
-    meaning = "eq.-3 screening on a ridge quadratic fitted to --screening-runs runs (economical), or on the model itself ((46 + 1) x 200 runs, 40 with --quick)" },
+    meaning = "eq.-3 screening on a ridge quadratic fitted to --screening-runs runs (economical), or on the"
+      .. " model itself ((46 + 1) x 200 runs, 40 with --quick)" },
   { name = "screening-runs", type = "integer", default = 300, min = 50,
     meaning = "solver runs of the surrogate screening" },
   { name = "design", type = "string", default = "fixed", allowed = { "fixed", "sequential" },
-    meaning = "the trials' Kriging designs: the maximin hypercube of the model's n_design points, or sequential: start small and add batches until every mode's leave-one-out Q2 reaches 0.999 (at most n_design points; on the committed data it reaches neither and moves trial 1's calibration, README)" },
+    meaning = "the trials' Kriging designs: the maximin hypercube of the model's n_design points, or"
+      .. " sequential: start small and add batches until every mode's leave-one-out Q2 reaches 0.999 (at"
+      .. " most n_design points; on the committed data it reaches neither and moves trial 1's calibration,"
+      .. " README)" },
   { name = "test-points", type = "integer", min = 5,
     meaning = "independent test points of each Kriging (default 20; the paper's-size run: 50)" },
   { name = "solver-check", type = "integer", min = 10,
-    meaning = "points of the validation's solver check, stratified over the calibrated distributions (default 40; before issue 16: 300, 100 with --quick)" },
+    meaning = "points of the validation's solver check, stratified over the calibrated distributions"
+      .. " (default 40; before issue 16: 300, 100 with --quick)" },
   { name = "dry-run", type = "flag", default = false,
-    meaning = "print the cost plan (runs per step x minutes per run / concurrency, total runs and wall time) and stop before anything runs" },
+    meaning = "print the cost plan (runs per step x minutes per run / concurrency, total runs and wall time)"
+      .. " and stop before anything runs" },
   { name = "minutes-per-run", type = "number", min = 0,
-    meaning = "the solver's minutes per run for the cost plan (default: the mean of the runs in the evaluation store)" },
+    meaning = "the solver's minutes per run for the cost plan (default: the mean of the runs in the"
+      .. " evaluation store)" },
   options.study_steps,
   epilog = "smi-lua's own --out DIR (default smi-out/steering_column/), --seed N and --quiet apply.",
 })
@@ -197,10 +205,13 @@ s:step("characterize", timed(function(ctx)
     local e = ebd[m]
     local lo = math.min(e.lower, data[m]:min()) - 3 * e.bandwidth
     local hi = math.max(e.upper, data[m]:max()) + 3 * e.bandwidth
-    local c = { kde = trial.pdf_curve(k, data[m], lo, hi), ebd = trial.pdf_curve(e, data[m], lo, hi), data = data[m]:totable() }
-    out[m] = { mean = data[m]:mean(), std = data[m]:std(), kde_bandwidth = k.bandwidth, ebd_bandwidth = e.bandwidth,
+    local c = { kde = trial.pdf_curve(k, data[m], lo, hi), ebd = trial.pdf_curve(e, data[m], lo, hi),
+                data = data[m]:totable() }
+    out[m] = { mean = data[m]:mean(), std = data[m]:std(), kde_bandwidth = k.bandwidth,
+               ebd_bandwidth = e.bandwidth,
                ebd_lower = e.lower, ebd_upper = e.upper, ebd_added = e.added, ebd_std = e:std() }
-    figures[#figures + 1] = { figs.kde_vs_ebd(m, c), figs.title[m] .. ": KDE of the data and KDE with estimated bounded data." }
+    figures[#figures + 1] = { figs.kde_vs_ebd(m, c),
+                              figs.title[m] .. ": KDE of the data and KDE with estimated bounded data." }
     rows[#rows + 1] = { figs.title[m], out[m].mean, out[m].std, k.bandwidth, e.bandwidth, e.lower, e.upper, e.added }
   end
   local r = ctx.report
@@ -208,7 +219,8 @@ s:step("characterize", timed(function(ctx)
   r:text(text.characterize_intro(#data.mode1))
   r:figures(figures)
   r:table{ caption = "Data summary and bandwidths (Hz).", rows = rows,
-           columns = { "Mode", "Mean", "Std", "h KDE", "h KDE-ebd", "ebd lower", "ebd upper", { title = "Points added", format = "%d" } } }
+           columns = { "Mode", "Mean", "Std", "h KDE", "h KDE-ebd", "ebd lower", "ebd upper",
+                       { title = "Points added", format = "%d" } } }
   return out
 end))
 
@@ -222,46 +234,48 @@ s:step("screening", timed(function(ctx)
   -- four per mode as the full screening's 9,400 runs); full: eq. 3 on column-fe itself
   local sur = cfg.screening == "surrogate"
   local runs = sur and cfg.screen_runs or (#inputs.names + 1) * cfg.screen_n
-  local bm = solver.batch{ solver = opt.solver, airbag = "rigid", vary = inputs.names, name = sur and "screening-surrogate" or "screening", base = base,
+  local bm = solver.batch{ solver = opt.solver, airbag = "rigid", vary = inputs.names,
+                           name = sur and "screening-surrogate" or "screening", base = base,
                            batch_size = math.ceil((sur and cfg.screen_runs or cfg.screen_n) / 2), concurrency = 2 }
   local n = sur and 10000 or cfg.screen_n
   if sur then
-    ctx:log("%d inputs: %d solutions on a Latin hypercube (batch runs), a ridge quadratic per mode, eq. 3 on it with %d CRN samples", #inputs.names, runs, n)
+    ctx:log("%d inputs: %d solutions on a Latin hypercube (batch runs), a ridge quadratic per mode,"
+            .. " eq. 3 on it with %d CRN samples", #inputs.names, runs, n)
   else
-    ctx:log("%d inputs x %d samples (common random numbers): %d solutions in batch runs", #inputs.names, cfg.screen_n, runs)
+    ctx:log("%d inputs x %d samples (common random numbers): %d solutions in batch runs",
+            #inputs.names, cfg.screen_n, runs)
   end
   local res = smi.screen{ model = bm, inputs = inputs.screening_inputs(), n = n, seed = seed + 20, sobol = false,
                           method = sur and "surrogate" or nil, runs = sur and cfg.screen_runs or nil }
   local out = { n = n, seed = seed + 20, modes = {}, method = cfg.screening, solver_solutions = runs }
-  local chosen = { column_frame_E = true, ecu_bracket_thickness = true, wheel_cover_rho = true, wheel_cover_thickness = true }
+  local chosen = { column_frame_E = true, ecu_bracket_thickness = true, wheel_cover_rho = true,
+                   wheel_cover_thickness = true }
   local figures = {}
   for _, m in ipairs(MODES) do
     local rows = {}
     for i, row in ipairs(res[m]) do rows[i] = { input = row.input, e = row.e, ne = row.ne, rank = row.rank } end
-    out.modes[m] = { rows = rows, warnings = res[m].warnings, top = { rows[1].input, rows[2].input, rows[3].input, rows[4].input },
+    out.modes[m] = { rows = rows, warnings = res[m].warnings,
+                     top = { rows[1].input, rows[2].input, rows[3].input, rows[4].input },
                      q2 = res[m].q2 }
-    figures[#figures + 1] = { figs.screening(m, rows, chosen), figs.title[m] .. ": the ten largest normalized area metrics (Table 2 analog); highlighted: the trial-1 unknowns." }
+    figures[#figures + 1] = { figs.screening(m, rows, chosen), figs.title[m]
+      .. ": the ten largest normalized area metrics (Table 2 analog); highlighted: the trial-1 unknowns." }
   end
   local top1 = out.modes.mode1.top
   out.dominant_confirmed = (top1[1] == "column_frame_E" or top1[1] == "ecu_bracket_thickness")
     and (top1[2] == "column_frame_E" or top1[2] == "ecu_bracket_thickness")
   local r = ctx.report
   r:section("Variable screening")
-  if sur then
-    r:text(("Area-metric screening (eq. 3 and 7) at the solver's cost: column-fe (model A, rigid airbag) ran %d times in batch mode on a Latin hypercube of the 46 inputs through the spec's default distributions; a ridge quadratic per mode (leave-one-out Q² %.4f, %.4f, %.4f for modes 1, 2, 4) stands in for the model, and each input is fixed at its mean in turn on one common-random-number sample of %d points of it. The full screening on the model itself ((46 + 1) × 200 = 9,400 runs, --screening full) ranks the same four inputs first in every mode (bench/results/study_budget.md)."):format(
-      runs, out.modes.mode1.q2, out.modes.mode2.q2, out.modes.mode4.q2, n))
-  else
-    r:text(("Area-metric screening (eq. 3 and 7): each of the 46 inputs is fixed at its mean in turn on one common-random-number sample of %d points of the spec's default distributions, model A (rigid airbag), %d column-fe solutions run in batch mode."):format(cfg.screen_n, runs))
-  end
+  r:text(text.screening_intro(out))
   r:figures(figures)
   local rows = {}
   for _, m in ipairs(MODES) do
     local t = out.modes[m].rows
-    rows[#rows + 1] = { figs.title[m], ("%s %.3f"):format(t[1].input, t[1].ne), ("%s %.3f"):format(t[2].input, t[2].ne), ("%s %.3f"):format(t[3].input, t[3].ne), ("%s %.3f"):format(t[4].input, t[4].ne) }
+    rows[#rows + 1] = { figs.title[m], ("%s %.3f"):format(t[1].input, t[1].ne), ("%s %.3f"):format(t[2].input, t[2].ne),
+                        ("%s %.3f"):format(t[3].input, t[3].ne), ("%s %.3f"):format(t[4].input, t[4].ne) }
   end
-  r:table{ caption = "The four most influential inputs per mode (normalized area metric).", columns = { "Mode", "1st", "2nd", "3rd", "4th" }, rows = rows }
-  r:callout(out.dominant_confirmed and "As in the paper's Table 2, the column frame's modulus and the ECU bracket's thickness dominate mode 1; with the wheel cover's density and thickness (whose statistics are unknown) they are the trial-1 unknowns."
-    or "The screening ranks other inputs above the column modulus and the ECU bracket thickness for mode 1; the study keeps the paper's unknowns.", out.dominant_confirmed and "info" or "warn")
+  r:table{ caption = "The four most influential inputs per mode (normalized area metric).",
+           columns = { "Mode", "1st", "2nd", "3rd", "4th" }, rows = rows }
+  r:callout(text.screening_callout(out.dominant_confirmed), out.dominant_confirmed and "info" or "warn")
   return out
 end))
 
@@ -296,19 +310,17 @@ local function surrogate_step(k)
   return timed(function(ctx)
     local T, why = trial_model(ctx.results, k)
     if not T then return skipped(why) end
-    ctx:log("%s: %s of %d unknowns, %s airbag; %d test points", label(T, k), cfg.design == "sequential" and ("sequential design of at most " .. T.n_design .. " points")
+    ctx:log("%s: %s of %d unknowns, %s airbag; %d test points", label(T, k),
+      cfg.design == "sequential" and ("sequential design of at most " .. T.n_design .. " points")
       or (T.n_design .. "-point Latin hypercube"), #T.unknowns, T.airbag, cfg.test_points)
-    local res = trial.surrogate{ name = "trial" .. k, airbag = T.airbag, fixed = T.fixed, unknowns = T.unknowns, specs = T.specs, trend = T.trend,
-                                 n_design = T.n_design, design = cfg.design, n_test = cfg.test_points, seed = seed + 100 * k, solver = opt.solver }
+    local res = trial.surrogate{ name = "trial" .. k, airbag = T.airbag, fixed = T.fixed, unknowns = T.unknowns,
+                                 specs = T.specs, trend = T.trend, n_design = T.n_design, design = cfg.design,
+                                 n_test = cfg.test_points, seed = seed + 100 * k, solver = opt.solver }
     res.model = T
     local r = ctx.report
     r:section(label(T, k) .. ": surrogate model")
-    local sq = res.sequential
-    local how = sq and ("a sequential design of %d points (a %d-point maximin Latin hypercube, then batches of %d where the Kriging variance, weighted by where the calibration can put the unknowns' mass, is largest; %s; the fixed design it replaces has %d)"):format(
-      res.n_design, sq.initial, sq.batch, sq.reached and ("stopped at leave-one-out Q² ≥ " .. sq.q2_target .. " in every mode") or ("stopped at its limit: " .. sq.stop), T.n_design)
-      or ("a %d-point maximin Latin hypercube"):format(res.n_design)
-    r:text(("Kriging (Gauss correlation, %s trend, hyperparameters by maximum likelihood) of modes 1, 2 and 4 on %s of the unknowns %s over the design box (mean bounds widened by 3 std bounds; uniform: √3), %s airbag%s. Every solution is a column-fe run through smi.model.command, kept in the evaluation store. An independent %d-point hypercube measures the test RMSE (the paper's Tables 3 and 7)."):format(
-      T.trend, how, table.concat(T.unknowns, ", "), T.airbag, next(T.fixed) and (", fixed " .. assignments(T.fixed)) or "", cfg.test_points))
+    local fixed = next(T.fixed) and (", fixed " .. assignments(T.fixed)) or ""
+    r:text(text.surrogate_intro(T, res, fixed, cfg.test_points))
     local figures, rows = {}, {}
     for _, m in ipairs(MODES) do
       local d = res.diagnostics[m]
@@ -322,7 +334,8 @@ local function surrogate_step(k)
       if units then r:callout(units, "warn") ctx:log("%s", units) end
     end
     r:figures(figures)
-    r:table{ caption = "Kriging accuracy (Hz).", columns = { "Mode", "LOO Q²", "LOO RMSE", "Test RMSE" }, rows = rows }
+    r:table{ caption = "Kriging accuracy (Hz).", columns = { "Mode", "LOO Q²", "LOO RMSE", "Test RMSE" },
+             rows = rows }
     local box = {}
     for _, n in ipairs(T.unknowns) do box[#box + 1] = { n, res.design_bounds[n][1], res.design_bounds[n][2] } end
     r:table{ caption = "Design box of the unknowns.", columns = { "Input", "Lower", "Upper" }, rows = box }
@@ -562,7 +575,8 @@ local function summary_tables(r, R)
   end
   per[#per + 1] = { "total", total, "", "" }
   r:table{ caption = ("Solver runs per step (column-fe solutions; new: not found in the evaluation store)."
-             .. " Screening: %s; Kriging test points %d; solver check %d points (issue 16's budget: at most 1,000)."):format(
+             .. " Screening: %s; Kriging test points %d; solver check %d points"
+             .. " (issue 16's budget: at most 1,000)."):format(
              cfg.screening == "surrogate" and ("surrogate, " .. cfg.screen_runs .. " runs") or "full eq. 3",
              cfg.test_points, cfg.solver_check),
            columns = { "Step", { title = "Solutions", format = "%d" }, { title = "New", format = "%s" },
@@ -590,9 +604,11 @@ end))
 -- The cost plan before anything runs (--dry-run, or smi-lua's own --dry-run, which then goes on to
 -- count the runs the store already holds).
 if opt.dry_run or smi.dry_run then
-  local probe = solver.command{ solver = opt.solver, airbag = "rigid", vary = { "column_frame_E" }, name = "cost-probe" }
+  local probe = solver.command{ solver = opt.solver, airbag = "rigid", vary = { "column_frame_E" },
+                               name = "cost-probe" }
   local minutes, source = cost.minutes_per_run(opt.minutes_per_run, probe)
-  local text = cost.plan_text(cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, initial = models.initial(), candidates = candidates }, minutes, source)
+  local plan = cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, initial = models.initial(), candidates = candidates }
+  local text = cost.plan_text(plan, minutes, source)
   io.stdout:write(text)
   if opt.dry_run then return end
 end

@@ -29,7 +29,8 @@ function M.tolerance(t)
   local n = #t.data[MODES[1]]
   if t.metric ~= "pr" then
     return { value = 1.920729,
-             basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows"):format(n) }
+             basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows")
+               :format(n) }
   end
   local Y = t.predicted(t.theta, MODES)
   local pred = {}

@@ -36,9 +36,12 @@ end
 -- refinement's choice, so their design counts the largest candidate's (an upper bound).
 function M.plan(t)
   local cfg, rows = t.cfg, {}
-  local function add(step, runs, why, cond) rows[#rows + 1] = { step = step, runs = runs, why = why, conditional = cond } end
+  local function add(step, runs, why, cond)
+    rows[#rows + 1] = { step = step, runs = runs, why = why, conditional = cond }
+  end
   if cfg.screening == "surrogate" then
-    add("screening", cfg.screen_runs, ("surrogate screening: %d runs on a Latin hypercube of the 46 inputs"):format(cfg.screen_runs))
+    add("screening", cfg.screen_runs,
+        ("surrogate screening: %d runs on a Latin hypercube of the 46 inputs"):format(cfg.screen_runs))
   else
     add("screening", (#inputs.names + 1) * cfg.screen_n, ("full eq.-3 screening: (46 + 1) x %d"):format(cfg.screen_n))
   end
@@ -48,11 +51,15 @@ function M.plan(t)
     local n = k == 1 and t.initial.n_design or largest
     local cond = k > 1 and ("only if trial %d is invalid"):format(k - 1) or nil
     add(("trial%d_surrogate"):format(k), n + cfg.test_points, cfg.design == "sequential"
-      and ("sequential Kriging design: at most %d points (stops on its leave-one-out target), + %d test points"):format(n, cfg.test_points)
+      and ("sequential Kriging design: at most %d points (stops on its leave-one-out target),"
+           .. " + %d test points"):format(n, cfg.test_points)
       or ("%d-point Latin hypercube + %d test points"):format(n, cfg.test_points), cond)
-    add(("trial%d_validation"):format(k), cfg.solver_check, ("solver check of the Kriging verdicts: %d points"):format(cfg.solver_check), cond)
+    add(("trial%d_validation"):format(k), cfg.solver_check,
+        ("solver check of the Kriging verdicts: %d points"):format(cfg.solver_check), cond)
     if k == 1 and t.max_trials > 1 then
-      add("refinement1", #t.candidates, ("decision matrix: each of the %d candidates once at the initial means"):format(#t.candidates), "only if trial 1 is invalid")
+      add("refinement1", #t.candidates,
+          ("decision matrix: each of the %d candidates once at the initial means"):format(#t.candidates),
+          "only if trial 1 is invalid")
     end
   end
   return rows
@@ -75,7 +82,8 @@ function M.plan_text(rows, minutes, source)
   w("  %-20s %6s %10s  %s", "step", "runs", "wall", "what")
   local total, sure = 0, 0
   for _, r in ipairs(rows) do
-    w("  %-20s %6d %10s  %s%s", r.step, r.runs, wall(r.runs), r.why, r.conditional and (" [" .. r.conditional .. "]") or "")
+    w("  %-20s %6d %10s  %s%s", r.step, r.runs, wall(r.runs), r.why,
+      r.conditional and (" [" .. r.conditional .. "]") or "")
     total = total + r.runs
     if not r.conditional then sure = sure + r.runs end
   end

@@ -42,7 +42,8 @@ function M.sequential(t)
   local n0 = math.min(t.max, 4 * d)
   local X0 = smi.doe.lhs(n0, t.box, { seed = t.seed, criterion = "maximin" })
   local C = smi.doe.lhs(M.CANDIDATES, t.box, { seed = t.seed + 2000, criterion = "none" })
-  local r = smi.kriging.sequential{ model = t.model, design = X0, candidates = C, weights = M.weights(C, t.unknowns, t.specs),
+  local r = smi.kriging.sequential{ model = t.model, design = X0, candidates = C,
+                                    weights = M.weights(C, t.unknowns, t.specs),
                                     batch = M.BATCH, max = t.max, q2 = M.Q2_TARGET, trend = t.trend, corr = "gauss",
                                     seed = t.seed, inputs = t.unknowns }
   local history = {}

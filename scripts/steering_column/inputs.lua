@@ -27,7 +27,9 @@ do -- bushes (5 % std), bearings (5 %), tilt lock (5 %)
     end
   end
   for b = 1, 4 do
-    for _, dir in ipairs{ "kl", "kv" } do M.list[#M.list + 1] = { ("bearing%d_%s"):format(b, dir), 15000, "normal", 750 } end
+    for _, dir in ipairs{ "kl", "kv" } do
+      M.list[#M.list + 1] = { ("bearing%d_%s"):format(b, dir), 15000, "normal", 750 }
+    end
   end
   M.list[#M.list + 1] = { "tilt_lock_k", 200, "normal", 10 }
 end
@@ -56,7 +58,8 @@ end
 -- start}, unit. The unknowns a refinement adds are declared by its candidate
 -- (refinement/candidates.lua), not here.
 local unknown = {
-  wheel_cover_rho = { dist = "uniform", mean = { 0.5e-9, 1.5e-9, 1.00e-9 }, std = { 0.08e-9, 0.24e-9, 0.16e-9 }, unit = "t/mm³" },
+  wheel_cover_rho = { dist = "uniform", mean = { 0.5e-9, 1.5e-9, 1.00e-9 }, std = { 0.08e-9, 0.24e-9, 0.16e-9 },
+                      unit = "t/mm³" },
   column_frame_E = { dist = "normal", mean = { 102500, 307500, 205000 }, std = { 7790, 23370, 15580 }, unit = "MPa" },
   wheel_cover_thickness = { dist = "lognormal", mean = { 2.75, 8.25, 5.5 }, std = { 0.09, 0.26, 0.18 }, unit = "mm" },
   ecu_bracket_thickness = { dist = "lognormal", mean = { 1.6, 4.8, 3.2 }, std = { 0.07, 0.20, 0.14 }, unit = "mm" },

@@ -133,6 +133,59 @@ function M.characterize_intro(n)
 end
 
 -- ---------------------------------------------------------------------------------------------
+-- Screening
+-- ---------------------------------------------------------------------------------------------
+
+--- The screening's paragraph: out is the screening step's record (method, n, solver_solutions,
+-- the surrogate's leave-one-out Q² per mode).
+function M.screening_intro(out)
+  if out.method == "surrogate" then
+    return ("Area-metric screening (eq. 3 and 7) at the solver's cost: column-fe (model A, rigid airbag) ran %d"
+      .. " times in batch mode on a Latin hypercube of the 46 inputs through the spec's default distributions;"
+      .. " a ridge quadratic per mode (leave-one-out Q² %.4f, %.4f, %.4f for modes 1, 2, 4) stands in for the"
+      .. " model, and each input is fixed at its mean in turn on one common-random-number sample of %d points"
+      .. " of it. The full screening on the model itself ((46 + 1) × 200 = 9,400 runs, --screening full) ranks"
+      .. " the same four inputs first in every mode (bench/results/study_budget.md)."):format(
+      out.solver_solutions, out.modes.mode1.q2, out.modes.mode2.q2, out.modes.mode4.q2, out.n)
+  end
+  return ("Area-metric screening (eq. 3 and 7): each of the 46 inputs is fixed at its mean in turn on one"
+    .. " common-random-number sample of %d points of the spec's default distributions, model A (rigid airbag),"
+    .. " %d column-fe solutions run in batch mode."):format(out.n, out.solver_solutions)
+end
+
+--- Whether the screening confirms the paper's trial-1 unknowns for mode 1.
+function M.screening_callout(confirmed)
+  if confirmed then
+    return "As in the paper's Table 2, the column frame's modulus and the ECU bracket's thickness dominate mode 1;"
+      .. " with the wheel cover's density and thickness (whose statistics are unknown) they are the trial-1 unknowns."
+  end
+  return "The screening ranks other inputs above the column modulus and the ECU bracket thickness for mode 1;"
+    .. " the study keeps the paper's unknowns."
+end
+
+-- ---------------------------------------------------------------------------------------------
+-- Surrogate
+-- ---------------------------------------------------------------------------------------------
+
+--- A trial's surrogate paragraph: T the trial's model, res its surrogate step's record, fixed the
+-- words for its fixed inputs ("" or ", fixed a = 1, ..."), test_points the independent test points.
+function M.surrogate_intro(T, res, fixed, test_points)
+  local sq = res.sequential
+  local how = sq and ("a sequential design of %d points (a %d-point maximin Latin hypercube, then batches of %d"
+    .. " where the Kriging variance, weighted by where the calibration can put the unknowns' mass, is largest;"
+    .. " %s; the fixed design it replaces has %d)"):format(
+    res.n_design, sq.initial, sq.batch,
+    sq.reached and ("stopped at leave-one-out Q² ≥ " .. sq.q2_target .. " in every mode")
+      or ("stopped at its limit: " .. sq.stop), T.n_design)
+    or ("a %d-point maximin Latin hypercube"):format(res.n_design)
+  return ("Kriging (Gauss correlation, %s trend, hyperparameters by maximum likelihood) of modes 1, 2 and 4 on"
+    .. " %s of the unknowns %s over the design box (mean bounds widened by 3 std bounds; uniform: √3), %s"
+    .. " airbag%s. Every solution is a column-fe run through smi.model.command, kept in the evaluation store."
+    .. " An independent %d-point hypercube measures the test RMSE (the paper's Tables 3 and 7)."):format(
+    T.trend, how, table.concat(T.unknowns, ", "), T.airbag, fixed, test_points)
+end
+
+-- ---------------------------------------------------------------------------------------------
 -- Calibration
 -- ---------------------------------------------------------------------------------------------
 

@@ -86,7 +86,8 @@ function M.batch(opts)
     input_file = "points.csv", files = { opts.base },
     command = { opts.solver, "--batch", "{deck}", "--base", opts.base:match("[^/]+$"), "-o", "modes.csv" },
     parse = function(dir, h, n)
-      return { mode1 = h.csv("modes.csv", "mode1_hz"), mode2 = h.csv("modes.csv", "mode2_hz"), mode4 = h.csv("modes.csv", "mode4_hz") }
+      return { mode1 = h.csv("modes.csv", "mode1_hz"), mode2 = h.csv("modes.csv", "mode2_hz"),
+               mode4 = h.csv("modes.csv", "mode4_hz") }
     end,
     batch_size = opts.batch_size or 0, concurrency = opts.concurrency or 2, on_failure = "stop",
   }

@@ -38,13 +38,15 @@ end
 function M.surrogate(t)
   local box = {}
   for i, n in ipairs(t.unknowns) do box[i] = inputs.design_box(t.specs[n]) end
-  local model = solver.command{ solver = t.solver, airbag = t.airbag, fixed = t.fixed, vary = t.unknowns, name = t.name .. "-design" }
+  local model = solver.command{ solver = t.solver, airbag = t.airbag, fixed = t.fixed, vary = t.unknowns,
+                                name = t.name .. "-design" }
   -- sequential (design.lua: start small, add batches, stop on the leave-one-out target) or the
   -- fixed maximin hypercube of n_design points
   local X, Y, seq
   if t.design == "sequential" then
-    X, Y, seq = require("steering_column.design").sequential{ box = box, unknowns = t.unknowns, specs = t.specs, model = model,
-                                                              max = t.n_design, seed = t.seed, trend = t.trend }
+    X, Y, seq = require("steering_column.design").sequential{
+      box = box, unknowns = t.unknowns, specs = t.specs, model = model,
+      max = t.n_design, seed = t.seed, trend = t.trend }
   else
     X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
     Y = model:evaluate(X)
@@ -66,7 +68,8 @@ function M.surrogate(t)
     end
     local loo_pred = {}
     for i = 1, #loo.residuals do loo_pred[i] = Y[m][i] - loo.residuals[i] end
-    diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = #pred > 0 and math.sqrt(se / #pred) or nil, test_range = { ymin, ymax },
+    diag[m] = { loo_q2 = loo.q2, loo_rmse = loo.rmse, test_rmse = #pred > 0 and math.sqrt(se / #pred) or nil,
+                test_range = { ymin, ymax },
                 theta = col_table(k[m].theta), observed = col_table(Y[m]), loo_predicted = loo_pred, model_file = file,
                 warnings = k[m].warnings }
   end
@@ -74,7 +77,8 @@ function M.surrogate(t)
   for i = 1, X:rows() do design[i] = col_table(X[i]) end
   local bounds = {}
   for i, n in ipairs(t.unknowns) do bounds[n] = box[i] end
-  return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = X:rows(), n_test = t.n_test,
+  return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = X:rows(),
+           n_test = t.n_test,
            trend = t.trend, unknowns = t.unknowns, sequential = seq }
 end
 
@@ -93,8 +97,9 @@ function M.krigings(s)
       k[m] = loaded
     else
       X = X or smi.mat(s.design)
-      k[m] = smi.kriging.fit(X, smi.vec(s.diagnostics[m].observed), { trend = s.trend, corr = "gauss", theta = smi.vec(s.diagnostics[m].theta),
-                                                                      inputs = s.unknowns, output = m })
+      k[m] = smi.kriging.fit(X, smi.vec(s.diagnostics[m].observed),
+                             { trend = s.trend, corr = "gauss", theta = smi.vec(s.diagnostics[m].theta),
+                               inputs = s.unknowns, output = m })
     end
   end
   return k
@@ -179,13 +184,15 @@ end
 -- n_solver, n_near, seed, solver}.
 function M.validate(t)
   local k, dists = t.kriging, M.distributions(t.calibration)
-  local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists, n = t.n, seed = t.seed }
+  local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists,
+                               n = t.n, seed = t.seed }
   local out = { n = t.n, n_solver = t.n_solver, modes = {} }
   local Xs = require("steering_column.check_points")(dists, t.n_solver, t.seed + 7)
   local base = solver.write_deck(smi.out(t.name .. "_base.deck"), t.model.airbag, t.model.fixed)
   local names = {}
   for i, d in ipairs(dists) do names[i] = d[1] end
-  local bm = solver.batch{ solver = t.solver, airbag = t.model.airbag, vary = names, name = t.name .. "-check", base = base,
+  local bm = solver.batch{ solver = t.solver, airbag = t.model.airbag, vary = names, name = t.name .. "-check",
+                           base = base,
                            batch_size = math.ceil(t.n_solver / 2), concurrency = 2 }
   local Ysol = bm:evaluate(Xs)
   local used = {}
@@ -193,7 +200,8 @@ function M.validate(t)
   for _, m in ipairs(M.modes) do
     local pred = smi.kde(Ys[m])
     local v = smi.metric.upool{ data = { t.data[m] }, predicted = { pred }, confidence = 0.95, seed = t.seed + 3 }
-    local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95, seed = t.seed + 3 }
+    local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95,
+                                 seed = t.seed + 3 }
     local c = v:curve()
     local o = { metric = v.metric, threshold = v.threshold, p = v.p, pass = v.pass, u = col_table(v.u),
       predicted_mean = Ys[m]:mean(), predicted_std = Ys[m]:std(),
