@@ -10,7 +10,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include "kernels/core/csv.hpp"
+#include "kernels/core/json.hpp"
+#include "kernels/core/number_text.hpp"
 #include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/families.hpp"
@@ -49,18 +53,22 @@ Eigen::VectorXd eval(const Case& c, const Eigen::MatrixXd& X) {
   return y;
 }
 
+// The design (x1..xd) and its outputs (y) through the tree's one CSV codec, with a header row
+// (the peers' numpy reads skip it); numbers in the shortest text that reads back exactly.
 void write_csv(const std::string& path, const Eigen::MatrixXd& X, const Eigen::VectorXd& y) {
-  std::ofstream os(path);
-  os.precision(17);
-  for (Eigen::Index i = 0; i < X.rows(); ++i) {
-    for (Eigen::Index j = 0; j < X.cols(); ++j) os << X(i, j) << ",";
-    os << y[i] << "\n";
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> columns(static_cast<std::size_t>(X.cols() + 1));
+  for (Eigen::Index j = 0; j <= X.cols(); ++j) {
+    header.push_back(j < X.cols() ? "x" + std::to_string(j + 1) : "y");
+    for (Eigen::Index i = 0; i < X.rows(); ++i)
+      columns[static_cast<std::size_t>(j)].push_back(smi::number_text(j < X.cols() ? X(i, j) : y[i]));
   }
+  std::ofstream(path) << smi::csv::write(header, columns);
 }
 
 // One Kriging case: fit on an LHS of each size, predict 10^4 test points (accuracy) and 10^6
 // (speed); writes the designs and test set as CSV and one JSON object per size.
-void bench_kriging(const Case& c, const std::vector<int>& sizes, const std::string& dir, std::ofstream& js, bool& first) {
+void bench_kriging(const Case& c, const std::vector<int>& sizes, const std::string& dir, smi::json::Array& rows) {
   const Eigen::Index d = c.lo.size();
   smi::Rng rng(20200214, smi::hash_label("bench/test/" + c.name));
   const Eigen::MatrixXd Xt = smi::surrogate::doe::scale_to_bounds(rng.uniform_matrix(10000, d), c.lo, c.hi);
@@ -84,16 +92,14 @@ void bench_kriging(const Case& c, const std::vector<int>& sizes, const std::stri
     const double t_pred = since(t0);
     std::fprintf(stderr, "%s N=%d fit %.3fs (%d evals) predict1e6 %.3fs rmse %.5g q2 %.5f\n", c.name.c_str(), N,
                  t_fit, m.evaluations, t_pred, rmse, q2);
-    js << (first ? "" : ",\n") << "{\"case\": \"" << c.name << "\", \"N\": " << N << ", \"fit\": " << t_fit
-       << ", \"predict\": " << t_pred << ", \"rmse\": " << rmse << ", \"q2\": " << q2
-       << ", \"evals\": " << m.evaluations << ", \"check\": " << ybig[12345] << "}";
-    first = false;
+    rows.push_back(smi::json::Object{{"case", c.name}, {"N", N}, {"fit", t_fit}, {"predict", t_pred}, {"rmse", rmse},
+                                     {"q2", q2}, {"evals", m.evaluations}, {"check", ybig[12345]}});
   }
 }
 
 // Propagation: 5 standard normal inputs, Kriging on N = 100 LHS points in [-4, 4]^5, 10^6
 // samples predicted and their KDE on 512 points (the Auto rule against the exact sum).
-void bench_propagation(const std::string& dir, std::ofstream& js) {
+smi::json::Value bench_propagation(const std::string& dir) {
   const Case c{"five", Eigen::VectorXd::Constant(5, -4), Eigen::VectorXd::Constant(5, 4), five};
   const Eigen::MatrixXd X = smi::surrogate::doe::scale_to_bounds(smi::surrogate::doe::lhs(100, 5, 11), c.lo, c.hi);
   const Eigen::VectorXd y = eval(c, X);
@@ -119,9 +125,9 @@ void bench_propagation(const std::string& dir, std::ofstream& js) {
   std::fprintf(stderr, "propagation 1e6 x 5 + KDE 512: %.3fs = sample %.3f + predict %.3f + kde %.3f (mean %.5f, sd %.5f, pdf mass %.6f)\n",
                t_prop, t_sample, t_predict, t_prop - t_sample - t_predict, ys.mean(),
                std::sqrt((ys.array() - ys.mean()).square().mean()), g.trapezoid(pdf));
-  js << "\"propagation\": {\"time\": " << t_prop << ", \"sample\": " << t_sample << ", \"predict\": " << t_predict
-     << ", \"kde_error\": " << err << ", \"kde_bound\": " << bound << ", \"mean\": " << ys.mean()
-     << ", \"sd\": " << std::sqrt((ys.array() - ys.mean()).square().mean()) << "}}\n";
+  return smi::json::Object{{"time", t_prop}, {"sample", t_sample}, {"predict", t_predict}, {"kde_error", err},
+                           {"kde_bound", bound}, {"mean", ys.mean()},
+                           {"sd", std::sqrt((ys.array() - ys.mean()).square().mean())}};
 }
 
 }  // namespace
@@ -144,13 +150,10 @@ int main(int argc, char** argv) {
        (Eigen::VectorXd(8) << 0.05, 100, 63070, 990, 63.1, 700, 1120, 9855).finished(),
        (Eigen::VectorXd(8) << 0.15, 50000, 115600, 1110, 116, 820, 1680, 12045).finished(), borehole},
       {"ishigami", Eigen::VectorXd::Constant(3, -M_PI), Eigen::VectorXd::Constant(3, M_PI), ishigami}};
-  std::ofstream js(dir + "/ours.json");
-  js << "{\"cases\": [\n";
-  bool first = true;
+  smi::json::Array rows;
   for (const Case& c : cases)
-    if (!only || c.name == only) bench_kriging(c, sizes, dir, js, first);
-  js << "],\n";
-
-  bench_propagation(dir, js);
+    if (!only || c.name == only) bench_kriging(c, sizes, dir, rows);
+  const smi::json::Value prop = bench_propagation(dir);
+  std::ofstream(dir + "/ours.json") << smi::json::write(smi::json::Object{{"cases", rows}, {"propagation", prop}}, {.indent = 1}) << "\n";
   return 0;
 }

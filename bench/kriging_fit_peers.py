@@ -29,7 +29,7 @@ DIR, OUT = sys.argv[1], sys.argv[2]
 
 
 def load(name):
-    a = np.loadtxt(f"{DIR}/{name}.csv", delimiter=",")
+    a = np.loadtxt(f"{DIR}/{name}.csv", delimiter=",", skiprows=1)
     return a[:, :-1], a[:, -1]
 
 

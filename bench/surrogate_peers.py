@@ -22,7 +22,7 @@ DIR, OUT = sys.argv[1], sys.argv[2]
 MAXN = int(sys.argv[3]) if len(sys.argv) > 3 else 1000
 
 def load(name):
-    a = np.loadtxt(f"{DIR}/{name}.csv", delimiter=",")
+    a = np.loadtxt(f"{DIR}/{name}.csv", delimiter=",", skiprows=1)
     return a[:, :-1], a[:, -1]
 
 def batched(f, X, b=20000):
