@@ -397,15 +397,16 @@ struct TrialObjective {
   }
 };
 
-/// One variant of part 2 (CRN kind, n, bandwidth, CRN seed): the analytic run with 4 starts,
+/// One variant of part 2 (CRN kind, n, bandwidth, CRN seed, data, metric, method): the analytic run with 4 starts,
 /// and each start's optimum, so the peer can tell whether the starts agree.
-void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj) {
+void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj, Method method) {
   Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
   OptimizerOptions o;
   o.multistart = 4;
   o.seed = 11;
   o.maxeval = 300;
   o.start_threads = 2;
+  o.method = method;
   o.gradient = counted_gradient(obj);
   report_agreement(key, timed(1, tp.p, f, o, obj), obj);
 }
@@ -425,17 +426,17 @@ int main(int argc, char** argv) {
     }
   }
   if (mode == "variants") {  // 2'. the trial problem's variants: <dir> variants <name>
-    // (quantiles, random2000seed, random8000, quantiles8000, data1000, loglik, or a bandwidth rule)
+    // (quantiles, random2000seed, random8000, quantiles8000, data1000, loglik, lbfgs, or a bandwidth rule)
     const std::string v = argc > 3 ? argv[3] : "quantiles";
     const TrialProblem tp = v == "quantiles" ? TrialProblem(2000, CrnKind::quantiles)
                             : v == "random8000" ? TrialProblem(8000)
                             : v == "quantiles8000" ? TrialProblem(8000, CrnKind::quantiles)
                             : v == "random2000seed" ? TrialProblem(2000)
                             : v == "data1000" ? TrialProblem(2000, CrnKind::random, "silverman", 1000)
-                            : v == "loglik" ? TrialProblem(2000)
+                            : v == "loglik" || v == "lbfgs" ? TrialProblem(2000)
                                                   : TrialProblem(2000, CrnKind::random, v);
     const TrialObjective to(tp, v == "random2000seed" ? 4 : tp.so.seed, v == "loglik" ? MetricKind::loglik : MetricKind::pr);
-    run_trial_variant(("variant_" + v).c_str(), tp, to.obj);
+    run_trial_variant(("variant_" + v).c_str(), tp, to.obj, v == "lbfgs" ? Method::lbfgs : Method::slsqp);
     return 0;
   }
   if (mode != "quick") {  // 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
