@@ -11,7 +11,10 @@
 //    responses predicted by Kriging surrogates (150-point LHS designs of smooth functions), PR
 //    on 4001-node grids, 4 starts side by side on 2 threads: analytic gradient (with and without
 //    the moment start) against differences, and whether the starts agree where the data can tell.
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <filesystem>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -97,41 +100,69 @@ void report(const char* key, const Run& run) {
   std::printf("\n");
 }
 
-/// Part 1's problem: a ~ N(5, 0.3), b ~ N(2, 0.2) observed through y1 = a + b², y2 = 3a − b
-/// (60 data each), 4 parameters, the analytic model and its Jacobian (counted).
+/// Part 1's problems. Two inputs (4 parameters): a ~ N(5, 0.3), b ~ N(2, 0.2) observed through
+/// y1 = a + b², y2 = 3a − b (60 data each). Four inputs (8 parameters): the same a, b, y1, y2 and
+/// c ~ N(4, 0.25), d ~ N(1.5, 0.15) through y3 = c + d², y4 = 3c − d + a/2 (coupled to a, so not
+/// two independent copies). Each response's mean and spread are the data's; the pairs' four
+/// moments fix each pair's four parameters, so every parameter is identifiable. The analytic
+/// model and its Jacobian (counted).
 struct AnalyticProblem {
-  ResponseSpec r1, r2;
+  int inputs = 2;
+  std::vector<ResponseSpec> r;
   std::vector<Parameter> p{{"a.mean", 3, 7, 4.2}, {"a.std", 0.05, 1, 0.6}, {"b.mean", 1, 3, 2.4}, {"b.std", 0.05, 1, 0.5}};
-  std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::normal, 0, 0, 2, 3}};
+  std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1, {}}, {"b", InputFamily::normal, 0, 0, 2, 3, {}}};
   StatisticalOptions so;
 
-  AnalyticProblem() {
+  explicit AnalyticProblem(int k) : inputs(k) {
     smi::Rng g(2026);
-    const Eigen::VectorXd a = g.normal(60, 5.0, 0.3), b = g.normal(60, 2.0, 0.2);
-    r1.name = "y1";
-    r1.data = (a.array() + b.array().square()).matrix();
-    r2.name = "y2";
-    r2.data = (3 * a.array() - b.array()).matrix();
+    Eigen::MatrixXd X(60, k);
+    X.col(0) = g.normal(60, 5.0, 0.3);
+    X.col(1) = g.normal(60, 2.0, 0.2);
+    if (k == 4) {
+      X.col(2) = g.normal(60, 4.0, 0.25);
+      X.col(3) = g.normal(60, 1.5, 0.15);
+      p.insert(p.end(), {{"c.mean", 2, 6, 3.4}, {"c.std", 0.05, 1, 0.5}, {"d.mean", 0.5, 2.5, 1.9}, {"d.std", 0.05, 1, 0.4}});
+      in.insert(in.end(), {{"c", InputFamily::normal, 0, 0, 4, 5, {}}, {"d", InputFamily::normal, 0, 0, 6, 7, {}}});
+    }
+    const Eigen::MatrixXd Y = model(X);
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+      ResponseSpec rs;
+      rs.name = fmt::format("y{}", j + 1);
+      rs.data = Y.col(j);
+      r.push_back(rs);
+    }
     so.n = 1000;
     so.grid_nodes = 2001;
     so.seed = 1;
   }
 
   static Eigen::MatrixXd model(const Eigen::MatrixXd& X) {
-    Eigen::MatrixXd Y(X.rows(), 2);
+    Eigen::MatrixXd Y(X.rows(), X.cols());
     Y.col(0) = (X.col(0).array() + X.col(1).array().square()).matrix();
     Y.col(1) = (3 * X.col(0).array() - X.col(1).array()).matrix();
+    if (X.cols() == 4) {
+      Y.col(2) = (X.col(2).array() + X.col(3).array().square()).matrix();
+      Y.col(3) = (3 * X.col(2).array() - X.col(3).array() + 0.5 * X.col(0).array()).matrix();
+    }
     return Y;
   }
 
   static std::vector<Eigen::MatrixXd> jacobian(const Eigen::MatrixXd& X) {
     ++g_jacobian_runs;
-    Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(X.rows(), 2), J2 = J1;
-    J1.col(0).setOnes();
-    J1.col(1) = 2 * X.col(1);
-    J2.col(0).setConstant(3);
-    J2.col(1).setConstant(-1);
-    return std::vector<Eigen::MatrixXd>{J1, J2};
+    const Eigen::Index k = X.cols();
+    std::vector<Eigen::MatrixXd> J(static_cast<std::size_t>(k), Eigen::MatrixXd::Zero(X.rows(), k));
+    J[0].col(0).setOnes();
+    J[0].col(1) = 2 * X.col(1);
+    J[1].col(0).setConstant(3);
+    J[1].col(1).setConstant(-1);
+    if (k == 4) {
+      J[2].col(2).setOnes();
+      J[2].col(3) = 2 * X.col(3);
+      J[3].col(2).setConstant(3);
+      J[3].col(3).setConstant(-1);
+      J[3].col(0).setConstant(0.5);
+    }
+    return J;
   }
 };
 
@@ -143,45 +174,76 @@ ObjectiveGradient counted_gradient(const StatisticalObjective& obj) {
   };
 }
 
-/// Part 1's runs: tight tolerances (analytic, differences), then smi.calibrate's defaults
-/// (xtol_rel 1e-6, ftol_abs 1e-8) analytic, with the moment-matching start (Levenberg-Marquardt
-/// on the responses' means and sds), with that start and a looser xtol_rel (1e-4 of the scaled
-/// box), and by differences.
+/// Part 1's runs on a problem whose keys end in `tag` (its parameter count): tight tolerances
+/// (analytic, differences), then smi.calibrate's defaults (xtol_rel 1e-6, ftol_abs 1e-8)
+/// analytic, with the moment-matching start (Levenberg-Marquardt on the responses' means and
+/// sds), with that start and a looser xtol_rel (1e-4 of the scaled box), and by differences;
+/// then SLSQP at xtol_rel 1e-4 alone, and L-BFGS (method = "lbfgs") at both tolerances, with and
+/// without the moment start.
 void run_analytic_problem(const AnalyticProblem& ap, const StatisticalObjective& obj) {
   const std::vector<Parameter>& p = ap.p;
+  const std::string tag = std::to_string(p.size());
+  auto key = [&tag](const char* name) { return fmt::format(fmt::runtime(name), tag); };
+  {  // the analytic gradient against central differences at the start (a check of the bench's Jacobian)
+    Eigen::VectorXd t0(static_cast<Eigen::Index>(p.size())), h(t0.size()), gr;
+    for (std::size_t i = 0; i < p.size(); ++i) t0[static_cast<Eigen::Index>(i)] = p[i].start, h[static_cast<Eigen::Index>(i)] = 1e-5 * (p[i].upper - p[i].lower);
+    obj.value_and_gradient(t0, gr);
+    const Eigen::VectorXd fd = central_gradient([&obj](const Eigen::VectorXd& t) { return obj(t); }, t0, h);
+    std::printf("%s %.3g\n", key("gradient_check{}").c_str(), (gr - fd).cwiseAbs().maxCoeff() / fd.cwiseAbs().maxCoeff());
+  }
   Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
   OptimizerOptions o;
   o.xtol_rel = 1e-10;
   o.ftol_abs = 1e-12;
-  o.maxeval = 2000;
+  o.maxeval = 4000;
   OptimizerOptions oa = o;
   oa.gradient = counted_gradient(obj);
-  report("analytic4", timed(3, p, f, oa, obj));
-  report("differences4", timed(1, p, f, o, obj));
+  report(key("analytic{}").c_str(), timed(3, p, f, oa, obj));
+  report(key("differences{}").c_str(), timed(1, p, f, o, obj));
   OptimizerOptions od;
   od.gradient = oa.gradient;
-  report("analytic4default", timed(3, p, f, od, obj));
+  report(key("analytic{}default").c_str(), timed(3, p, f, od, obj));
   od.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
-  report("analytic4moments", timed(3, p, f, od, obj));
+  report(key("analytic{}moments").c_str(), timed(3, p, f, od, obj));
   OptimizerOptions ol = od;
   ol.xtol_rel = 1e-4;
-  report("analytic4momentsloose", timed(3, p, f, ol, obj));
+  report(key("analytic{}momentsloose").c_str(), timed(3, p, f, ol, obj));
   od.gradient = {};
   od.prepare_start = {};
-  report("differences4default", timed(1, p, f, od, obj));
+  report(key("differences{}default").c_str(), timed(1, p, f, od, obj));
+  OptimizerOptions os;  // SLSQP at xtol_rel 1e-4 without the moment start
+  os.gradient = oa.gradient;
+  os.xtol_rel = 1e-4;
+  report(key("analytic{}loose").c_str(), timed(3, p, f, os, obj));
+  OptimizerOptions ob;  // L-BFGS (method = "lbfgs"): default tolerances, then xtol_rel 1e-4, each without and with the moment start
+  ob.method = Method::lbfgs;
+  ob.gradient = oa.gradient;
+  report(key("lbfgs{}default").c_str(), timed(3, p, f, ob, obj));
+  ob.prepare_start = ol.prepare_start;
+  report(key("lbfgs{}moments").c_str(), timed(3, p, f, ob, obj));
+  ob.xtol_rel = 1e-4;
+  ob.prepare_start = {};
+  report(key("lbfgs{}loose").c_str(), timed(3, p, f, ob, obj));
+  ob.prepare_start = ol.prepare_start;
+  report(key("lbfgs{}momentsloose").c_str(), timed(3, p, f, ob, obj));
 }
 
-/// What the SciPy peer reads: the CRN matrix, the data, the grids (lo, hi, nodes) and the box
-/// (lower, upper, start per parameter).
+/// What the SciPy peer reads, in <dir>/p<parameters>/: the CRN matrix, the data (y<j>.txt), the
+/// grids (lo, hi, nodes per response) and the box (lower, upper, start per parameter).
 void write_peer_files(const std::string& dir, const AnalyticProblem& ap, const StatisticalObjective& obj) {
-  write(dir + "/z.txt", obj.crn());
-  write(dir + "/y1.txt", ap.r1.data);
-  write(dir + "/y2.txt", ap.r2.data);
-  Eigen::MatrixXd grids(2, 3), box(4, 3);
-  for (int j = 0; j < 2; ++j) grids.row(j) << obj.responses()[j].grid->lo, obj.responses()[j].grid->hi, static_cast<double>(obj.responses()[j].grid->n);
-  for (int i = 0; i < 4; ++i) box.row(i) << ap.p[i].lower, ap.p[i].upper, ap.p[i].start;
-  write(dir + "/grids.txt", grids);
-  write(dir + "/box.txt", box);
+  const std::string d = fmt::format("{}/p{}", dir, ap.p.size());
+  std::filesystem::create_directories(d);
+  write(d + "/z.txt", obj.crn());
+  const Eigen::Index R = static_cast<Eigen::Index>(ap.r.size()), k = static_cast<Eigen::Index>(ap.p.size());
+  Eigen::MatrixXd grids(R, 3), box(k, 3);
+  for (Eigen::Index j = 0; j < R; ++j) {
+    const auto& g = *obj.responses()[static_cast<std::size_t>(j)].grid;
+    write(fmt::format("{}/y{}.txt", d, j + 1), ap.r[static_cast<std::size_t>(j)].data);
+    grids.row(j) << g.lo, g.hi, static_cast<double>(g.n);
+  }
+  for (Eigen::Index i = 0; i < k; ++i) box.row(i) << ap.p[static_cast<std::size_t>(i)].lower, ap.p[static_cast<std::size_t>(i)].upper, ap.p[static_cast<std::size_t>(i)].start;
+  write(d + "/grids.txt", grids);
+  write(d + "/box.txt", box);
 }
 
 /// Part 2's problem: 5 inputs in a box, two smooth responses with Kriging surrogates fitted on a
@@ -202,7 +264,11 @@ struct TrialProblem {
     return Eigen::VectorXd((X.col(1).array() / X.col(2).array() * 10 + X.col(4).array().log() * 3 - X.col(0).array() * X.col(3).array()).matrix());
   }
 
-  TrialProblem() {
+  /// n, crn and bw: the CRN sample size and kind and the predicted KDEs' bandwidth rule (the
+  /// study's: 2000, random, silverman); data: the synthetic observations per response (40, the
+  /// study's experiments). The variants ask whether the starts' disagreement is the CRN
+  /// objective's roughness or the 40-point data's.
+  explicit TrialProblem(Eigen::Index n = 2000, CrnKind crn = CrnKind::random, const std::string& bw = "silverman", Eigen::Index data = 40) {
     Eigen::MatrixXd lo(1, k), hi(1, k);
     lo << 0.5, 1.0, 2.0, 0.2, 3.0;
     hi << 1.5, 3.0, 4.0, 0.8, 7.0;
@@ -217,8 +283,8 @@ struct TrialProblem {
     Eigen::VectorXd mu(k), sd(k);
     mu << 1.0, 2.0, 3.0, 0.5, 5.0;
     sd << 0.08, 0.15, 0.2, 0.04, 0.4;
-    Eigen::MatrixXd Xd(40, k);
-    for (int j = 0; j < k; ++j) Xd.col(j) = g.normal(40, mu[j], sd[j]);
+    Eigen::MatrixXd Xd(data, k);
+    for (int j = 0; j < k; ++j) Xd.col(j) = g.normal(data, mu[j], sd[j]);
     r1.name = "mode1";
     r1.data = f1(Xd);
     r2.name = "mode4";
@@ -227,9 +293,11 @@ struct TrialProblem {
       const double span = hi(0, j) - lo(0, j);
       p.push_back({fmt::format("x{}.mean", j + 1), lo(0, j) + 0.2 * span, hi(0, j) - 0.2 * span, mu[j] + 0.1 * span});
       p.push_back({fmt::format("x{}.std", j + 1), 0.01 * span, 0.25 * span, 0.1 * span});
-      in.push_back({fmt::format("x{}", j + 1), InputFamily::normal, 0, 0, 2 * j, 2 * j + 1});
+      in.push_back({fmt::format("x{}", j + 1), InputFamily::normal, 0, 0, 2 * j, 2 * j + 1, {}});
     }
-    so.n = 2000;
+    so.n = n;
+    so.crn = crn;
+    so.bandwidth = bw;
     so.grid_nodes = 4001;
     so.seed = 3;
     so.threads = 1;  // one thread per evaluation: the starts run side by side instead
@@ -303,37 +371,82 @@ void run_trial_problem(const TrialProblem& tp, const StatisticalObjective& obj) 
   report_agreement("trial_differences", timed(1, tp.p, f, o, obj), obj);
 }
 
+/// Part 2's objective: the two Kriging predictors as the model (one thread each) and their
+/// closed-form Jacobians (counted); `seed` the CRN seed.
+struct TrialObjective {
+  Model model;
+  StatisticalObjective obj;
+  static StatisticalOptions with(StatisticalOptions so, std::uint64_t seed, MetricKind metric) {
+    so.seed = seed;
+    so.metric = metric;
+    return so;
+  }
+  TrialObjective(const TrialProblem& tp, std::uint64_t seed, MetricKind metric = MetricKind::pr)
+      : model([&tp](const Eigen::MatrixXd& X) {
+          Eigen::MatrixXd Y(X.rows(), 2);
+          Y.col(0) = smi::surrogate::kriging::predict_mean(tp.k1, X, tp.so.threads);
+          Y.col(1) = smi::surrogate::kriging::predict_mean(tp.k2, X, tp.so.threads);
+          return Y;
+        }),
+        obj(tp.in, {tp.r1, tp.r2}, tp.p, model, with(tp.so, seed, metric)) {
+    obj.set_model_jacobian([&tp](const Eigen::MatrixXd& X) {
+      ++g_jacobian_runs;
+      return std::vector<Eigen::MatrixXd>{smi::surrogate::kriging::predict_gradient(tp.k1, X, tp.so.threads),
+                                          smi::surrogate::kriging::predict_gradient(tp.k2, X, tp.so.threads)};
+    });
+  }
+};
+
+/// One variant of part 2 (CRN kind, n, bandwidth, CRN seed, data, metric, method): the analytic run with 4 starts,
+/// and each start's optimum, so the peer can tell whether the starts agree.
+void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj, Method method) {
+  Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+  OptimizerOptions o;
+  o.multistart = 4;
+  o.seed = 11;
+  o.maxeval = 300;
+  o.start_threads = 2;
+  o.method = method;
+  o.gradient = counted_gradient(obj);
+  report_agreement(key, timed(1, tp.p, f, o, obj), obj);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : ".";
   const std::string mode = argc > 2 ? argv[2] : "";
-  if (mode != "profile") {  // 1. analytic model, 4 parameters
-    const AnalyticProblem ap;
-    StatisticalObjective obj(ap.in, {ap.r1, ap.r2}, ap.p, &AnalyticProblem::model, ap.so);
-    obj.set_model_jacobian(&AnalyticProblem::jacobian);
-    run_analytic_problem(ap, obj);
-    write_peer_files(dir, ap, obj);
+  if (mode != "profile" && mode != "variants") {  // 1. analytic models, 4 and 8 parameters
+    for (const int k : {2, 4}) {
+      const AnalyticProblem ap(k);
+      StatisticalObjective obj(ap.in, ap.r, ap.p, &AnalyticProblem::model, ap.so);
+      obj.set_model_jacobian(&AnalyticProblem::jacobian);
+      run_analytic_problem(ap, obj);
+      write_peer_files(dir, ap, obj);
+    }
+  }
+  if (mode == "variants") {  // 2'. the trial problem's variants: <dir> variants <name>
+    // (quantiles, random2000seed, random8000, quantiles8000, data1000, loglik, lbfgs, or a bandwidth rule)
+    const std::string v = argc > 3 ? argv[3] : "quantiles";
+    const TrialProblem tp = v == "quantiles" ? TrialProblem(2000, CrnKind::quantiles)
+                            : v == "random8000" ? TrialProblem(8000)
+                            : v == "quantiles8000" ? TrialProblem(8000, CrnKind::quantiles)
+                            : v == "random2000seed" ? TrialProblem(2000)
+                            : v == "data1000" ? TrialProblem(2000, CrnKind::random, "silverman", 1000)
+                            : v == "loglik" || v == "lbfgs" ? TrialProblem(2000)
+                                                  : TrialProblem(2000, CrnKind::random, v);
+    const TrialObjective to(tp, v == "random2000seed" ? 4 : tp.so.seed, v == "loglik" ? MetricKind::loglik : MetricKind::pr);
+    run_trial_variant(("variant_" + v).c_str(), tp, to.obj, v == "lbfgs" ? Method::lbfgs : Method::slsqp);
+    return 0;
   }
   if (mode != "quick") {  // 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs
     const TrialProblem tp;
-    const int nt = tp.so.threads;
-    const Model model = [&tp, nt](const Eigen::MatrixXd& X) {
-      Eigen::MatrixXd Y(X.rows(), 2);
-      Y.col(0) = smi::surrogate::kriging::predict_mean(tp.k1, X, nt);
-      Y.col(1) = smi::surrogate::kriging::predict_mean(tp.k2, X, nt);
-      return Y;
-    };
-    StatisticalObjective obj(tp.in, {tp.r1, tp.r2}, tp.p, model, tp.so);
-    obj.set_model_jacobian([&tp, nt](const Eigen::MatrixXd& X) {
-      ++g_jacobian_runs;
-      return std::vector<Eigen::MatrixXd>{smi::surrogate::kriging::predict_gradient(tp.k1, X, nt), smi::surrogate::kriging::predict_gradient(tp.k2, X, nt)};
-    });
+    const TrialObjective to(tp, tp.so.seed);
     if (mode == "profile") {
-      profile_evaluation(tp, obj, model);
+      profile_evaluation(tp, to.obj, to.model);
       return 0;
     }
-    run_trial_problem(tp, obj);
+    run_trial_problem(tp, to.obj);
   }
   return 0;
 }

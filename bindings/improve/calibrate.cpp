@@ -19,7 +19,7 @@
 //                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
 //                 penalty = function(theta) return number end (prior knowledge, added),
 //                 moment_start = false (true: every start first matched to the data's means and sds), ...}
-// Common: method = "slsqp"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
+// Common: method = "slsqp"|"lbfgs"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
 //         ftol_abs, fd_step, initial_step,
 //         identifiability = true|false|{points, rel_tol, abs_tol, tolerance, step},
 //         prior = {{param = name, mean =, std =} | {name =, fn = function(theta), mean =, std =}, ...},

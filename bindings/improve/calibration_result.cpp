@@ -256,7 +256,7 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   lua::set_boolean(L, "converged", r.converged);
   lua::set_string(L, "status", r.status);
   lua::set_string(L, "method", method_name(s.optimizer.method));
-  lua::set_string(L, "gradient", s.optimizer.method != Method::slsqp ? "none" : out.analytic_gradient ? "analytic" : "differences");
+  lua::set_string(L, "gradient", !uses_gradient(s.optimizer.method) ? "none" : out.analytic_gradient ? "analytic" : "differences");
   push_strings(L, out.warnings);
   lua_setfield(L, -2, "warnings");
   push_strings(L, r.at_bounds);

@@ -49,7 +49,7 @@ options:
   threads = ${threads}        -- KDE evaluation threads
   parameters = nil            -- objective form: {{name, lower, upper, start}, ...} (start: mid-range)
   objective = nil             -- objective form: function(theta) returning a number; theta[name]
-  method = "slsqp"            -- "slsqp", "cobyla", "bobyqa" or "neldermead"
+  method = "slsqp"            -- "slsqp", "lbfgs" (gradient-based too), "cobyla", "bobyqa" or "neldermead"
   multistart = ${multistart}  -- starts: the given one plus multistart - 1 seeded points
   maxeval = ${maxeval}        -- objective evaluations per start (finite-difference probes included)
   xtol_rel = ${xtol_rel}      -- relative tolerance on the scaled parameters

@@ -29,6 +29,19 @@ T.case("Kriging surrogates: analytic gradient, same optimum as differences, ends
   end
 end)
 
+T.case("method = \"lbfgs\": the analytic gradient, the same optimum as SLSQP with differences", function()
+  local spec = {model = {y1 = k1, y2 = k2}, inputs = inputs, data = data, n = 600, grid_nodes = 1501, seed = 5,
+                identifiability = false, gradient = "differences"}
+  local fd = smi.calibrate(spec)
+  spec.gradient, spec.method = nil, "lbfgs"
+  local lb = smi.calibrate(spec)
+  T.eq(lb.method, "lbfgs")
+  T.eq(lb.gradient, "analytic")
+  T.truthy(lb.converged and lb.status ~= "maxeval_reached", "converged: " .. lb.status)
+  for k, v in pairs(fd.params) do T.near(lb.params[k], v, 2e-3, k) end
+  T.truthy(lb.objective <= fd.objective + 1e-5 * math.abs(fd.objective), "objective at least as low")
+end)
+
 T.case("Kriging models with threads = 2: the starts run side by side, with the result of one after another", function()
   local spec = {model = {y1 = k1, y2 = k2}, inputs = inputs, data = data, n = 400, grid_nodes = 1001, seed = 5,
                 multistart = 4, identifiability = false, threads = 1}

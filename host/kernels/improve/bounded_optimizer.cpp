@@ -17,10 +17,11 @@ namespace smi::improve {
 
 Method parse_method(std::string_view name) {
   if (name == "slsqp" || name == "sqp") return Method::slsqp;
+  if (name == "lbfgs" || name == "l-bfgs") return Method::lbfgs;
   if (name == "cobyla") return Method::cobyla;
   if (name == "bobyqa") return Method::bobyqa;
   if (name == "neldermead" || name == "nelder-mead" || name == "nelder_mead") return Method::neldermead;
-  throw InvalidArgument(fmt::format("unknown method \"{}\" (use \"slsqp\", \"cobyla\", \"bobyqa\" or \"neldermead\")", name));
+  throw InvalidArgument(fmt::format("unknown method \"{}\" (use \"slsqp\", \"lbfgs\", \"cobyla\", \"bobyqa\" or \"neldermead\")", name));
 }
 
 std::string method_name(Method m) {
@@ -29,6 +30,7 @@ std::string method_name(Method m) {
     case Method::cobyla: return "cobyla";
     case Method::bobyqa: return "bobyqa";
     case Method::neldermead: return "neldermead";
+    case Method::lbfgs: return "lbfgs";
   }
   return "?";
 }
@@ -56,6 +58,7 @@ nlopt::algorithm to_nlopt(Method m) {
     case Method::cobyla: return nlopt::LN_COBYLA;
     case Method::bobyqa: return nlopt::LN_BOBYQA;
     case Method::neldermead: return nlopt::LN_NELDERMEAD;
+    case Method::lbfgs: return nlopt::LD_LBFGS;
   }
   return nlopt::LD_SLSQP;
 }
@@ -188,7 +191,7 @@ StartResult run_start(const std::vector<Parameter>& params, const Objective& f, 
   solver.set_xtol_rel(opt.xtol_rel);
   solver.set_ftol_abs(opt.ftol_abs);
   solver.set_maxeval(opt.maxeval);  // our own budget (Run::eval) also counts the gradient probes
-  if (method != Method::slsqp) solver.set_initial_step(opt.initial_step);
+  if (!uses_gradient(method)) solver.set_initial_step(opt.initial_step);
   Run run{params, f, opt, history, index, 0, false, nullptr, Eigen::VectorXd(), {HUGE_VAL, {}}, &solver};
   solver.set_min_objective(&trampoline, &run);
 

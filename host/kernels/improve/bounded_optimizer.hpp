@@ -22,7 +22,14 @@ struct Parameter {
   double start = 0.5;
 };
 
-enum class Method { slsqp, cobyla, bobyqa, neldermead };
+/// slsqp and lbfgs use the gradient (the analytic one when OptimizerOptions::gradient is set,
+/// else central differences); lbfgs (NLopt's low-storage BFGS, bounds by projection) needs fewer
+/// evaluations than SLSQP on smooth bound-constrained calibrations with an analytic gradient
+/// (bench/results/calibrate.md); SLSQP stays the default.
+enum class Method { slsqp, cobyla, bobyqa, neldermead, lbfgs };
+
+/// Whether the method asks for gradients (analytic or by central differences).
+inline bool uses_gradient(Method m) { return m == Method::slsqp || m == Method::lbfgs; }
 
 /// What the objective returns: the value minimised and, optionally, its parts (one per response).
 struct Evaluation {
@@ -31,7 +38,7 @@ struct Evaluation {
 };
 /// The objective, called with θ in the parameters' own units.
 using Objective = std::function<Evaluation(const Eigen::VectorXd& theta)>;
-/// "slsqp", "cobyla", "bobyqa", "neldermead" (also "nelder-mead"); throws naming the choices.
+/// "slsqp", "lbfgs" (also "l-bfgs"), "cobyla", "bobyqa", "neldermead" (also "nelder-mead"); throws naming the choices.
 Method parse_method(std::string_view name);
 std::string method_name(Method m);
 

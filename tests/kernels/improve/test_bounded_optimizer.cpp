@@ -21,7 +21,7 @@ std::vector<Parameter> quad_params() { return {{"a", 0.0, 2.0, 0.1}, {"b", -1.0,
 }  // namespace
 
 TEST_CASE("every method finds the minimum of a quadratic in the box") {
-  for (const char* m : {"slsqp", "cobyla", "bobyqa", "neldermead"}) {
+  for (const char* m : {"slsqp", "lbfgs", "cobyla", "bobyqa", "neldermead"}) {
     OptimizerOptions o;
     o.method = parse_method(m);
     o.xtol_rel = 1e-10;
@@ -36,6 +36,32 @@ TEST_CASE("every method finds the minimum of a quadratic in the box") {
     CHECK(static_cast<int>(r.history.size()) == r.evaluations);
     CHECK(r.at_bounds.empty());
   }
+}
+
+TEST_CASE("L-BFGS with an analytic gradient: a minimum on a bound, no probes; its name is parsed") {
+  // (t0 + 1)² + 10 (t1 − 0.2)² on [0, 2] × [−1, 1]: the minimum is (0, 0.2), t0 on its lower bound.
+  auto f = [](const Eigen::VectorXd& t) { return Evaluation{(t[0] + 1) * (t[0] + 1) + 10 * (t[1] - 0.2) * (t[1] - 0.2), {}}; };
+  OptimizerOptions o;
+  o.method = parse_method("l-bfgs");
+  CHECK(method_name(o.method) == "lbfgs");
+  CHECK(uses_gradient(o.method));
+  o.xtol_rel = 1e-10;
+  int gradient_calls = 0;
+  o.gradient = [&](const Eigen::VectorXd& t, Eigen::VectorXd& g) {
+    ++gradient_calls;
+    g.resize(2);
+    g << 2 * (t[0] + 1), 20 * (t[1] - 0.2);
+    return f(t);
+  };
+  const OptimizationResult r = minimize(quad_params(), f, o);
+  CHECK(r.theta[0] == Approx(0.0).margin(1e-8));
+  CHECK(r.theta[1] == Approx(0.2).margin(1e-6));
+  CHECK(r.converged);
+  REQUIRE(r.at_bounds.size() == 1);
+  CHECK(r.at_bounds[0] == "a");
+  CHECK(gradient_calls == r.evaluations);  // every L-BFGS evaluation is a value and a gradient
+  for (const auto& h : r.history) CHECK_FALSE(h.probe);
+  CHECK_THROWS_WITH(parse_method("bfgs"), Catch::Contains("lbfgs"));
 }
 
 TEST_CASE("SLSQP's gradient probes are recorded and counted") {
@@ -126,7 +152,7 @@ TEST_CASE("a NaN objective and bad parameters are clear errors") {
   CHECK_THROWS_WITH(minimize(quad_params(), nan, {}), Catch::Contains("a = 0.1") && Catch::Contains("finite"));
   CHECK_THROWS_WITH(minimize({{"s", 1.0, 0.5, 0.7}}, quad, {}), Catch::Contains("'s'") && Catch::Contains("lower < upper"));
   CHECK_THROWS_WITH(minimize({{"s", 0.0, 1.0, 2.0}}, quad, {}), Catch::Contains("outside its bounds"));
-  CHECK_THROWS_WITH(parse_method("lbfgs"), Catch::Contains("\"cobyla\""));
+  CHECK_THROWS_WITH(parse_method("newton"), Catch::Contains("\"cobyla\""));
 }
 
 TEST_CASE("a small budget stops with a warning and the best point") {
