@@ -46,7 +46,8 @@ TEST_CASE("json non-finite numbers: refused with their path, or encoded and read
   enc.non_finite = json::NonFinite::Encode;
   const std::string text = json::write(v, enc);
   CHECK(text == R"({"fit":[1,null,1e999,-1e999]})");
-  const json::Array& back = json::read(text).find("fit")->array();
+  const json::Value doc = json::read(text);  // kept: find() points into it
+  const json::Array& back = doc.find("fit")->array();
   CHECK(back[1].is_null());
   CHECK(back[2].number() == inf);
   CHECK(back[3].number() == -inf);
