@@ -83,6 +83,14 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
   if (candidates.cols() != initial.cols())
     throw DimensionMismatch("sequential_design: candidates have " + std::to_string(candidates.cols()) + " columns, the design " +
                             std::to_string(initial.cols()));
+  // The weights before the first model run (a solver study pays for that run; select_batch
+  // would only see them after it).
+  if (weights.size() != candidates.rows())
+    throw DimensionMismatch("sequential_design: " + std::to_string(weights.size()) + " weights for " +
+                            std::to_string(candidates.rows()) + " candidates");
+  for (Eigen::Index i = 0; i < weights.size(); ++i)
+    if (!std::isfinite(weights(i)))
+      throw InvalidArgument("sequential_design: weight " + std::to_string(i + 1) + " is not finite");
   SequentialResult r;
   r.X = initial;
   r.Y = model(initial);

@@ -112,4 +112,16 @@ TEST_CASE("sequential_design stops at max_points and names bad input") {
   CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, small), smi::InvalidArgument);
   CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), Eigen::MatrixXd::Zero(5, 3), Eigen::VectorXd::Ones(5), f, o),
                   smi::DimensionMismatch);
+  // bad weights are refused before the model runs (each run may be a solver call)
+  int runs = 0;
+  const DesignModel counted = [&runs](const Eigen::MatrixXd& X) {
+    ++runs;
+    return f(X);
+  };
+  CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(199), counted, o),
+                  smi::DimensionMismatch);
+  Eigen::VectorXd nan_w = Eigen::VectorXd::Ones(200);
+  nan_w(3) = std::nan("");
+  CHECK_THROWS_WITH(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, nan_w, counted, o), Catch::Contains("weight 4"));
+  CHECK(runs == 0);
 }
