@@ -3,6 +3,7 @@
 #include "kernels/surrogate/sequential_design.hpp"
 
 #include <Eigen/Cholesky>
+#include <fmt/format.h>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -102,7 +103,18 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
                             std::to_string(r.Y.cols()) + " outputs");
   Eigen::VectorXd w = weights;
   for (;;) {
-    if (!r.Y.allFinite()) throw InvalidArgument("sequential_design: the model returned a value that is not finite");
+    if (!r.Y.allFinite()) {
+      // Name the point and the output: the fix is at that run of the model.
+      Eigen::Index bi = 0, bj = 0;
+      for (Eigen::Index i = r.Y.rows() - 1; i >= 0; --i)
+        for (Eigen::Index j = r.Y.cols() - 1; j >= 0; --j)
+          if (!std::isfinite(r.Y(i, j))) bi = i, bj = j;
+      std::string x;
+      for (Eigen::Index c = 0; c < r.X.cols(); ++c) x += (c ? ", " : "") + fmt::format("{}", r.X(bi, c));
+      throw InvalidArgument(fmt::format("sequential_design: the model returned {} for output {} at design point {} ({}); "
+                                        "it must return finite values",
+                                        r.Y(bi, bj), bj + 1, bi + 1, x));
+    }
     r.models.clear();
     SequentialStep step;
     step.points = r.X.rows();
