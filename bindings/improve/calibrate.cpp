@@ -218,8 +218,11 @@ Objective minimize_statistical(lua_State* L, const CalibrateSpec& s, OptimizerOp
   const bool lua_free_extras = !s.metric_slot && !s.penalty_slot && !s.progress_slot &&
                                std::none_of(s.priors.begin(), s.priors.end(), [](const PriorSpec& p) { return p.fn_slot != 0; });
   const int start_threads = std::min(s.stat.threads, s.optimizer.multistart);
-  Model cpp = kriging_model(L, s, responses, start_threads > 1 ? 1 : 2);
-  if (cpp && lua_free_extras && start_threads > 1) {
+  // Each prediction on one thread only when the starts do run side by side (not when a Lua
+  // callback keeps them one after another).
+  const bool side_by_side = lua_free_extras && start_threads > 1;
+  Model cpp = kriging_model(L, s, responses, side_by_side ? 1 : 2);
+  if (cpp && side_by_side) {
     oo.start_threads = start_threads;
     so.threads = 1;
   }

@@ -46,7 +46,8 @@ options:
   bandwidth = "${bandwidth}"  -- KDE rule for the predicted outputs
   order = nil                 -- the input column order for a function model (names)
   design_bounds = nil         -- {input = {lower, upper}}: the surrogate's design range; leaving it warns
-  threads = ${threads}        -- KDE evaluation threads
+  threads = ${threads}        -- KDE evaluation threads; with Kriging models and no Lua metric, penalty,
+                              -- prior function or progress, the starts run side by side on them instead
   parameters = nil            -- objective form: {{name, lower, upper, start}, ...} (start: mid-range)
   objective = nil             -- objective form: function(theta) returning a number; theta[name]
   method = "slsqp"            -- "slsqp", "lbfgs" (gradient-based too), "cobyla", "bobyqa" or "neldermead"

@@ -58,7 +58,7 @@ smi::stats::Grid resolve_grid(const std::optional<smi::stats::Grid>& g, const sm
     g->validate();
     return *g;
   }
-  return smi::stats::comparison_grid(a, b, g ? g->n : 4001);
+  return smi::stats::comparison_grid(a, b, g ? g->n : kDefaultGridNodes);
 }
 
 /// PR (l1 = true) or intersection of a and b: exact between the pdf crossings without grid

@@ -1,9 +1,14 @@
 // Reference texts of smi.doe, smi.kriging, smi.propagate and smi.screen (this folder). Defaults
-// are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp).
+// are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp,
+// screen_surrogate.hpp, sequential_design.hpp) and core/defaults.hpp.
 #include "bindings/doc.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
+#include "kernels/core/defaults.hpp"
+#include "kernels/surrogate/poly_ridge.hpp"
 #include "kernels/surrogate/screen.hpp"
+#include "kernels/surrogate/screen_surrogate.hpp"
+#include "kernels/surrogate/sequential_design.hpp"
 
 namespace smi::bind {
 namespace {
@@ -102,9 +107,9 @@ options:
   design = (required)     -- the initial points (mat, columns = the model's inputs)
   candidates = (required) -- the points it may add (mat, same columns)
   weights = 1             -- a vec, one per candidate (> 0; 0: never chosen)
-  batch = 10              -- points per model call
-  max = 100               -- the design never grows past this
-  q2 = 0.999              -- leave-one-out Q2 every output must reach
+  batch = ${seq_batch}              -- points per model call
+  max = ${seq_max}               -- the design never grows past this
+  q2 = ${seq_q2}              -- leave-one-out Q2 every output must reach
   rmse = {}               -- {output = target}: leave-one-out RMSE in the output's units
   trend = "constant"      -- the Krigings' trend
   corr = "gauss"          -- the Krigings' correlation family
@@ -124,7 +129,7 @@ example:
 Predictions at the rows of X, on both cores for large X.
 options:
   mse = true      -- also return the mean squared error (false: the mean only, faster)
-  threads = 2     -- worker threads
+  threads = ${predict_threads}     -- worker threads
 returns: a vec of means and (with mse) a vec of MSEs
 errors: X with a different number of columns than the model's inputs
 example:
@@ -196,11 +201,11 @@ options:
   method = "full"        -- "full" (eq. 3 on the model) or "surrogate": a ridge-regularised quadratic
                          -- (or linear) fit from `runs` model runs, checked by leave-one-out Q2, then
                          -- eq. 3 on the surrogate at no model cost
-  runs = 300             -- surrogate: model runs of its Latin hypercube
-  basis = "quadratic"    -- surrogate: "quadratic" (main effects and squares) or "linear"
-  q2_min = 0.9           -- surrogate: a leave-one-out Q2 below this warns (add runs or use "full")
-  delta = true           -- surrogate: also Borgonovo's given-data delta from the same runs
-  classes = 0            -- surrogate: delta's conditioning classes (0: SALib's rule by run count)
+  runs = ${runs}             -- surrogate: model runs of its Latin hypercube
+  basis = "${basis}"    -- surrogate: "quadratic" (main effects and squares) or "linear"
+  q2_min = ${q2_min}           -- surrogate: a leave-one-out Q2 below this warns (add runs or use "full")
+  delta = ${delta}           -- surrogate: also Borgonovo's given-data delta from the same runs
+  classes = ${classes}            -- surrogate: delta's conditioning classes (0: SALib's rule by run count)
 returns: rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi} sorted by rank, with fields
   output, n, variance, warnings, by_input; tostring() prints the table. Several outputs and no
   `output`: a table of rankings by output name
@@ -218,6 +223,8 @@ DocText doc_surrogate() {
   const smi::surrogate::doe::LhsOptions lo;
   const smi::surrogate::kriging::FitOptions fo;
   const smi::surrogate::screen::Options so;
+  const smi::surrogate::screen::SurrogateOptions sso;
+  const smi::surrogate::kriging::SequentialOptions seq;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"criterion", lo.criterion},
@@ -235,7 +242,16 @@ DocText doc_surrogate() {
                        {"sobol", b(so.sobol)},
                        {"bootstrap", num(so.bootstrap)},
                        {"level", num(so.level)},
-                       {"grid", num(static_cast<double>(so.grid))}})};
+                       {"grid", num(static_cast<double>(so.grid))},
+                       {"runs", num(static_cast<double>(sso.runs))},
+                       {"basis", smi::surrogate::polyfit::basis_name(sso.basis)},
+                       {"q2_min", num(sso.q2_min)},
+                       {"delta", b(sso.delta)},
+                       {"classes", num(static_cast<double>(sso.delta_classes))},
+                       {"seq_batch", num(static_cast<double>(seq.batch))},
+                       {"seq_max", num(static_cast<double>(seq.max_points))},
+                       {"seq_q2", num(seq.q2_target)},
+                       {"predict_threads", num(kDefaultThreads)}})};
 }
 
 }  // namespace smi::bind

@@ -147,8 +147,8 @@ int screen_call(lua_State* L) {
     }
   smi::surrogate::screen::SurrogateOptions sso;
   sso.runs = static_cast<Eigen::Index>(o.integer("runs", sso.runs));
-  const std::string basis = o.string("basis", "quadratic");
-  sso.q2_min = o.number("q2_min", 0.9);
+  const std::string basis = o.string("basis", smi::surrogate::polyfit::basis_name(sso.basis));
+  sso.q2_min = o.number("q2_min", sso.q2_min);
   sso.delta = o.boolean("delta", sso.delta);
   sso.delta_classes = static_cast<Eigen::Index>(o.integer("classes", sso.delta_classes));
   return lua::protect(L, fname, [&] {

@@ -6,6 +6,7 @@
 // table of the model interface) runs on `design`, then on one batch of candidate rows at a time
 // (a parallel evaluator gets the whole batch) until every output's leave-one-out Q2 reaches `q2`
 // and its LOO RMSE `rmse[<output>]` (when given), or the design holds `max` points.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "bindings/surrogate/kriging_box.hpp"
 #include "bindings/surrogate/model_arg.hpp"
+#include "kernels/core/errors.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
@@ -61,12 +63,24 @@ SequentialArgs read_sequential_args(lua_State* L, lua::Options& o, const ModelAr
   return a;
 }
 
-// rmse = {<output> = target}: read once the model's first call has named its outputs.
+// rmse = {<output> = target}: read once the model's first call has named its outputs. A key
+// that names no output or a target that is not a positive number is an error (a misspelt
+// output would otherwise leave its target silently unchecked).
 void read_rmse_targets(lua_State* L, int rmse_idx, const std::vector<std::string>& outputs, kr::SequentialOptions& so) {
   so.rmse_target = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(outputs.size()), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t j = 0; j < outputs.size(); ++j) {
-    lua_getfield(L, rmse_idx, outputs[j].c_str());
-    if (lua_isnumber(L, -1)) so.rmse_target(static_cast<Eigen::Index>(j)) = lua_tonumber(L, -1);
+  std::string names;
+  for (const std::string& n : outputs) names += (names.empty() ? "" : ", ") + n;
+  lua_pushnil(L);
+  while (lua_next(L, rmse_idx)) {
+    const bool named = lua_type(L, -2) == LUA_TSTRING;
+    const std::string key = named ? lua_tostring(L, -2) : luaL_typename(L, -2);
+    const auto it = named ? std::find(outputs.begin(), outputs.end(), key) : outputs.end();
+    if (it == outputs.end())
+      throw InvalidArgument("rmse: '" + key + "' is not an output of the model (its outputs: " + names + ")");
+    const double v = lua_type(L, -1) == LUA_TNUMBER ? lua_tonumber(L, -1) : std::numeric_limits<double>::quiet_NaN();
+    if (!(v > 0) || !std::isfinite(v))
+      throw InvalidArgument("rmse." + key + " must be a positive finite number (the LOO RMSE target in the output's units)");
+    so.rmse_target(static_cast<Eigen::Index>(it - outputs.begin())) = v;
     lua_pop(L, 1);
   }
 }

@@ -2,12 +2,14 @@
 // its results file) with the libraries at hand: the ones --lib / SMI_PATH give now, or, for a
 // library not found there, the folder it was recorded at. Names every changed, added or removed
 // file. Exit status 0 when everything matches, 1 otherwise.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <variant>
 
 #include "cli/commands.hpp"
 #include "kernels/core/errors.hpp"
@@ -26,7 +28,7 @@ struct RecordedLib {
 
 struct Recorded {
   std::string smi_lua, script_path, script_hash;
-  long long seed = -1;
+  unsigned long long seed = 0;  // --seed takes any 64-bit unsigned value
   bool has_seed = false;
   std::vector<RecordedLib> libs;
 };
@@ -56,8 +58,15 @@ Recorded read_recorded(const fs::path& file) {
   Recorded r;
   r.smi_lua = field_string(*prov, "smi_lua");
   if (const json::Value* seed = prov->find("seed"); seed && seed->is_number()) {
-    r.seed = static_cast<long long>(seed->number());
-    r.has_seed = true;
+    // Read the integer itself: through a double, seeds above 2^53 came back as another seed.
+    // The run stores smi.seed as a Lua integer (above 2^63: negative), hence the unsigned cast.
+    if (const auto* i = std::get_if<std::int64_t>(&seed->v)) {
+      r.seed = static_cast<unsigned long long>(*i);
+      r.has_seed = true;
+    } else if (const double d = seed->number(); d >= 0 && d < 18446744073709551616.0) {
+      r.seed = static_cast<unsigned long long>(d);
+      r.has_seed = true;
+    }
   }
   if (const json::Value* script = prov->find("script"); script && script->is_object()) {
     r.script_path = field_string(*script, "path");
@@ -147,7 +156,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& args) {
   int changed = 0, missing = 0;
   std::printf("verifying %s: %zu librar%s recorded", args[0].c_str(), rec.libs.size(), rec.libs.size() == 1 ? "y" : "ies");
   if (!rec.smi_lua.empty()) std::printf(", smi-lua %s", rec.smi_lua.c_str());
-  if (rec.has_seed) std::printf(", seed %lld", rec.seed);
+  if (rec.has_seed) std::printf(", seed %llu", rec.seed);
   std::printf("\n");
 
   for (const RecordedLib& r : rec.libs) {
@@ -173,7 +182,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& args) {
 
   const bool all_ok = changed == 0 && missing == 0 && !script_changed;
   if (all_ok && rec.has_seed)
-    std::printf("verify: everything matches; rerun with --seed %lld to reproduce the results\n", rec.seed);
+    std::printf("verify: everything matches; rerun with --seed %llu to reproduce the results\n", rec.seed);
   else if (all_ok)
     std::printf("verify: everything matches\n");
   else

@@ -134,6 +134,14 @@ has_out "MISSING  kdetools 1.3.0"
 mv kdetools.gone team/kdetools
 run verify-no-provenance 1 "$SMI" verify study/uses.lua
 has_err "not valid JSON"
+# the recorded seed is the integer itself, also above 2^53 (a double rounded it to another seed)
+# and above 2^63 (smi.seed is a Lua integer: the results file holds it negative)
+printf '{"provenance": {"seed": 9007199254740993, "libraries": []}}\n' > big_seed.json
+run verify-big-seed 0 "$SMI" verify big_seed.json
+has_out "rerun with --seed 9007199254740993 "
+printf '{"provenance": {"seed": -1, "libraries": []}}\n' > top_seed.json
+run verify-top-seed 0 "$SMI" verify top_seed.json
+has_out "rerun with --seed 18446744073709551615 "
 
 # --- a library runs in the study's sandbox --------------------------------------------------
 echo "s3cret" > secret.txt

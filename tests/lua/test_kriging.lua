@@ -78,4 +78,23 @@ T.case("errors name the culprit", function()
   T.raises(function() m:predict({{1, 2}}) end, "2 columns but the model has 1 inputs")
 end)
 
+T.case("sequential: rmse targets apply to the named output; an unknown output or a bad target is an error", function()
+  local f = function(X)
+    local y = {}
+    for i = 1, X:rows() do y[i] = math.sin(3 * X[i][1]) + X[i][2] end
+    return {y = smi.vec(y)}
+  end
+  local C = {}
+  for i = 1, 40 do C[i] = {(i % 7) / 7, (i % 5) / 5} end
+  local base = {model = f, design = {{0, 0}, {1, 1}, {0.5, 0.2}, {0.2, 0.8}}, candidates = C, batch = 2, max = 8, q2 = -math.huge}
+  local function with(t) local c = {} for k, v in pairs(base) do c[k] = v end for k, v in pairs(t) do c[k] = v end return c end
+  T.eq(smi.kriging.sequential(with{rmse = {y = 1e9}}).reached, true, "a loose RMSE target is met at once")
+  local tight = smi.kriging.sequential(with{rmse = {y = 1e-12}})
+  T.eq(tight.reached, false, "an unreachable RMSE target is not met")
+  T.eq(tight.X:rows(), 8, "the design grew to max")
+  T.raises(function() smi.kriging.sequential(with{rmse = {Y = 1e-9}}) end, "rmse: 'Y' is not an output of the model (its outputs: y)")
+  T.raises(function() smi.kriging.sequential(with{rmse = {y = "small"}}) end, "rmse.y must be a positive finite number")
+  T.raises(function() smi.kriging.sequential(with{rmse = {y = 0 / 0}}) end, "rmse.y must be a positive finite number")
+end)
+
 T.finish()

@@ -66,7 +66,7 @@ struct OptimizerOptions {
   double initial_step = 0.1;
   /// Number of starts: the given start, then multistart − 1 seeded uniform points in the box.
   int multistart = 1;
-  /// Starts optimised side by side (parallel_blocks); the result does not depend on it. Above 1
+  /// Starts optimised side by side (pool::parallel_for, one task per start); the result does not depend on it. Above 1
   /// the objective, gradient, prepare_start and observer are called from several threads at
   /// once and must be safe for that (C++ models: yes; anything that calls Lua: no).
   int start_threads = 1;

@@ -60,7 +60,7 @@ struct StatisticalOptions {
   std::uint64_t seed = 0;
   CrnKind crn = CrnKind::random;
   MetricKind metric = MetricKind::pr;
-  Eigen::Index grid_nodes = 4001;   ///< nodes of the default PR grids
+  Eigen::Index grid_nodes = kDefaultGridNodes;  ///< nodes of the default PR grids
   std::string bandwidth = "silverman";  ///< bandwidth rule for the predicted KDEs
   double density_floor = 1e-300;    ///< loglik floor (spec §2.2)
   int threads = 1;                  ///< KDE evaluation threads

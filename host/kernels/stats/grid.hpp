@@ -29,9 +29,9 @@ struct Grid {
 
   /// §0: [min(data) - 6*h_max, max(data) + 6*h_max] with n nodes, data being every sample that
   /// enters the comparison (pass the union) and h_max the largest bandwidth involved.
-  static Grid covering(ConstVec data, double h_max, Eigen::Index n = 4001);
+  static Grid covering(ConstVec data, double h_max, Eigen::Index n = kDefaultGridNodes);
   /// The same from a range already known: [lo - 6*h_max, hi + 6*h_max].
-  static Grid covering(double data_lo, double data_hi, double h_max, Eigen::Index n = 4001);
+  static Grid covering(double data_lo, double data_hi, double h_max, Eigen::Index n = kDefaultGridNodes);
 };
 
 }  // namespace smi::stats

@@ -21,7 +21,7 @@ struct BoundedKdeOptions {
   std::string bandwidth = "silverman";  ///< rule applied to the pooled data every iteration
   bool deterministic = false;    ///< place m points at l + (u − l)(j − ½)/m instead of drawing
   std::uint64_t seed = 0;
-  Eigen::Index grid_nodes = 4001;
+  Eigen::Index grid_nodes = kDefaultGridNodes;
 };
 
 /// §1.2 bounds: min/max estimators (unbiased = false) or the unbiased ones; c = α^{-1/n}.

@@ -27,7 +27,7 @@ double intersection_area_on_grid(ConstVec f, ConstVec g, const Grid& grid);
 
 /// A §0 grid for comparing a and b: covers both supports' bulk. For KDEs: data range ± 6 h_max;
 /// for other distributions their 1e-10 and 1-1e-10 quantiles (finite support ends when finite).
-Grid comparison_grid(const Distribution& a, const Distribution& b, Eigen::Index n = 4001);
+Grid comparison_grid(const Distribution& a, const Distribution& b, Eigen::Index n = kDefaultGridNodes);
 
 /// PR and intersection area of a and b on grid g, with the reasons it was not the plain
 /// trapezoid: when a pdf is infinite at a node, or integrates on the grid (plus its mass

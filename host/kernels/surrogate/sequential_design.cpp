@@ -3,6 +3,7 @@
 #include "kernels/surrogate/sequential_design.hpp"
 
 #include <Eigen/Cholesky>
+#include <fmt/format.h>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -28,6 +29,31 @@ Eigen::VectorXd variance_ratio(const Model& m, const Eigen::MatrixXd& D, const E
 
 Eigen::MatrixXd normalised(const Model& m, const Eigen::MatrixXd& X) {
   return (X.rowwise() - m.mS).array().rowwise() / m.sS.array();
+}
+
+// The weights before the first model run (a solver study pays for that run; select_batch
+// would only see them after it).
+void check_weights(const Eigen::MatrixXd& candidates, const Eigen::VectorXd& weights) {
+  if (weights.size() != candidates.rows())
+    throw DimensionMismatch("sequential_design: " + std::to_string(weights.size()) + " weights for " +
+                            std::to_string(candidates.rows()) + " candidates");
+  for (Eigen::Index i = 0; i < weights.size(); ++i)
+    if (!std::isfinite(weights(i)))
+      throw InvalidArgument("sequential_design: weight " + std::to_string(i + 1) + " is not finite");
+}
+
+// The model's outputs Y at the design X are finite; else the first culprit is named by its
+// design point and output (the fix is at that run of the model).
+void check_finite(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  for (Eigen::Index i = 0; i < Y.rows(); ++i)
+    for (Eigen::Index j = 0; j < Y.cols(); ++j) {
+      if (std::isfinite(Y(i, j))) continue;
+      std::string x;
+      for (Eigen::Index c = 0; c < X.cols(); ++c) x += (c ? ", " : "") + fmt::format("{}", X(i, c));
+      throw InvalidArgument(fmt::format("sequential_design: the model returned {} for output {} at design point {} ({}); "
+                                        "it must return finite values",
+                                        Y(i, j), j + 1, i + 1, x));
+    }
 }
 
 }  // namespace
@@ -83,6 +109,7 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
   if (candidates.cols() != initial.cols())
     throw DimensionMismatch("sequential_design: candidates have " + std::to_string(candidates.cols()) + " columns, the design " +
                             std::to_string(initial.cols()));
+  check_weights(candidates, weights);
   SequentialResult r;
   r.X = initial;
   r.Y = model(initial);
@@ -94,7 +121,7 @@ SequentialResult sequential_design(const Eigen::MatrixXd& initial, const Eigen::
                             std::to_string(r.Y.cols()) + " outputs");
   Eigen::VectorXd w = weights;
   for (;;) {
-    if (!r.Y.allFinite()) throw InvalidArgument("sequential_design: the model returned a value that is not finite");
+    check_finite(r.X, r.Y);
     r.models.clear();
     SequentialStep step;
     step.points = r.X.rows();

@@ -112,4 +112,24 @@ TEST_CASE("sequential_design stops at max_points and names bad input") {
   CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), f, small), smi::InvalidArgument);
   CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), Eigen::MatrixXd::Zero(5, 3), Eigen::VectorXd::Ones(5), f, o),
                   smi::DimensionMismatch);
+  // bad weights are refused before the model runs (each run may be a solver call)
+  int runs = 0;
+  const DesignModel counted = [&runs](const Eigen::MatrixXd& X) {
+    ++runs;
+    return f(X);
+  };
+  CHECK_THROWS_AS(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(199), counted, o),
+                  smi::DimensionMismatch);
+  Eigen::VectorXd nan_w = Eigen::VectorXd::Ones(200);
+  nan_w(3) = std::nan("");
+  CHECK_THROWS_WITH(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, nan_w, counted, o), Catch::Contains("weight 4"));
+  CHECK(runs == 0);
+  // a non-finite model value names the design point and the output
+  const DesignModel nan_at_3 = [](const Eigen::MatrixXd& X) {
+    Eigen::MatrixXd Y = f(X);
+    if (X.rows() > 2) Y(2, 0) = std::nan("");
+    return Y;
+  };
+  CHECK_THROWS_WITH(sequential_design(smi::surrogate::doe::lhs(8, 2, 7), cand, Eigen::VectorXd::Ones(200), nan_at_3, o),
+                    Catch::Contains("returned nan for output 1 at design point 3 ("));
 }
