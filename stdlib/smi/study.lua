@@ -293,9 +293,11 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   saved.steps[st.name] = { status = "failed", seconds = dt, clock = clock, error = tostring(ret), traceback = trace,
                            previous = prev }
   self.timings[#self.timings + 1] = { st.name, "failed", dt }
-  pcall(self._save, self, saved)
+  -- the step's error comes first; a results file that could not be written is said after it
+  local saved_ok, save_err = pcall(self._save, self, saved)
   self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
-  error(("study '%s': step '%s' failed: %s"):format(self.name, st.name, tostring(ret)), 0)
+  local also = saved_ok and "" or ("; and the failure was not recorded: " .. tostring(save_err))
+  error(("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also), 0)
 end
 
 -- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what

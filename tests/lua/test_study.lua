@@ -98,6 +98,15 @@ T.case("a failing step: error names it, results so far are saved", function()
   T.eq(d.steps.never, nil, "later step not run")
 end)
 
+T.case("a failing step whose failure cannot be saved says both", function()
+  local s = study.new{ name = "study_fail_unsaved", out = dir, results = dir .. "/no_such_folder/r.json", quiet = true }
+  s:step("boom", function() error("solver diverged at x = 4") end)
+  local ok, err = pcall(s.run, s)
+  T.eq(ok, false, "the run fails")
+  T.truthy(tostring(err):find("solver diverged at x = 4", 1, true), "the step's error comes first: " .. tostring(err))
+  T.truthy(tostring(err):find("not recorded", 1, true), "the lost record is said: " .. tostring(err))
+end)
+
 T.case("misuse is reported clearly", function()
   T.raises(function() study.new{} end, "'name' is missing")
   local s = study.new{ name = "study_misuse", out = dir, results = results_path("study_misuse"), quiet = true }
