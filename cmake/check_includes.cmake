@@ -8,6 +8,7 @@
 # Every violation is reported as "<file>:<line>: <include> -- <rule>" and the script fails.
 
 cmake_minimum_required(VERSION 3.25)  # IN_LIST and the other policies of the tree
+include(${CMAKE_CURRENT_LIST_DIR}/source_lines.cmake)
 
 # Layers from the bottom up. A kernel area sees the areas it links (host/CMakeLists.txt).
 set(SMI_LAYERS kernels/core kernels/stats kernels/surrogate kernels/eval kernels/improve
@@ -95,12 +96,7 @@ foreach(rel IN LISTS _files)
     math(EXPR cut "${last} + ${nl}")
     string(SUBSTRING "${text}" 0 ${cut} text)
   endif()
-  # CMake lists split on ';' and treat [ ] specially: neutralise them before splitting on lines.
-  string(REPLACE ";" "," text "${text}")
-  string(REPLACE "[" "(" text "${text}")
-  string(REPLACE "]" ")" text "${text}")
-  string(REPLACE "\\" "/" text "${text}")
-  string(REPLACE "\n" ";" lines "${text}")
+  smi_source_lines("${text}" lines)
   set(n 0)
   foreach(line IN LISTS lines)
     math(EXPR n "${n} + 1")

@@ -7,6 +7,7 @@
 # layout.namespace_check (tests/layout/). Each violation: "<file>:<line>: namespace <name> -- <rule>".
 
 cmake_minimum_required(VERSION 3.25)
+include(${CMAKE_CURRENT_LIST_DIR}/source_lines.cmake)
 
 set(_areas stats surrogate eval improve)
 if(NOT ROOT)
@@ -22,11 +23,7 @@ foreach(rel IN LISTS _files)
   endif()
   set(area "${CMAKE_MATCH_1}")
   file(READ ${ROOT}/${rel} text)
-  string(REPLACE ";" "," text "${text}")
-  string(REPLACE "[" "(" text "${text}")
-  string(REPLACE "]" ")" text "${text}")
-  string(REPLACE "\\" "/" text "${text}")
-  string(REPLACE "\n" ";" lines "${text}")
+  smi_source_lines("${text}" lines)
   set(n 0)
   foreach(line IN LISTS lines)
     math(EXPR n "${n} + 1")
