@@ -555,24 +555,22 @@ local function summary_tables(r, R)
              columns = { "Model", { title = "Points", format = "%d" }, { title = "Launched", format = "%d" },
                          { title = "Reused", format = "%d" } } }
   end
-  local steps = {}
+  -- wall time and solver runs per step, in one pass over each step's own record (a step run
+  -- alone keeps both); the summary, still running, has neither
+  local steps, per, total = {}, {}, 0
   for _, st in ipairs(s.steps) do
-    if st.name ~= "summary" then
-      local ok, res = pcall(function() return R[st.name] end)
-      if ok and res and not res.skipped then steps[#steps + 1] = { st.name, res.wall_seconds or 0 } end
+    local ok, res = pcall(function() return R[st.name] end)
+    if ok and res and st.name ~= "summary" then
+      if not res.skipped then steps[#steps + 1] = { st.name, res.wall_seconds or 0 } end
+      local runs = res.solver_runs
+      if runs and runs.solutions > 0 then
+        per[#per + 1] = { st.name, runs.solutions, runs.new, runs.processes }
+        total = total + runs.solutions
+      end
     end
   end
   r:table{ caption = "Wall-clock time per step (s, 1 s resolution).", rows = steps,
            columns = { "Step", { title = "Wall (s)", format = "%d" } } }
-  -- solver runs per step, from each step's own record (a step run alone keeps its count)
-  local per, total = {}, 0
-  for _, st in ipairs(s.steps) do
-    local ok, res = pcall(function() return R[st.name] end)
-    if ok and res and res.solver_runs and res.solver_runs.solutions > 0 then
-      per[#per + 1] = { st.name, res.solver_runs.solutions, res.solver_runs.new, res.solver_runs.processes }
-      total = total + res.solver_runs.solutions
-    end
-  end
   per[#per + 1] = { "total", total, "", "" }
   r:table{ caption = ("Solver runs per step (column-fe solutions; new: not found in the evaluation store)."
              .. " Screening: %s; Kriging test points %d; solver check %d points"
