@@ -353,15 +353,22 @@ void report_agreement(const char* key, const Run& run, const StatisticalObjectiv
   std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
 }
 
-/// Part 2's runs: 4 starts (the study's budget of 300 each) side by side on 2 threads (model,
-/// KDE and Jacobian on one thread each), analytic, analytic with the moment start, differences.
-void run_trial_problem(const TrialProblem& tp, const StatisticalObjective& obj) {
-  Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+/// Part 2's starts, the same for every run and variant: 4 starts (the study's budget of 300
+/// each), seed 11, side by side on 2 threads.
+OptimizerOptions trial_starts() {
   OptimizerOptions o;
   o.multistart = 4;
   o.seed = 11;
   o.maxeval = 300;
   o.start_threads = 2;
+  return o;
+}
+
+/// Part 2's runs: 4 starts (the study's budget of 300 each) side by side on 2 threads (model,
+/// KDE and Jacobian on one thread each), analytic, analytic with the moment start, differences.
+void run_trial_problem(const TrialProblem& tp, const StatisticalObjective& obj) {
+  Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
+  const OptimizerOptions o = trial_starts();
   OptimizerOptions oa = o;
   oa.gradient = counted_gradient(obj);
   OptimizerOptions om = oa;
@@ -401,11 +408,7 @@ struct TrialObjective {
 /// and each start's optimum, so the peer can tell whether the starts agree.
 void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj, Method method) {
   Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
-  OptimizerOptions o;
-  o.multistart = 4;
-  o.seed = 11;
-  o.maxeval = 300;
-  o.start_threads = 2;
+  OptimizerOptions o = trial_starts();
   o.method = method;
   o.gradient = counted_gradient(obj);
   report_agreement(key, timed(1, tp.p, f, o, obj), obj);
