@@ -26,6 +26,7 @@
 #include "kernels/core/rng.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/overlap_start.hpp"
+#include "kernels/improve/start_agreement.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/surrogate/kriging.hpp"
 
@@ -335,7 +336,7 @@ void profile_evaluation(const TrialProblem& tp, const StatisticalObjective& obj,
 /// response) and the largest difference of their predicted responses' summaries (four
 /// standardised Hermite moments per response, unit variance per datum: differences far below
 /// 1/sqrt(40) are invisible to the data).
-void report_agreement(const char* key, const Run& run, const StatisticalObjective& obj) {
+void report_agreement(const char* key, const Run& run, const StatisticalObjective& obj, const std::vector<Parameter>& params) {
   report(key, run);
   std::printf("%s_agree %d\n%s_optima %zu\n%s_converged_starts", key, run.r.starts_agree ? 1 : 0, key, run.r.optima.size(), key);
   for (const auto& st : run.r.starts) std::printf(" %s", st.status.c_str());
@@ -351,6 +352,13 @@ void report_agreement(const char* key, const Run& run, const StatisticalObjectiv
     dsum = std::max(dsum, (obj.summaries(st.theta) - best).cwiseAbs().maxCoeff());
   }
   std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
+  // smi.calibrate's own account (start_agreement.hpp) at its PR default tolerance, 0.01 per response
+  PredictionCheck pc;
+  pc.summaries = [&obj](const Eigen::VectorXd& t) { return obj.summaries(t); };
+  pc.resolution = Eigen::VectorXd::Constant(4 * static_cast<Eigen::Index>(obj.responses().size()), 1.0 / std::sqrt(static_cast<double>(obj.responses()[0].data.size())));
+  const StartAgreement a = start_agreement(params, [&obj](const Eigen::VectorXd& t) { return obj(t); }, run.r, 0.02, pc);
+  std::printf("%s_same %d\n%s_largest_gap %.4g\n%s_largest_barrier %.4g\n%s_largest_prediction_distance %.4g\n", key, a.same, key,
+              a.largest_gap, key, a.largest_barrier, key, a.largest_prediction_distance);
 }
 
 /// Part 2's starts, the same for every run and variant: 4 starts (the study's budget of 300
@@ -373,9 +381,9 @@ void run_trial_problem(const TrialProblem& tp, const StatisticalObjective& obj) 
   oa.gradient = counted_gradient(obj);
   OptimizerOptions om = oa;
   om.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
-  report_agreement("trial_analytic", timed(1, tp.p, f, oa, obj), obj);
-  report_agreement("trial_moments", timed(1, tp.p, f, om, obj), obj);
-  report_agreement("trial_differences", timed(1, tp.p, f, o, obj), obj);
+  report_agreement("trial_analytic", timed(1, tp.p, f, oa, obj), obj, tp.p);
+  report_agreement("trial_moments", timed(1, tp.p, f, om, obj), obj, tp.p);
+  report_agreement("trial_differences", timed(1, tp.p, f, o, obj), obj, tp.p);
 }
 
 /// Part 2's objective: the two Kriging predictors as the model (one thread each) and their
@@ -406,12 +414,15 @@ struct TrialObjective {
 
 /// One variant of part 2 (CRN kind, n, bandwidth, CRN seed, data, metric, method): the analytic run with 4 starts,
 /// and each start's optimum, so the peer can tell whether the starts agree.
-void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj, Method method) {
+void run_trial_variant(const char* key, const TrialProblem& tp, const StatisticalObjective& obj, Method method, int hops = 0,
+                       double hop_step = 0.2) {
   Objective f = [&obj](const Eigen::VectorXd& t) { return obj(t); };
   OptimizerOptions o = trial_starts();
   o.method = method;
+  o.hops = hops;
+  o.hop_step = hop_step;
   o.gradient = counted_gradient(obj);
-  report_agreement(key, timed(1, tp.p, f, o, obj), obj);
+  report_agreement(key, timed(1, tp.p, f, o, obj), obj, tp.p);
 }
 
 }  // namespace
@@ -436,10 +447,14 @@ int main(int argc, char** argv) {
                             : v == "quantiles8000" ? TrialProblem(8000, CrnKind::quantiles)
                             : v == "random2000seed" ? TrialProblem(2000)
                             : v == "data1000" ? TrialProblem(2000, CrnKind::random, "silverman", 1000)
-                            : v == "loglik" || v == "lbfgs" ? TrialProblem(2000)
+                            : v == "loglik" || v == "lbfgs" || v.rfind("hops", 0) == 0 ? TrialProblem(2000)
                                                   : TrialProblem(2000, CrnKind::random, v);
     const TrialObjective to(tp, v == "random2000seed" ? 4 : tp.so.seed, v == "loglik" ? MetricKind::loglik : MetricKind::pr);
-    run_trial_variant(("variant_" + v).c_str(), tp, to.obj, v == "lbfgs" ? Method::lbfgs : Method::slsqp);
+    // hops<N>[_<step>]: basin hopping, N hops of up to ±step (default 0.2) per start
+    const bool hopping = v.rfind("hops", 0) == 0;
+    const int hops = hopping ? std::stoi(v.substr(4)) : 0;
+    const double step = hopping && v.find('_') != std::string::npos ? std::stod(v.substr(v.find('_') + 1)) : 0.2;
+    run_trial_variant(("variant_" + v).c_str(), tp, to.obj, v == "lbfgs" ? Method::lbfgs : Method::slsqp, hops, step);
     return 0;
   }
   if (mode != "quick") {  // 2. trial-2-like: 10 parameters, 2000 CRN samples, Kriging outputs

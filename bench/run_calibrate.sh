@@ -14,8 +14,8 @@ echo "load_before $(cut -d' ' -f1-3 /proc/loadavg)" > "$tmp/ours.txt"
 echo "load_after_main $(cut -d' ' -f1-3 /proc/loadavg)" >> "$tmp/ours.txt"
 if [ "${2:-}" != quick ]; then
   "$build/bench/bench_calibrate" "$tmp/profile" profile | grep '^profile_' >> "$tmp/ours.txt"
-  # Section 2's variants: CRN kind and size, bandwidth rule, CRN seed, data size (one at a time).
-  for v in quantiles random2000seed robust random8000 quantiles8000 data1000 loglik lbfgs; do
+  # Section 2's variants: CRN kind and size, bandwidth rule, CRN seed, data size, metric, method, basin hopping (one at a time).
+  for v in quantiles random2000seed robust random8000 quantiles8000 data1000 loglik lbfgs hops2_0.4 hops4_0.4; do
     "$build/bench/bench_calibrate" "$tmp/profile" variants $v >> "$tmp/ours.txt"
   done
 fi

@@ -20,12 +20,12 @@
 //                 penalty = function(theta) return number end (prior knowledge, added),
 //                 moment_start = false (true: every start first matched to the data's means and sds), ...}
 // Common: method = "slsqp"|"lbfgs"|"cobyla"|"bobyqa"|"neldermead", multistart, seed, maxeval, xtol_rel,
-//         ftol_abs, fd_step, initial_step,
+//         ftol_abs, fd_step, initial_step, hops = 0, hop_step = 0.2 (basin hopping per start),
 //         identifiability = true|false|{points, rel_tol, abs_tol, tolerance, step},
 //         prior = {{param = name, mean =, std =} | {name =, fn = function(theta), mean =, std =}, ...},
 //         prior_weight = 1, progress = function(row) end.
 // Result: params, theta, names, objective, metrics (parts; "penalty", "prior"), converged, status,
-//         method, evaluations, warnings, at_bounds, history, starts, starts_agree, optima,
+//         method, evaluations, warnings, at_bounds, history, starts, starts_agree, optima, agreement,
 //         identifiability (span, weak, profiles; directions, tolerance), near_optimal, bootstrap;
 //         statistical form also inputs, distributions (smi.dist per input), grids, model_runs, n,
 //         seed, metric.
@@ -266,6 +266,47 @@ void add_identifiability(const CalibrateSpec& s, const Objective& f, Calibration
   append(out.warnings, out.directions->warnings);
 }
 
+/// The number of observations behind a response: its data, or the sample of a KDE given as its
+/// experimental PDF (a KDE-ebd's added points are not observations); 0 when unknown.
+double observations(const ResponseSpec& r) {
+  if (r.data.size() > 0) return static_cast<double>(r.data.size());
+  if (!r.f_exp) return 0.0;
+  const double n = r.f_exp->field("n").value_or(0.0), added = r.f_exp->field("added").value_or(0.0);
+  return std::max(0.0, n - added);
+}
+
+/// The statistical form's predictions to compare the starts by: the summaries of the predicted
+/// responses, each resolvable to one standard error of the data's own, 1/sqrt(n) (n the
+/// response's observations). None when some response's observations are unknown.
+PredictionCheck prediction_check(const CalibrationOutcome& out) {
+  if (!out.stat) return {};
+  const auto& rs = out.stat->responses();
+  PredictionCheck pc;
+  pc.resolution.resize(4 * static_cast<Eigen::Index>(rs.size()));
+  for (std::size_t j = 0; j < rs.size(); ++j) {
+    const double n = observations(rs[j]);
+    if (n < 2) return {};
+    pc.resolution.segment(4 * static_cast<Eigen::Index>(j), 4).setConstant(1.0 / std::sqrt(n));
+  }
+  pc.summaries = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
+  return pc;
+}
+
+/// With several starts: whether they reached the best's optimum where the data can tell (within
+/// the tolerance, no barrier above it between them; start_agreement.hpp). The starts' optima
+/// that fit as well join the near-optimal set: they are calibrations the data cannot reject.
+void add_start_agreement(const CalibrateSpec& s, const Objective& f, CalibrationOutcome& out) {
+  out.agreement = start_agreement(s.params, f, out.opt, default_tolerance(s, out.opt.value), prediction_check(out));
+  if (!out.opt.starts_agree) out.warnings.push_back(describe(*out.agreement));
+  if (!out.directions) return;
+  for (std::size_t i = 0; i < out.opt.starts.size(); ++i) {
+    const StartResult& st = out.opt.starts[i];
+    if (!out.agreement->rows[i].within || st.theta == out.opt.theta) continue;
+    out.directions->near_optimal.push_back(st.theta);
+    out.directions->near_optimal_values.push_back(st.value);
+  }
+}
+
 /// Warns when the calibrated inputs' samples leave the surrogates' design bounds.
 void add_design_bound_warnings(const CalibrateSpec& s, const StatisticalObjective& obj, CalibrationOutcome& out) {
   std::vector<std::string> names;
@@ -310,6 +351,7 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   out.warnings = out.opt.warnings;
   // The analyses at the optimum, in this order (their warnings follow the optimiser's).
   if (s.identifiability) add_identifiability(s, f, out);
+  if (s.optimizer.multistart > 1) add_start_agreement(s, f, out);
   if (s.intervals) {
     ProfileOptions po = *s.intervals;
     po.optimizer.observer = {};

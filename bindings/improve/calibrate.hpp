@@ -11,6 +11,7 @@
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/start_agreement.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
@@ -22,6 +23,7 @@ struct CalibrationOutcome {
   std::optional<smi::improve::DirectionsResult> directions;
   std::optional<smi::improve::ProfileResult> profile;
   std::optional<smi::improve::BootstrapResult> boot;
+  std::optional<smi::improve::StartAgreement> agreement;  ///< with multistart > 1
   std::optional<smi::improve::StatisticalObjective> stat;
   std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included
   bool analytic_gradient = false;     ///< SLSQP ran on the analytic gradient

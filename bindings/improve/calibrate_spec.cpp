@@ -401,6 +401,8 @@ OptimizerOptions read_optimizer(lua::Options& o, std::uint64_t seed) {
   opt.ftol_abs = o.number("ftol_abs", opt.ftol_abs);
   opt.fd_step = o.number("fd_step", opt.fd_step);
   opt.initial_step = o.number("initial_step", opt.initial_step);
+  opt.hops = static_cast<int>(o.integer("hops", opt.hops));
+  opt.hop_step = o.number("hop_step", opt.hop_step);
   opt.seed = seed;
   return opt;
 }
@@ -529,6 +531,7 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
     ProfileOptions po;
     po.optimizer = s.optimizer;
     po.optimizer.multistart = 1;
+    po.optimizer.hops = 0;  // each profile node is a warm-started constrained refit, not a new search
     bool has_delta = false;
     int observations = 0;  // > 0: the small-sample (F-calibrated) delta
     if (iv == LUA_TTABLE) {
@@ -570,7 +573,8 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   lua::Options o(L, idx, "smi.calibrate");
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals"});
+                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals",
+                 "hops", "hop_step"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer = read_optimizer(o, seed);

@@ -2,6 +2,7 @@
 // name. Stack effects are noted per helper.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 
 #include "bindings/improve/calibrate.hpp"
@@ -132,9 +133,41 @@ void push_starts(lua_State* L, const std::vector<std::string>& names, const Opti
     lua::set_integer(L, "evaluations", st.evaluations);
     lua::set_string(L, "status", st.status);
     lua::set_boolean(L, "converged", st.converged);
+    if (st.hops > 0) {
+      lua::set_integer(L, "hops", st.hops);
+      lua::set_integer(L, "hops_improved", st.hops_improved);
+    }
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "starts");
+}
+
+/// agreement: whether the starts reached the best's optimum where the data can tell, per start.
+void push_agreement(lua_State* L, const StartAgreement& a) {
+  lua_createtable(L, 0, 8);
+  lua::set_boolean(L, "agree", a.agree);
+  lua::set_integer(L, "same", a.same);
+  lua::set_integer(L, "starts", static_cast<lua_Integer>(a.rows.size()));
+  lua::set_number(L, "tolerance", a.tolerance);
+  lua::set_number(L, "largest_gap", a.largest_gap);
+  lua::set_number(L, "largest_barrier", a.largest_barrier);
+  if (!std::isnan(a.largest_prediction_distance)) lua::set_number(L, "largest_prediction_distance", a.largest_prediction_distance);
+  lua::set_integer(L, "evaluations", a.evaluations);
+  lua::set_integer(L, "predictions", a.predictions);
+  lua::set_string(L, "text", describe(a));
+  lua_createtable(L, static_cast<int>(a.rows.size()), 0);
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    lua_createtable(L, 0, 4);
+    lua::set_number(L, "gap", a.rows[i].gap);
+    lua::set_number(L, "barrier", a.rows[i].barrier);
+    if (!std::isnan(a.rows[i].prediction_distance)) lua::set_number(L, "prediction_distance", a.rows[i].prediction_distance);
+    lua::set_boolean(L, "same_prediction", a.rows[i].same_prediction);
+    lua::set_boolean(L, "within", a.rows[i].within);
+    lua::set_boolean(L, "same", a.rows[i].same);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "rows");
+  lua_setfield(L, -2, "agreement");
 }
 
 /// optima: the distinct optima the starts reached (each with the start that found it).
@@ -266,6 +299,7 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   push_starts(L, names, r);
   lua::set_boolean(L, "starts_agree", r.starts_agree);
   push_optima(L, names, r);
+  if (out.agreement) push_agreement(L, *out.agreement);
   if (out.ident) push_identifiability(L, names, out);
   if (out.directions) push_near_optimal(L, names, *out.directions);
   if (out.boot) push_bootstrap(L, names, s, *out.boot);

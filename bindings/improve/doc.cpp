@@ -52,6 +52,8 @@ options:
   objective = nil             -- objective form: function(theta) returning a number; theta[name]
   method = "slsqp"            -- "slsqp", "lbfgs" (gradient-based too), "cobyla", "bobyqa" or "neldermead"
   multistart = ${multistart}  -- starts: the given one plus multistart - 1 seeded points
+  hops = ${hops}              -- basin hopping: each start jumps hops times from its optimum (up to
+  hop_step = ${hop_step}      -- +-hop_step of each range) and keeps a lower optimum; for multimodal fits
   maxeval = ${maxeval}        -- objective evaluations per start (finite-difference probes included)
   xtol_rel = ${xtol_rel}      -- relative tolerance on the scaled parameters
   ftol_abs = ${ftol_abs}      -- absolute tolerance on the objective
@@ -71,7 +73,10 @@ options:
 returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
   r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
   {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
-  r.evaluations, r.model_runs, r.starts, r.starts_agree, r.optima (distinct optima), r.gradient,
+  r.evaluations, r.model_runs, r.starts, r.starts_agree (one point), r.optima (distinct optima),
+  r.agreement {agree, same, starts, tolerance, largest_gap, rows = {{gap, within, same_prediction,
+  prediction_distance, barrier, same}}, text} (multistart > 1: the same optimum where the data
+  can tell: within the tolerance, and the same predictions or no barrier between), r.gradient,
   r.at_bounds, r.warnings (at a bound, outside the design range, not identifiable),
   r.identifiability {span, weak, profiles, evaluations, directions = {{determined, loadings,
   curvature, profile}, ...}}, r.near_optimal {tolerance, points, objectives}, r.intervals,
@@ -126,6 +131,8 @@ DocText doc_improve() {
                        {"bandwidth", st.bandwidth},
                        {"threads", num(st.threads)},
                        {"multistart", num(opt.multistart)},
+                       {"hops", num(opt.hops)},
+                       {"hop_step", num(opt.hop_step)},
                        {"maxeval", num(opt.maxeval)},
                        {"xtol_rel", num(opt.xtol_rel)},
                        {"ftol_abs", num(opt.ftol_abs)},

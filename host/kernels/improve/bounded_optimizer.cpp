@@ -252,6 +252,9 @@ void validate_options(const OptimizerOptions& opt) {
   if (!(opt.fd_step > 0.0 && opt.fd_step <= 0.1))
     throw InvalidArgument(fmt::format("fd_step must be in (0, 0.1] (scaled units), got {}", opt.fd_step));
   if (!(opt.xtol_rel >= 0.0) || !(opt.ftol_abs >= 0.0)) throw InvalidArgument("xtol_rel and ftol_abs must be >= 0");
+  if (opt.hops < 0) throw InvalidArgument(fmt::format("hops must be >= 0, got {}", opt.hops));
+  if (!(opt.hop_step > 0.0 && opt.hop_step <= 1.0))
+    throw InvalidArgument(fmt::format("hop_step must be in (0, 1] (scaled units: a fraction of each range), got {}", opt.hop_step));
 }
 
 /// The starts in scaled units [0, 1]^k: the given start first, then uniform draws in order from
@@ -280,6 +283,52 @@ struct StartRun {
   int prepare_evaluations = 0;
 };
 
+/// Monotone basin hopping from start s's optimum: opt.hops jumps of up to ±hop_step (scaled) per
+/// parameter from the best point so far, each followed by a local run; a lower optimum replaces
+/// the start's (its status and convergence with it). One random stream per start, so the hops
+/// do not depend on start_threads.
+void hop_basins(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt, int s, StartRun& out) {
+  const Eigen::Index k = static_cast<Eigen::Index>(params.size());
+  Rng rng(opt.seed, hash_label("hops") + static_cast<std::uint64_t>(s));
+  auto scaled = [&](const Eigen::VectorXd& t) {
+    Eigen::VectorXd u(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const Parameter& p = params[static_cast<std::size_t>(i)];
+      u[i] = std::clamp((t[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
+    }
+    return u;
+  };
+  // A hop only has to tell which basin it fell into: its local run stops at a looser tolerance
+  // (most of a local run's evaluations go into its last digits), and the best point is polished
+  // at the caller's tolerances once, after the last hop.
+  OptimizerOptions loose = opt;
+  loose.xtol_rel = std::max(opt.xtol_rel, 1e-3);
+  loose.ftol_abs = std::max(opt.ftol_abs, 1e-5);
+  bool moved = false;
+  for (int h = 0; h < opt.hops; ++h) {
+    Eigen::VectorXd u = scaled(out.sr.theta);
+    for (Eigen::Index i = 0; i < k; ++i) u[i] = std::clamp(u[i] + opt.hop_step * (2.0 * rng.uniform01() - 1.0), 0.0, 1.0);
+    const StartResult hop = run_start(params, f, loose, u, s, out.history, out.warnings);
+    out.sr.evaluations += hop.evaluations;
+    ++out.sr.hops;
+    if (hop.value < out.sr.value - opt.ftol_abs) {
+      ++out.sr.hops_improved;
+      out.sr.theta = hop.theta;
+      out.sr.value = hop.value;
+      moved = true;
+    }
+  }
+  if (!moved) return;
+  const StartResult polish = run_start(params, f, opt, scaled(out.sr.theta), s, out.history, out.warnings);
+  out.sr.evaluations += polish.evaluations;
+  out.sr.status = polish.status;
+  out.sr.converged = polish.converged;
+  if (polish.value < out.sr.value) {
+    out.sr.theta = polish.theta;
+    out.sr.value = polish.value;
+  }
+}
+
 /// Start s from the scaled point u0: moved first by opt.prepare_start when there is one (its
 /// point clamped into the box), then optimised by run_start.
 void run_one_start(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt, Eigen::VectorXd u0, int s,
@@ -300,6 +349,7 @@ void run_one_start(const std::vector<Parameter>& params, const Objective& f, con
     }
   }
   out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
+  if (opt.hops > 0) hop_basins(params, f, opt, s, out);
   out.sr.given = given;
 }
 

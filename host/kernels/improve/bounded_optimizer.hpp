@@ -78,6 +78,14 @@ struct OptimizerOptions {
   /// Analytic gradient for SLSQP: when set, one call gives value and gradient (no
   /// finite-difference probes).
   ObjectiveGradient gradient;
+  /// Basin hopping (monotone): after its local run each start jumps `hops` times from its best
+  /// point by a uniform step of up to ±hop_step (scaled units) in every parameter and runs the
+  /// local method again, keeping the new optimum when it is lower. Local methods stop in the
+  /// first basin they enter; on a multimodal objective the hops let every start reach the
+  /// lowest basin near it, so independent starts end at the same optimum (at (hops + 1) times
+  /// the cost at most: each hop's local run has its own `maxeval`).
+  int hops = 0;
+  double hop_step = 0.2;
 };
 
 
@@ -97,6 +105,8 @@ struct StartResult {
   int evaluations = 0;
   std::string status;  ///< NLopt's stop reason: "xtol_reached", "roundoff_limited", ...
   bool converged = false;
+  int hops = 0;           ///< basin hops tried (OptimizerOptions::hops)
+  int hops_improved = 0;  ///< of them, those that found a lower optimum (kept)
 };
 
 struct OptimizationResult {
