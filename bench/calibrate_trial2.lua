@@ -22,6 +22,7 @@ local opt = options.parse(arg, {
   { name = "results", type = "path", meaning = "the study's results.json (default: <study>/results.json)" },
   { name = "data", type = "path", default = (smi.script_dir or "bench") .. "/../scripts/steering_column/data/tests.csv",
     meaning = "the measurements the study ran on (mode1_hz, mode2_hz, mode4_hz)" },
+  { name = "data-name", type = "string", meaning = "how the output names the data set (default: the --data path)" },
   { name = "label", type = "string", default = "committed",
     meaning = "the data set's name in the output (files <label>.json and <label>.md)" },
   { name = "repeats", type = "integer", default = 3, min = 1, meaning = "timed runs of each calibration (the median is reported)" },
@@ -215,6 +216,44 @@ do
   out.identifiability = { tolerance = tol.value, tolerance_basis = tol.basis, from = best == out.stage1_start
     and "stage-1 start" or "declared start", objective = r.objective, wall = smi.now() - w0, directions = dirs,
     weak = r.identifiability and r.identifiability.weak or {} }
+
+  -- Where the starts' optima lie relative to the best: each one's offset from the best point in
+  -- scaled units (each parameter over its range, the optimizer's units) and the share of that
+  -- offset inside the span of the not-determined directions (1: the starts differ only where the
+  -- data are silent; 0: they differ along what the data determine, i.e. distinct local optima).
+  local basis = {}
+  for _, d in ipairs(r.identifiability and r.identifiability.directions or {}) do
+    if not d.determined then
+      local v = {}
+      for j, name in ipairs(names) do v[j] = d.loadings[name] or 0 end
+      for _, b in ipairs(basis) do
+        local c = 0
+        for j = 1, #v do c = c + v[j] * b[j] end
+        for j = 1, #v do v[j] = v[j] - c * b[j] end
+      end
+      local nv = 0
+      for j = 1, #v do nv = nv + v[j] ^ 2 end
+      nv = math.sqrt(nv)
+      if nv > 1e-9 then for j = 1, #v do v[j] = v[j] / nv end basis[#basis + 1] = v end
+    end
+  end
+  for _, s in ipairs{ out.stage1_start, out.declared_start } do
+    for _, st in ipairs(s.starts) do
+      local dv, n2 = {}, 0
+      for j, name in ipairs(names) do
+        dv[j] = (st.params[name] - r.params[name]) / (bounds[name][2] - bounds[name][1])
+        n2 = n2 + dv[j] ^ 2
+      end
+      local p2 = 0
+      for _, b in ipairs(basis) do
+        local c = 0
+        for j = 1, #dv do c = c + dv[j] * b[j] end
+        p2 = p2 + c * c
+      end
+      st.offset = math.sqrt(n2)
+      st.undetermined_share = n2 > 0 and math.sqrt(p2 / n2) or nil
+    end
+  end
 end
 
 smi.json.write(smi.out(opt.label .. ".json"), out, { nonfinite = "encode" })
@@ -241,12 +280,13 @@ local function run_section(title, s)
     table.concat((function() local v = {} for i, x in ipairs(s.walls) do v[i] = ("%.2f"):format(x) end return v end)(), ", "),
     s.cpu_median, s.evaluations, #s.starts, tostring(s.model_runs), tostring(s.gradient), s.repeats_identical and "yes" or "**no**")
   w("")
-  local header = { "start", "objective", "status", "evaluations" }
+  local header = { "start", "objective", "status", "evaluations", "offset from the best", "share not determined" }
   for _, name in ipairs(names) do header[#header + 1] = short(name) end
   w("| " .. table.concat(header, " | ") .. " |")
   w("|" .. string.rep("---|", #header))
   for i, st in ipairs(s.starts) do
-    local row = { tostring(i), ("%.8f"):format(st.objective), st.status, tostring(st.evaluations) }
+    local row = { tostring(i), ("%.8f"):format(st.objective), st.status, tostring(st.evaluations), ("%.3f"):format(st.offset),
+                  (st.undetermined_share and st.offset >= 0.01) and ("%.2f"):format(st.undetermined_share) or "—" }
     for _, name in ipairs(names) do row[#row + 1] = ("%.5g"):format(st.params[name]) end
     w("| " .. table.concat(row, " | ") .. " |")
   end
@@ -269,7 +309,7 @@ local function run_section(title, s)
     moved(s))
 end
 
-w("## %s: %s", opt.label, opt.data)
+w("## %s: %s", opt.label, opt.data_name or opt.data)
 w("")
 w("Trial 2 (%s, %s airbag), %d parameters, n = %d CRN samples, seed %d, PR grids of %d nodes, budget %d evaluations per"
   .. " start, multistart %d, threads %d; load average (1/5/15 min) %s before the timed runs, %s after.",
@@ -293,6 +333,11 @@ w("- the study's own call (one start, from the stage-1 point) reproduced: object
   out.reproduction.identical and "identical" or "**different**")
 run_section("From the stage-1 point (the study's start) + 3 seeded points", out.stage1_start)
 run_section("From the declared starts + 3 seeded points", out.declared_start)
+w("")
+w("Offset from the best: the distance of the start's optimum from the best point found, each parameter in units of"
+  .. " its range (the optimizer's scaled units); share not determined: the part of that offset inside the span of"
+  .. " the not-determined directions below (1: the starts differ only where the data are silent; 0: along what the"
+  .. " data determine, distinct local optima; — for an offset under 0.01, the best point itself).")
 w("")
 local id = out.identifiability
 local dl, flags, ndet = {}, {}, 0

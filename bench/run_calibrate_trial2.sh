@@ -33,15 +33,20 @@ EXPERIMENTS=scripts/steering_column/harness/fresh.csv ROWS=$row \
   || { echo "the harness failed:"; tail -20 "$work/harness.log"; exit 1; }
 head -1 "$work/harness.log"
 
-bench() {  # label, study folder, results.json, data file
+bench() {  # label, study folder, results.json, data file, the data set's name in the output
   echo "timing trial 2's calibration: $1"
   nice -n 5 "$smi" --quiet --lib scripts --allow-read "$2" --allow-read "$(dirname "$3")" --allow-read "$(dirname "$4")" \
     --allow-read /proc/loadavg --out "$work/bench" bench/calibrate_trial2.lua \
-    --study "$2" --results "$3" --data "$4" --label "$1" > "$work/$1.log" 2>&1 \
+    --study "$2" --results "$3" --data "$4" --label "$1" --data-name "$5" > "$work/$1.log" 2>&1 \
     || { echo "the bench failed ($1):"; tail -20 "$work/$1.log"; exit 1; }
+  cp "$work/bench/$1.json" "bench/results/calibrate_trial2.$1.json"
 }
-bench committed "$study" "$study/results.json" scripts/steering_column/data/tests.csv
-bench "fresh$row" "$work/harness/run" "$work/harness/exp$row/study/results.json" "$work/harness/exp$row/tests.csv"
+desc=$(awk -F, -v id="$row" '$1 == id { printf "%s truth, noise %s, generator seed %s", $3, $4, $5 }' \
+  scripts/steering_column/harness/fresh.csv)
+bench committed "$study" "$study/results.json" scripts/steering_column/data/tests.csv \
+  "scripts/steering_column/data/tests.csv (the committed measurements)"
+bench "fresh$row" "$work/harness/run" "$work/harness/exp$row/study/results.json" "$work/harness/exp$row/tests.csv" \
+  "harness fresh.csv experiment $row (make-steering-data: $desc)"
 
 out=bench/results/calibrate_trial2.md
 {
@@ -54,10 +59,13 @@ out=bench/results/calibrate_trial2.md
   echo "unknowns' bounds, the KDE-ebd f_exp, n = 2000 CRN samples, the study's seed, 6001-node grids, SLSQP, budget 300"
   echo "per start), checks that one start reproduces the study's recorded run exactly, then times it with"
   echo "multistart = 4 and threads = 2 (the starts side by side), 3 runs each, from the stage-1 point (the study's"
-  echo "start) and from the declared starts; the 3 other starts are smi.calibrate's seeded points. Wall time by"
-  echo "smi.now(), CPU by os.clock (both threads). \"Objective evaluations\" sum the 4 starts. The second data set is"
-  echo "the harness's hold-out experiment $row (scripts/steering_column/harness/fresh.csv, drawn before this bench; not"
-  echo "tuned to: 103, the first spring-truth row, concludes after trial 1, so it has no trial 2)."
+  echo "start) and from the declared starts; the 3 other starts are smi.calibrate's seeded points (they do not depend"
+  echo "on the given start, so the two runs share starts 2-4: five distinct starting points in all). Wall time by"
+  echo "smi.now(), CPU by os.clock (both threads). \"Objective evaluations\" sum the 4 starts. Everything each run"
+  echo "returned (starts, optima, r.agreement when the build has it, directions) is in calibrate_trial2.<label>.json."
+  echo "The second data set is the harness's hold-out experiment $row (scripts/steering_column/harness/fresh.csv, drawn"
+  echo "before this bench; the default, 104, is the first spring-truth row whose study runs a trial 2: 103 concludes"
+  echo "after trial 1). Not tuned to: nothing here was changed after seeing its numbers."
   echo
   cat "$work/bench/committed.md"
   echo
