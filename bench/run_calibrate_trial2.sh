@@ -65,7 +65,7 @@ out=bench/results/calibrate_trial2.md
   echo "returned (starts, optima, r.agreement when the build has it, directions) is in calibrate_trial2.<label>.json."
   echo "The second data set is the harness's hold-out experiment $row (scripts/steering_column/harness/fresh.csv, drawn"
   echo "before this bench; the default, 104, is the first spring-truth row whose study runs a trial 2: 103 concludes"
-  echo "after trial 1). Not tuned to: nothing here was changed after seeing its numbers."
+  echo "after trial 1). Not tuned to: no setting of the calibration was chosen after seeing its numbers."
   echo
   cat "$work/bench/committed.md"
   echo
