@@ -136,15 +136,9 @@ local function timed(fn)
   end
 end
 
--- The experimental PDFs (KDE-ebd, alpha 0.1, critical intersection area 0.95), rebuilt
--- deterministically from the data so that any step can run alone.
-local function f_exp(data)
-  local d = {}
-  for k, m in ipairs(MODES) do
-    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
-  end
-  return d
-end
+-- The experimental PDFs (KDE-ebd), rebuilt deterministically from the data so that any step can
+-- run alone (calibration.lua, which bench/calibrate_trial2.lua shares).
+local function f_exp(data) return calibration.experimental_pdfs(data, seed) end
 
 local function vecs(data)
   local d = {}

@@ -104,12 +104,24 @@ local function moments_stage(t, predicted, params)
   }))
 end
 
--- Fixed PR grids per calibrated mode (the data's range ± 25 Hz).
-local function grids_of(data)
+--- The experimental PDFs f_exp of every mode (KDE-ebd, alpha 0.1, critical intersection area
+-- 0.95), rebuilt deterministically from the data ({mode = list or vec}) and the study's seed, so
+-- that any step, or a benchmark of one (bench/calibrate_trial2.lua), builds the same ones.
+function M.experimental_pdfs(data, seed)
+  local d = {}
+  for k, m in ipairs(trial.modes) do
+    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
+  end
+  return d
+end
+
+--- Fixed PR grids per calibrated mode (the data's range ± 25 Hz).
+function M.grids_of(data)
   local g = {}
   for _, m in ipairs(MODES) do g[m] = { lower = data[m]:min() - 25, upper = data[m]:max() + 25, nodes = 6001 } end
   return g
 end
+local grids_of = M.grids_of
 
 --- The study's objective on its own CRN sample (smi.propagate through the Krigings): "pr" against
 -- the experimental PDFs f_exp, or minus the log-likelihood of the data points. Returns
@@ -133,8 +145,9 @@ end
 -- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
 -- predictor, quantile chain rule, KDE, metric), the overlapping start when PR saturates, and the
 -- identifiability directions of the objective itself. o: {f_exp, data, start, maxeval,
--- identifiability, multistart}.
-local function pr_stage(t, grids, o)
+-- identifiability, multistart, threads (nil: smi.calibrate's default)}. Exported for
+-- bench/calibrate_trial2.lua, which times this very call.
+function M.pr_stage(t, grids, o)
   local ins, model, dat, g = {}, {}, {}, {}
   for i, n in ipairs(t.unknowns) do
     local u = t.specs[n]
@@ -149,8 +162,10 @@ local function pr_stage(t, grids, o)
   return smi.calibrate(with_prior(t, {
     model = model, inputs = ins, data = dat, metric = t.metric, n = t.n, seed = t.seed, grid = g,
     method = "slsqp", maxeval = o.maxeval, identifiability = o.identifiability, multistart = o.multistart or 1,
+    threads = o.threads,
   }))
 end
+local pr_stage = M.pr_stage
 
 --- The optimum: stage 2 from stage 1's point, the tolerance at it, and a second call from the
 -- optimum (it stops at once) that computes the identifiability directions and near-optimal
