@@ -319,10 +319,18 @@ w("")
 local function verdict(s)
   return ("%s (median %.2f s)"):format(s.wall_median <= 10 and "met" or "**not met**", s.wall_median)
 end
+-- "The same optimum" where the data can tell is smi.calibrate's r.agreement (start_agreement.hpp):
+-- objectives within its tolerance and the same predictions (or no barrier between); the points
+-- themselves differ along what the data do not determine (r.starts_agree, one point, stays false).
 local function agree(s)
-  return ("%s (r.starts_agree = %s, %d distinct optima, objectives within %.3g, the study's tolerance for"
-    .. " \"fits as well\" is %.3g)"):format(s.starts_agree and "yes" or "**no**", tostring(s.starts_agree), #s.optima,
-    s.objective_gap, out.identifiability.tolerance)
+  local a = s.agreement
+  local verdict = a and (a.agree and "yes" or "**no**") or "unknown (no r.agreement in this build)"
+  return ("%s (r.agreement: %s of 4 starts at the best's optimum, objectives within %.3g against its tolerance %s,"
+    .. " predictions within %s standard errors of the data's; as points, %d distinct optima, r.starts_agree = %s; the"
+    .. " study's own tolerance for \"fits as well\" is %.3g)"):format(verdict, a and tostring(a.same) or "?",
+    s.objective_gap, a and ("%.3g"):format(a.tolerance) or "?",
+    a and a.largest_prediction_distance and ("%.2g"):format(a.largest_prediction_distance) or "?", #s.optima,
+    tostring(s.starts_agree), out.identifiability.tolerance)
 end
 w("- issue 11's target, at most 10 s on 2 cores: from the stage-1 point %s, from the declared starts %s; the same"
   .. " optimum from 4 starts: from the stage-1 point %s, from the declared starts %s.", verdict(out.stage1_start),
