@@ -35,10 +35,6 @@ std::vector<double> middle_first(int m) {
   return t;
 }
 
-}  // namespace
-
-namespace {
-
 /// Largest |a - b| / resolution.
 double prediction_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& resolution) {
   if (a.size() != resolution.size() || b.size() != resolution.size())
