@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <new>
 
 #include "bindings/improve/lua_callbacks.hpp"
 #include "bindings/improve/model_gradient.hpp"
@@ -341,6 +342,24 @@ void add_bootstrap(lua_State* L, const CalibrateSpec& s, const StatisticalObject
   append(out.warnings, out.boot->warnings);
 }
 
+/// Runs one analysis after the optimum. When it fails (a solver or Lua model that breaks at a
+/// profile point, a path point, a resampled data set), the optimum found stands and the failure
+/// is a warning naming the analysis and the error: a diagnostic must not lose the result. An
+/// interruption or exhausted memory still ends the call (and a Lua abort is raised again by the
+/// next Lua instruction anyway).
+template <class Analysis>
+void after_optimum(CalibrationOutcome& out, const char* what, Analysis&& analysis) {
+  try {
+    analysis();
+  } catch (const smi::Interrupted&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    out.warnings.push_back(fmt::format("{} could not be computed (the optimum above stands): {}", what, e.what()));
+  }
+}
+
 }  // namespace
 
 CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
@@ -350,18 +369,19 @@ CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s) {
   const Objective f = s.statistical ? minimize_statistical(L, s, oo, out) : minimize_lua_objective(L, s, oo, out);
   out.warnings = out.opt.warnings;
   // The analyses at the optimum, in this order (their warnings follow the optimiser's).
-  if (s.identifiability) add_identifiability(s, f, out);
-  if (s.optimizer.multistart > 1) add_start_agreement(s, f, out);
-  if (s.intervals) {
-    ProfileOptions po = *s.intervals;
-    po.optimizer.observer = {};
-    out.profile = profile_intervals(s.params, f, out.opt.theta, out.opt.value, po, oo.gradient);
-    append(out.warnings, out.profile->warnings);
-  }
+  if (s.identifiability) after_optimum(out, "identifiability", [&] { add_identifiability(s, f, out); });
+  if (s.optimizer.multistart > 1) after_optimum(out, "whether the starts agree", [&] { add_start_agreement(s, f, out); });
+  if (s.intervals)
+    after_optimum(out, "profile intervals", [&] {
+      ProfileOptions po = *s.intervals;
+      po.optimizer.observer = {};
+      out.profile = profile_intervals(s.params, f, out.opt.theta, out.opt.value, po, oo.gradient);
+      append(out.warnings, out.profile->warnings);
+    });
   if (out.stat) {
     const StatisticalObjective& obj = *out.stat;
     if (!s.design.empty()) add_design_bound_warnings(s, obj, out);
-    if (s.bootstrap) add_bootstrap(L, s, obj, out);
+    if (s.bootstrap) after_optimum(out, "bootstrap", [&] { add_bootstrap(L, s, obj, out); });
     if (obj.floored() > 0)
       out.warnings.push_back(fmt::format("loglik: {} predicted densities were below 1e-300 and floored (data outside the prediction)",
                                          obj.floored()));

@@ -71,4 +71,27 @@ T.case("one start: no agreement table; bad hops are named", function()
            "hop_step must be in (0, 1]")
 end)
 
+T.case("an objective that fails after the optimum (a path point, a sweep point): the calibration stands, the warning says why", function()
+  -- wells at m = -1 and m = 1 (both 0); the objective refuses |m| < 0.05, which with seed 1 only the
+  -- path between the two starts' optima crosses (its midpoint is m = 0)
+  local f = function(t)
+    if math.abs(t.m) < 0.05 then error("solver diverged at m = " .. t.m) end
+    return (math.abs(t.m) - 1) ^ 2
+  end
+  local r = smi.calibrate{parameters = {{"m", -2, 2, -1.5}}, objective = f, multistart = 2, seed = 1, identifiability = false}
+  T.near(r.params.m, -1, 1e-6, "the given start's well")
+  T.near(r.starts[2].params.m, 1, 1e-6, "the seeded start's well")
+  T.eq(r.agreement, nil, "no agreement table")
+  -- the same for the identifiability sweep, which crosses m = 0 as well
+  local ri = smi.calibrate{parameters = {{"m", -2, 2, -1.5}}, objective = f, seed = 1}
+  T.near(ri.params.m, -1, 1e-6, "the optimum stands")
+  T.eq(ri.identifiability, nil)
+  local said = false
+  for _, w in ipairs(ri.warnings) do said = said or w:find("^identifiability could not be computed") ~= nil end
+  T.truthy(said, "the sweep's error is in the warnings")
+  local warned = false
+  for _, w in ipairs(r.warnings) do warned = warned or w:find("whether the starts agree could not be computed %(the optimum above stands%): .*solver diverged at m = 0") ~= nil end
+  T.truthy(warned, "the path's error is in the warnings")
+end)
+
 T.finish()
