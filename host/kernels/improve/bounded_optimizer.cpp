@@ -283,6 +283,16 @@ struct StartRun {
   int prepare_evaluations = 0;
 };
 
+/// θ in scaled units [0, 1]^k (clamped: a point on a bound stays on it).
+Eigen::VectorXd scaled_point(const std::vector<Parameter>& params, const Eigen::VectorXd& theta) {
+  Eigen::VectorXd u(theta.size());
+  for (Eigen::Index i = 0; i < theta.size(); ++i) {
+    const Parameter& p = params[static_cast<std::size_t>(i)];
+    u[i] = std::clamp((theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
+  }
+  return u;
+}
+
 /// Monotone basin hopping from start s's optimum: opt.hops jumps of up to ±hop_step (scaled) per
 /// parameter from the best point so far, each followed by a local run; a lower optimum replaces
 /// the start's (its status and convergence with it). One random stream per start, so the hops
@@ -290,14 +300,7 @@ struct StartRun {
 void hop_basins(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt, int s, StartRun& out) {
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   Rng rng(opt.seed, hash_label("hops") + static_cast<std::uint64_t>(s));
-  auto scaled = [&](const Eigen::VectorXd& t) {
-    Eigen::VectorXd u(k);
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const Parameter& p = params[static_cast<std::size_t>(i)];
-      u[i] = std::clamp((t[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
-    }
-    return u;
-  };
+  auto scaled = [&params](const Eigen::VectorXd& t) { return scaled_point(params, t); };
   // A hop only has to tell which basin it fell into: its local run stops at a looser tolerance
   // (most of a local run's evaluations go into its last digits), and the best point is polished
   // at the caller's tolerances once, after the last hop.
@@ -343,10 +346,7 @@ void run_one_start(const std::vector<Parameter>& params, const Objective& f, con
     const PreparedStart ps = opt.prepare_start(given);
     out.prepare_evaluations = ps.evaluations;
     if (!ps.note.empty()) out.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const Parameter& p = params[static_cast<std::size_t>(i)];
-      u0[i] = std::clamp((ps.theta[i] - p.lower) / (p.upper - p.lower), 0.0, 1.0);
-    }
+    u0 = scaled_point(params, ps.theta);
   }
   out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
   if (opt.hops > 0) hop_basins(params, f, opt, s, out);
@@ -397,11 +397,7 @@ void cluster_optima(const std::vector<Parameter>& params, const OptimizerOptions
   std::vector<int> order(res.starts.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return res.starts[static_cast<std::size_t>(a)].value < res.starts[static_cast<std::size_t>(b)].value; });
-  auto scaled = [&](const Eigen::VectorXd& t) {
-    Eigen::VectorXd u(k);
-    for (Eigen::Index i = 0; i < k; ++i) u[i] = (t[i] - params[static_cast<std::size_t>(i)].lower) / (params[static_cast<std::size_t>(i)].upper - params[static_cast<std::size_t>(i)].lower);
-    return u;
-  };
+  auto scaled = [&params](const Eigen::VectorXd& t) { return scaled_point(params, t); };
   for (int s : order) {
     const StartResult& a = res.starts[static_cast<std::size_t>(s)];
     bool known = false;
