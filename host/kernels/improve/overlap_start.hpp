@@ -34,11 +34,14 @@ struct MomentStartOptions {
 };
 
 /// Moment-matching start (issue 11 item 2, and fewer evaluations for the optimiser after it):
-/// Levenberg–Marquardt on moment_residuals in scaled [0, 1] units, projected on the box; with more
-/// parameters than residuals each step is the smallest that reduces the mismatch, so directions
-/// the moments do not see stay where they were. The moved point is returned when the objective
-/// there is lower than at θ (two objective evaluations), θ otherwise. `evaluations` counts model
-/// runs (objective evaluations and moment steps alike).
+/// Levenberg–Marquardt on moment_residuals in scaled [0, 1] units, projected on the box; a
+/// parameter on a bound that the descent pushes out of the box is held there for the step. With
+/// more parameters than residuals each step is the smallest that reduces the mismatch, so
+/// directions the moments do not see stay where they were. The moved point is returned when the
+/// objective there is lower than at θ (two objective evaluations), θ otherwise. `evaluations`
+/// counts model runs (objective evaluations and moment steps alike); `status` says why LM stopped
+/// ("tolerance_reached", "stationary": no free descent or no step lowering the mismatch within
+/// the box, "max_iterations"), criterion_before / _after the mismatch at θ and where LM ended.
 PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const MomentStartOptions& opt = {});
 
 /// θ itself when every response's PR overlaps; else the moment-matching point, with a note.

@@ -29,10 +29,12 @@ TEST_CASE("input derivatives: closed forms agree with differences of the mapping
 
 namespace {
 
+const std::vector<Parameter> kParams{{"a.mean", 3, 7, 4.6}, {"a.std", 0.05, 1, 0.4}, {"b.mean", 1, 3, 2.2},
+                                     {"b.std", 0.05, 1, 0.3}, {"c.mean", 0.5, 2, 1.1}, {"c.std", 0.05, 0.5, 0.2}};
+
 /// y1 = a + b², y2 = 3a − b·c with its Jacobian; inputs a normal, b lognormal, c uniform.
-StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "silverman", Eigen::Index grid_nodes = 1001) {
-  std::vector<Parameter> p{{"a.mean", 3, 7, 4.6}, {"a.std", 0.05, 1, 0.4}, {"b.mean", 1, 3, 2.2},
-                           {"b.std", 0.05, 1, 0.3}, {"c.mean", 0.5, 2, 1.1}, {"c.std", 0.05, 0.5, 0.2}};
+StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "silverman", Eigen::Index grid_nodes = 1001,
+                          const std::vector<Parameter>& p = kParams) {
   std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::lognormal, 0, 0, 2, 3},
                             {"c", InputFamily::uniform, 0, 0, 4, 5}};
   smi::Rng g(11);
@@ -132,6 +134,37 @@ TEST_CASE("moment residuals: the chain-rule Jacobian agrees with forward differe
     const double ym = Y.col(j).mean(), ys = std::sqrt((Y.col(j).array() - ym).square().sum() / static_cast<double>(Y.rows() - 1));
     CHECK(ym == Approx(dm).epsilon(1e-6));
     CHECK(ys == Approx(ds).epsilon(1e-5));
+  }
+}
+
+TEST_CASE("moment start with sds the bounds cannot reach: a constrained minimum of the mismatch, stationary") {
+  // The data's sds (y1 about 0.85, y2 about 0.92) are below what the stds' lower bounds allow
+  // (a.std >= 0.5 and b.std >= 0.3 give y1 an sd of 1.3 at least): the mismatch's minimum in the
+  // box has the stds on their lower bounds (each input's spread only adds to the sds) and the
+  // means trading the mean residuals against the sd ones. A full LM step projected on the box
+  // crawls along the bounds there and stops on its iteration budget.
+  std::vector<Parameter> p = kParams;
+  p[1].lower = 0.5, p[1].start = 0.7;
+  p[3].lower = 0.3, p[3].start = 0.5;
+  const StatisticalObjective f = make(MetricKind::pr, "silverman", 1001, p);
+  const Eigen::VectorXd far = (Eigen::VectorXd(6) << 3.5, 0.9, 2.8, 0.9, 1.9, 0.45).finished();
+  const PreparedStart ps = moment_start(f, far);
+  INFO(ps.note << "\nstatus " << ps.status << " at " << ps.theta.transpose());
+  CHECK(ps.status == "stationary");
+  CHECK(ps.criterion_after == Approx(moment_mismatch(f, ps.theta)).epsilon(1e-12));
+  for (Eigen::Index i : {1, 3, 5}) CHECK(ps.theta[i] == p[static_cast<std::size_t>(i)].lower);
+  // First-order optimality in the box, from central differences of the mismatch itself: no slope
+  // along the free means, none pointing into the box from the stds' bounds.
+  for (Eigen::Index i = 0; i < 6; ++i) {
+    const double h = 1e-5 * (p[static_cast<std::size_t>(i)].upper - p[static_cast<std::size_t>(i)].lower);
+    Eigen::VectorXd up = ps.theta, down = ps.theta;
+    up[i] += h;
+    const bool on_bound = i % 2 == 1;
+    if (!on_bound) down[i] -= h;
+    const double slope = (moment_mismatch(f, up) - moment_mismatch(f, down)) / (on_bound ? h : 2 * h);
+    INFO("parameter " << i << " slope " << slope);
+    if (on_bound) CHECK(slope > 0.0);
+    else CHECK(std::abs(slope) < 1e-4);
   }
 }
 
