@@ -50,7 +50,7 @@ struct PreparedStart {
   Eigen::VectorXd theta;  ///< in the parameters' own units
   std::string note;       ///< empty when not moved; else why and where to (goes to warnings)
   int evaluations = 0;    ///< objective or model evaluations spent deciding (not in the history)
-  /// Why a preparation that minimises something stopped ("tolerance_reached", "stationary",
+  /// Why a preparation that minimises something stopped ("tolerance_reached", "ftol_reached", "stationary",
   /// "max_iterations"), and its criterion before and after; empty / NaN when it does not say.
   std::string status;
   double criterion_before = std::numeric_limits<double>::quiet_NaN();

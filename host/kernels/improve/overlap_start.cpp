@@ -92,32 +92,67 @@ Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::V
 
 namespace {
 
-/// The parameters an LM step at t moves: all but those on a bound whose descent direction points
-/// out of the box, held there for the step. Projecting the full step instead cuts it, and LM
-/// crawls along the bound: seen on trial 2 of the steering column (stds on their lower bounds),
-/// still at a mismatch of 2.6e-3 after its 30 iterations, where holding them reaches 2e-12.
-std::vector<Eigen::Index> free_parameters(const std::vector<Parameter>& params, const Eigen::VectorXd& t, const Eigen::VectorXd& range,
-                                          const Eigen::VectorXd& descent) {
+/// The parameters an LM step at u (scaled position in [0, 1]) may move: all but those on a bound
+/// whose descent direction points out of the box.
+std::vector<Eigen::Index> free_parameters(const Eigen::VectorXd& u, const Eigen::VectorXd& descent) {
   std::vector<Eigen::Index> free;
-  for (Eigen::Index p = 0; p < t.size(); ++p) {
-    const double u = (t[p] - params[static_cast<std::size_t>(p)].lower) / range[p];
-    if (!((u <= 1e-12 && descent[p] < 0.0) || (u >= 1.0 - 1e-12 && descent[p] > 0.0))) free.push_back(p);
-  }
+  for (Eigen::Index p = 0; p < u.size(); ++p)
+    if (!((u[p] <= 1e-12 && descent[p] < 0.0) || (u[p] >= 1.0 - 1e-12 && descent[p] > 0.0))) free.push_back(p);
   return free;
+}
+
+/// One damped Gauss-Newton step du in scaled units that stays in the box: (J_fᵀJ_f + λI) du_f =
+/// −J_fᵀ r over the free parameters; one the step would carry past a bound stops on it and is held
+/// there while the others are solved again with its move in r (at most k passes). Cutting the
+/// full step at the bounds instead (projection) made LM zig-zag along them, a parameter leaving
+/// and hitting its bound in turn: seen on trial 2 of the steering column, still at a mismatch of
+/// 2.6e-3 after its 30 iterations, and on the harness's trial-1 calibrations.
+Eigen::VectorXd bounded_step(const Eigen::MatrixXd& Ju, const Eigen::VectorXd& r, const Eigen::VectorXd& u,
+                             std::vector<Eigen::Index> free, double lambda) {
+  Eigen::VectorXd du = Eigen::VectorXd::Zero(u.size());
+  for (Eigen::Index pass = 0; pass <= u.size() && !free.empty(); ++pass) {
+    const Eigen::Index nf = static_cast<Eigen::Index>(free.size());
+    Eigen::MatrixXd Jf(Ju.rows(), nf);
+    for (Eigen::Index i = 0; i < nf; ++i) Jf.col(i) = Ju.col(free[static_cast<std::size_t>(i)]);
+    Eigen::VectorXd held = du;  // the moves of the parameters stopped on a bound so far
+    for (Eigen::Index p : free) held[p] = 0.0;
+    const Eigen::VectorXd rh = r + Ju * held;
+    const Eigen::VectorXd df = (Jf.transpose() * Jf + lambda * Eigen::MatrixXd::Identity(nf, nf)).ldlt().solve(-Jf.transpose() * rh);
+    std::vector<Eigen::Index> still;
+    for (Eigen::Index i = 0; i < nf; ++i) {
+      const Eigen::Index p = free[static_cast<std::size_t>(i)];
+      const double v = u[p] + df[i];
+      du[p] = v < 0.0 ? -u[p] : v > 1.0 ? 1.0 - u[p] : df[i];
+      if (v >= 0.0 && v <= 1.0) still.push_back(p);
+    }
+    if (still.size() == free.size()) break;
+    free = std::move(still);
+  }
+  return du;
+}
+
+/// The parameters at scaled position u, one at or past a bound exactly on it.
+Eigen::VectorXd point_at(const std::vector<Parameter>& params, const Eigen::VectorXd& u) {
+  Eigen::VectorXd t(u.size());
+  for (Eigen::Index p = 0; p < u.size(); ++p) {
+    const Parameter& q = params[static_cast<std::size_t>(p)];
+    t[p] = u[p] <= 0.0 ? q.lower : u[p] >= 1.0 ? q.upper : q.lower + (q.upper - q.lower) * u[p];
+  }
+  return t;
 }
 
 }  // namespace
 
 PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const MomentStartOptions& opt) {
-  PreparedStart out{theta, {}};
+  PreparedStart out;
+  out.theta = theta;
   const std::vector<Parameter>& params = obj.parameters();
   const Eigen::Index k = theta.size();
-  Eigen::VectorXd range(k);
-  for (Eigen::Index p = 0; p < k; ++p) range[p] = params[static_cast<std::size_t>(p)].upper - params[static_cast<std::size_t>(p)].lower;
-  auto project = [&](Eigen::VectorXd t) {
-    for (Eigen::Index p = 0; p < k; ++p) t[p] = std::clamp(t[p], params[static_cast<std::size_t>(p)].lower, params[static_cast<std::size_t>(p)].upper);
-    return t;
-  };
+  Eigen::VectorXd range(k), lower(k);
+  for (Eigen::Index p = 0; p < k; ++p) {
+    lower[p] = params[static_cast<std::size_t>(p)].lower;
+    range[p] = params[static_cast<std::size_t>(p)].upper - lower[p];
+  }
   int runs = 0;
   Eigen::VectorXd t = theta;
   Eigen::MatrixXd Jt;
@@ -135,29 +170,26 @@ PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorX
       break;
     }
     const Eigen::MatrixXd Ju = Jt * range.asDiagonal();  // scaled units
-    const Eigen::VectorXd b = -Ju.transpose() * r;        // descent direction of ½‖r‖²
-    const std::vector<Eigen::Index> free = free_parameters(params, t, range, b);
-    const Eigen::Index nf = static_cast<Eigen::Index>(free.size());
-    Eigen::MatrixXd Jf(Ju.rows(), nf);
-    for (Eigen::Index i = 0; i < nf; ++i) Jf.col(i) = Ju.col(free[static_cast<std::size_t>(i)]);
-    const Eigen::MatrixXd A = Jf.transpose() * Jf;
-    const Eigen::VectorXd bf = -Jf.transpose() * r;
+    const Eigen::VectorXd descent = -Ju.transpose() * r;  // of ½‖r‖²
+    const Eigen::VectorXd u = (t - lower).cwiseQuotient(range);
+    const std::vector<Eigen::Index> free = free_parameters(u, descent);
+    double slope = 0.0;
+    for (Eigen::Index p : free) slope = std::max(slope, std::abs(descent[p]));
     // first-order optimality within the box: no free descent left (relative to the residuals)
-    if (nf == 0 || bf.lpNorm<Eigen::Infinity>() <= 1e-10 * (1.0 + r.squaredNorm())) {
+    if (free.empty() || slope <= 1e-10 * (1.0 + r.squaredNorm())) {
       out.status = "stationary";
       break;
     }
-    if (lambda < 0.0) lambda = 1e-3 * std::max(1e-12, A.diagonal().maxCoeff());
-    bool accepted = false;
+    if (lambda < 0.0) lambda = 1e-3 * std::max(1e-12, Ju.colwise().squaredNorm().maxCoeff());
+    bool accepted = false, small = false;
     for (int tries = 0; tries < 12 && !accepted; ++tries) {
-      const Eigen::VectorXd df = (A + lambda * Eigen::MatrixXd::Identity(nf, nf)).ldlt().solve(bf);
-      Eigen::VectorXd du = Eigen::VectorXd::Zero(k);
-      for (Eigen::Index i = 0; i < nf; ++i) du[free[static_cast<std::size_t>(i)]] = df[i];
-      const Eigen::VectorXd tn = project(t + range.cwiseProduct(du));
-      if ((tn - t).cwiseQuotient(range).norm() < 1e-12) break;
+      const Eigen::VectorXd du = bounded_step(Ju, r, u, free, lambda);
+      if (du.norm() < 1e-12) break;
+      const Eigen::VectorXd tn = point_at(params, u + du);
       Eigen::MatrixXd Jn;
       const Eigen::VectorXd rn = moment_residuals(obj, tn, &Jn, runs);
       if (rn.allFinite() && rn.squaredNorm() < r.squaredNorm()) {
+        small = r.squaredNorm() - rn.squaredNorm() <= opt.ftol_rel * r.squaredNorm();
         t = tn, r = rn, Jt = Jn, accepted = true;
         lambda = std::max(1e-15, lambda / 3.0);
       } else {
@@ -166,6 +198,10 @@ PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorX
     }
     if (!accepted) {
       out.status = "stationary";
+      break;
+    }
+    if (small) {
+      out.status = "ftol_reached";
       break;
     }
   }
@@ -183,7 +219,8 @@ PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorX
 }
 
 PreparedStart overlap_start(const StatisticalObjective& obj, const Eigen::VectorXd& theta, const OverlapStartOptions& opt) {
-  PreparedStart out{theta, {}};
+  PreparedStart out;
+  out.theta = theta;
   if (obj.options().metric != MetricKind::pr) return out;
   const Evaluation e = obj(theta);
   out.evaluations = 1;
