@@ -158,8 +158,10 @@ local pr_stage = M.pr_stage
 --- Stage 1's record, read from the PR call r0 that began with it: the first start as moved (the
 -- declared one, moved = false, when the kernel kept it: PR no lower at the moved point), the model
 -- runs moving every start cost, the moment mismatch before and after, and why Levenberg-Marquardt
--- stopped: "tolerance_reached", "stationary" (no step within the bounds lowers the mismatch: the
--- moments cannot be matched better from there) or "max_iterations" (its budget).
+-- stopped: "tolerance_reached", "ftol_reached" (a step lowered it by less than 1e-4 of itself:
+-- where the model cannot match the moments), "stationary" (no step within the bounds lowers it)
+-- or "max_iterations" (its budget: not converged).
+local ENDS_ON_CRITERION = { tolerance_reached = true, ftol_reached = true, stationary = true }
 local function moments_record(r0, declared)
   local s1, moved = r0.starts[1], false
   local p = s1.prepared or {}
@@ -167,7 +169,7 @@ local function moments_record(r0, declared)
   return { method = "smi.calibrate's moment start (Levenberg-Marquardt, the Krigings' analytic Jacobian)",
            params = s1.start, moved = moved, evaluations = r0.start_evaluations, objective_start = p.before,
            objective = p.after, status = p.status or "none",
-           converged = p.status == "tolerance_reached" or p.status == "stationary" }
+           converged = ENDS_ON_CRITERION[p.status] == true }
 end
 
 --- The optimum: stage 1 and stage 2 from the declared starts (one call), the tolerance at the
