@@ -104,9 +104,9 @@ std::vector<Eigen::Index> free_parameters(const Eigen::VectorXd& u, const Eigen:
 /// One damped Gauss-Newton step du in scaled units that stays in the box: (J_fᵀJ_f + λI) du_f =
 /// −J_fᵀ r over the free parameters; one the step would carry past a bound stops on it and is held
 /// there while the others are solved again with its move in r (at most k passes). Cutting the
-/// full step at the bounds instead (projection) made LM zig-zag along them, a parameter leaving
-/// and hitting its bound in turn: seen on trial 2 of the steering column, still at a mismatch of
-/// 2.6e-3 after its 30 iterations, and on the harness's trial-1 calibrations.
+/// full step at the bounds instead (projection) left LM crawling along them: trial 2 of the
+/// steering column was still at a mismatch of 2.6e-3 after its 30 iterations (5e-13 in 35 model
+/// runs this way).
 Eigen::VectorXd bounded_step(const Eigen::MatrixXd& Ju, const Eigen::VectorXd& r, const Eigen::VectorXd& u,
                              std::vector<Eigen::Index> free, double lambda) {
   Eigen::VectorXd du = Eigen::VectorXd::Zero(u.size());
