@@ -158,8 +158,8 @@ local pr_stage = M.pr_stage
 --- Stage 1's record, read from the PR call r0 that began with it: the first start as moved (the
 -- declared one, moved = false, when the kernel kept it: PR no lower at the moved point), the model
 -- runs moving every start cost, the moment mismatch before and after, and why Levenberg-Marquardt
--- stopped: "tolerance_reached", "ftol_reached" (a step lowered it by less than 1e-3 of itself:
--- where the model cannot match the moments), "stationary" (no step within the bounds lowers it)
+-- stopped: "tolerance_reached", "ftol_reached" (a step lowered it by less than 1e-3 of itself
+-- + 1e-4: matched as well as a start needs), "stationary" (no step within the bounds lowers it)
 -- or "max_iterations" (its budget: not converged).
 local ENDS_ON_CRITERION = { tolerance_reached = true, ftol_reached = true, stationary = true }
 local function moments_record(r0, declared)

@@ -195,7 +195,8 @@ local function priors_sentence(prior_file, labels)
 end
 
 local STAGE1_ENDS = { tolerance_reached = "matched to its tolerance (tolerance_reached)",
-  ftol_reached = "as close as the model gets: the last step lowered it by less than 1e-3 of itself (ftol_reached)",
+  ftol_reached = "matched as well as a start needs: the last step lowered it by less than 1e-3 of itself + 1e-4"
+    .. " (ftol_reached)",
   stationary = "the closest match within the bounds: no step there lowers it (stationary)",
   max_iterations = "stopped on its iteration budget (max_iterations)" }
 

@@ -189,7 +189,7 @@ PreparedStart moment_start(const StatisticalObjective& obj, const Eigen::VectorX
       Eigen::MatrixXd Jn;
       const Eigen::VectorXd rn = moment_residuals(obj, tn, &Jn, runs);
       if (rn.allFinite() && rn.squaredNorm() < r.squaredNorm()) {
-        small = r.squaredNorm() - rn.squaredNorm() <= opt.ftol_rel * r.squaredNorm();
+        small = r.squaredNorm() - rn.squaredNorm() <= opt.ftol_rel * r.squaredNorm() + opt.ftol_abs;
         t = tn, r = rn, Jt = Jn, accepted = true;
         lambda = std::max(1e-15, lambda / 3.0);
       } else {

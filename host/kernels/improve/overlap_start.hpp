@@ -31,13 +31,14 @@ Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::V
 struct MomentStartOptions {
   int max_iterations = 30;   ///< Levenberg–Marquardt iterations (each one model + Jacobian run)
   double tolerance = 1e-10;  ///< stop when the mismatch (sum of squared residuals) is below
-  /// or when a step lowers it by less than this fraction of itself. Where the moments cannot all
-  /// be matched (data sds below what the stds' bounds allow, or a model that cannot reproduce the
-  /// data) LM creeps down a curved valley by 3e-5 to 5e-4 of the mismatch per iteration (seen on
-  /// the steering column's harness: 36.10 -> 36.08 and 2.6e-3 -> 2.5e-3 over 10-20 iterations),
-  /// long after the start is as good as a start needs: the data's own moments are uncertain by
-  /// far more (an sd from 9 rows by about 25 %).
+  /// or when a step lowers it by less than ftol_rel of itself plus ftol_abs. Where the moments
+  /// cannot all be matched (data sds below what the stds' bounds allow, or a model that cannot
+  /// reproduce the data) LM creeps down a long curved valley (seen on the steering column's
+  /// harness: 36.10 -> 36.08 over 20 iterations; 3.3e-3 -> 1.7e-3 over 27) long after the start
+  /// is as good as a start needs: ftol_abs is a residual of 1 % of the data's sd, and the data's
+  /// own moments are uncertain by far more (a mean from 9 rows by a third of an sd).
   double ftol_rel = 1e-3;
+  double ftol_abs = 1e-4;
 };
 
 /// Moment-matching start (issue 11 item 2, and fewer evaluations for the optimiser after it):
