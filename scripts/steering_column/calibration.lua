@@ -153,7 +153,9 @@ local pr_stage = M.pr_stage
 -- when the predicted and measured PDFs do not overlap (the initial values put mode 1 about 4 Hz
 -- below the data), so SLSQP needs an overlapping start (algorithms.md §2.1). The study's own
 -- objective-form stage 1 (SLSQP on central differences, 21 evaluations a gradient) ran out of
--- its 400 evaluations on trial 2 of the committed data instead of ending on its tolerances.
+-- its 400 evaluations on trial 2 of the committed data instead of ending on its tolerances. The
+-- analyst's prior enters the PR objective, where the optimum is decided; the moment match sees
+-- the data's moments alone (a start needs no more).
 
 --- Stage 1's record, read from the PR call r0 that began with it: the first start as moved (the
 -- declared one, moved = false, when the kernel kept it: PR no lower at the moved point), the model
@@ -162,10 +164,11 @@ local pr_stage = M.pr_stage
 -- + 1e-4: matched as well as a start needs), "stationary" (no step within the bounds lowers it)
 -- or "max_iterations" (its budget: not converged).
 local ENDS_ON_CRITERION = { tolerance_reached = true, ftol_reached = true, stationary = true }
-local function moments_record(r0, declared)
+local function moments_record(r0, params)
   local s1, moved = r0.starts[1], false
   local p = s1.prepared or {}
-  for name, v in pairs(s1.start) do moved = moved or v ~= declared[name] end
+  -- the kernel hands the start back through scaled units: a kept start differs by rounding only
+  for _, q in ipairs(params) do moved = moved or math.abs(s1.start[q.name] - q.start) > 1e-9 * (q.upper - q.lower) end
   return { method = "smi.calibrate's moment start (Levenberg-Marquardt, the Krigings' analytic Jacobian)",
            params = s1.start, moved = moved, evaluations = r0.start_evaluations, objective_start = p.before,
            objective = p.after, status = p.status or "none",
@@ -176,7 +179,9 @@ end
 -- optimum, and a second call from the optimum (it stops at once) that computes the
 -- identifiability directions and near-optimal points at that tolerance. Returns the merged
 -- result, the tolerance and stage 1's record.
-local function optimum(t, predicted, grids, start)
+local function optimum(t, predicted, grids, params)
+  local start = {}
+  for _, q in ipairs(params) do start[q.name] = q.start end
   local r0 = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = start, maxeval = t.maxeval,
                                   identifiability = false, multistart = t.multistart, moment_start = true })
   local tol = M.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = r0.params, grids = grids,
@@ -193,7 +198,7 @@ local function optimum(t, predicted, grids, start)
   r.converged = r0.converged or restarted
   r.starts, r.history = r0.starts, r0.history
   if not restarted then r.at_bounds = r0.at_bounds end
-  return r, tol, moments_record(r0, start)
+  return r, tol, moments_record(r0, params)
 end
 
 -- The calibrated parameters as the report lists them.
@@ -317,10 +322,8 @@ function M.calibrate(t)
   t.metric = t.metric or "pr"
   local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed)
   local params1 = declared_params(t)
-  local declared = {}
-  for _, q in ipairs(params1) do declared[q.name] = q.start end
   local grids = grids_of(t.data)
-  local r, tol, r1 = optimum(t, predicted, grids, declared)
+  local r, tol, r1 = optimum(t, predicted, grids, params1)
   local params = param_rows(t, r, r1)
   local history = {}
   for i, h in ipairs(r.history) do
