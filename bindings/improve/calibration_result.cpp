@@ -133,6 +133,14 @@ void push_starts(lua_State* L, const std::vector<std::string>& names, const Opti
     lua::set_integer(L, "evaluations", st.evaluations);
     lua::set_string(L, "status", st.status);
     lua::set_boolean(L, "converged", st.converged);
+    if (!st.start_status.empty()) {
+      // how the start's preparation (moment_start's Levenberg-Marquardt) ended, and its mismatch
+      lua_createtable(L, 0, 3);
+      lua::set_string(L, "status", st.start_status);
+      lua::set_number(L, "before", st.start_criterion_before);
+      lua::set_number(L, "after", st.start_criterion_after);
+      lua_setfield(L, -2, "prepared");
+    }
     if (st.hops > 0) {
       lua::set_integer(L, "hops", st.hops);
       lua::set_integer(L, "hops_improved", st.hops_improved);

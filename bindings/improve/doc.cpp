@@ -73,9 +73,13 @@ options:
 returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
   r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
   {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
-  r.evaluations, r.model_runs, r.starts, r.starts_agree (one point), r.optima (distinct optima),
-  r.agreement {agree, same, starts, tolerance, largest_gap, rows = {{gap, within, same_prediction,
-  prediction_distance, barrier, same}}, text} (multistart > 1: the same optimum where the data
+  r.evaluations, r.model_runs, r.starts {{start, params, objective, evaluations, status, converged,
+  prepared = {status = "tolerance_reached"|"ftol_reached"|"stationary"|"max_iterations", before,
+  after} (moment_start: how its Levenberg-Marquardt ended, the mismatch before and after)}, ...},
+  r.start_evaluations,
+  r.starts_agree (one point), r.optima (distinct optima), r.agreement {agree, same, starts,
+  tolerance, largest_gap, rows = {{gap, within, same_prediction, prediction_distance, barrier,
+  same}}, text} (multistart > 1: the same optimum where the data
   can tell: within the tolerance, and the same predictions or no barrier between), r.gradient,
   r.at_bounds, r.warnings (at a bound, outside the design range, not identifiable),
   r.identifiability {span, weak, profiles, evaluations, directions = {{determined, loadings,

@@ -194,22 +194,35 @@ local function priors_sentence(prior_file, labels)
   return ("Prior knowledge declared by the analyst (%s): %s."):format(prior_file, table.concat(labels, "; "))
 end
 
+local STAGE1_ENDS = { tolerance_reached = "matched to its tolerance (tolerance_reached)",
+  ftol_reached = "matched as well as a start needs: the last step lowered it by less than 1e-3 of itself + 1e-4"
+    .. " (ftol_reached)",
+  stationary = "the closest match within the bounds: no step there lowers it (stationary)",
+  max_iterations = "stopped on its iteration budget (max_iterations)" }
+
+--- How stage 1 (calibration.lua's moments_record) ended, in words.
+function M.stage1_outcome(m)
+  return ("moment mismatch %.3g -> %.3g, %s%s"):format(m.objective_start or 0 / 0, m.objective or 0 / 0,
+    STAGE1_ENDS[m.status] or m.status, m.moved and "" or "; the start values kept: PR was no lower at the moved point")
+end
+
 --- The calibration section's paragraph. T: the trial model; res: calibration.calibrate's result;
 -- cfg: the run's sample sizes.
 function M.calibration_intro(T, res, cfg, prior_file, labels)
   local pr = res.metric == "pr"
   return ("Means and standard deviations of the %d unknowns (types, bounds and start values as the model declares"
     .. " them: Table 4/8 for the initial unknowns, the candidate's declaration for new ones) minimize %s over the"
-    .. " KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt). PR"
-    .. " saturates when the PDFs do not overlap, so a first stage (%d evaluations) matches the means and stds of"
-    .. " modes 1 and 4 from the start values; the PR stage starts from there, in smi.calibrate's model form (the"
-    .. " Krigings as the model: analytic gradients, the kernel's overlapping start when PR saturates). %s"
-    .. " Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d evaluations from %d start(s), %s"
-    .. " (converged: %s)."):format(
+    .. " KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt), in"
+    .. " smi.calibrate's model form (the Krigings as the model: analytic gradients). PR saturates when the PDFs"
+    .. " do not overlap, so a first stage moves the start values to match the means and stds of modes 1 and 4"
+    .. " (smi.calibrate's moment start: Levenberg-Marquardt on the Krigings' Jacobian, %d model runs; %s); the"
+    .. " PR stage starts from there. %s Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d"
+    .. " evaluations from %d start(s), %s (converged: %s)."):format(
     #T.unknowns, pr and "PR(mode 1) + PR(mode 4) between the KDE-ebd PDFs of the data and"
       or "minus the log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
-    priors_sentence(prior_file, labels), res.objective, pr and "PR" or "-logL", res.metrics.mode1, res.metrics.mode4,
-    res.evaluations, res.starts and #res.starts or 1, res.status, tostring(res.converged))
+    M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels), res.objective, pr and "PR" or "-logL",
+    res.metrics.mode1, res.metrics.mode4, res.evaluations, res.starts and #res.starts or 1, res.status,
+    tostring(res.converged))
 end
 
 --- The bootstrap interval of one input (mean / std), or why there is none.

@@ -43,6 +43,11 @@ T.case("moment_start: every start matched to the data's mean and sd first, then 
   local m2 = 0
   for i = 1, #y2 do m2 = m2 + y2[i] / #y2 end
   T.near(3 * moved.starts[1].start["a.mean"] - moved.starts[1].start["b.mean"], m2, 0.02 * math.abs(m2), "the start matches the mean of y2")
+  -- 4 moments, 4 parameters inside their bounds: LM ends on a tolerance (the mismatch's, or a
+  -- step changing it by less than 1e-4: 1 % of an sd), and says so
+  local prep = moved.starts[1].prepared
+  T.truthy(prep.status == "tolerance_reached" or prep.status == "ftol_reached", "how the moment start ended: " .. prep.status)
+  T.truthy(prep.after <= 1e-4 and prep.before > 1, ("mismatch %g -> %g"):format(prep.before, prep.after))
   T.near(moved.objective, plain.objective, 1e-3, "the same optimum")
   for _, p in ipairs{"a.mean", "a.std", "b.mean", "b.std"} do T.near(moved.params[p], plain.params[p], 0.02, p) end
   print(("evaluations: plain %d, moment start %d (+%d model runs choosing the start)"):format(plain.evaluations, moved.evaluations, moved.start_evaluations or -1))

@@ -72,6 +72,11 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(t1.modes.mode4, "invalid", "trial 1 fails on mode 4")
   for i, t in ipairs(C.trials) do
     T.truthy(t.calibration.converged, ("trial %d's calibration converged (%s)"):format(i, t.calibration.status))
+    -- stage 1 (the moment start) ends on its own criterion too, never on its budget (the
+    -- objective-form stage 1 ran out of its 400 evaluations on trial 2)
+    local m = S["trial" .. i .. "_calibration"].result.moments_stage
+    T.truthy(m.converged and m.status ~= "max_iterations",
+      ("trial %d's stage 1 ended on its criterion (%s)"):format(i, tostring(m.status)))
   end
   T.eq(C.refinements[1], "airbag modelling type", "refinement picks the airbag modelling")
   T.eq(last.candidate, "airbag modelling type")

@@ -342,8 +342,9 @@ void run_one_start(const std::vector<Parameter>& params, const Objective& f, con
     const Parameter& p = params[static_cast<std::size_t>(i)];
     given[i] = p.lower + u0[i] * (p.upper - p.lower);
   }
+  PreparedStart ps;
   if (opt.prepare_start) {
-    const PreparedStart ps = opt.prepare_start(given);
+    ps = opt.prepare_start(given);
     out.prepare_evaluations = ps.evaluations;
     if (!ps.note.empty()) out.warnings.push_back(fmt::format("start {}: {}", s + 1, ps.note));
     u0 = scaled_point(params, ps.theta);
@@ -351,6 +352,9 @@ void run_one_start(const std::vector<Parameter>& params, const Objective& f, con
   out.sr = run_start(params, f, opt, u0, s, out.history, out.warnings);
   if (opt.hops > 0) hop_basins(params, f, opt, s, out);
   out.sr.given = given;
+  out.sr.start_status = ps.status;
+  out.sr.start_criterion_before = ps.criterion_before;
+  out.sr.start_criterion_after = ps.criterion_after;
 }
 
 /// The starts' runs into res in start order: counts, history and warnings appended, the best

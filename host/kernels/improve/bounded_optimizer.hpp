@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,11 @@ struct PreparedStart {
   Eigen::VectorXd theta;  ///< in the parameters' own units
   std::string note;       ///< empty when not moved; else why and where to (goes to warnings)
   int evaluations = 0;    ///< objective or model evaluations spent deciding (not in the history)
+  /// Why a preparation that minimises something stopped ("tolerance_reached", "ftol_reached", "stationary",
+  /// "max_iterations"), and its criterion before and after; empty / NaN when it does not say.
+  std::string status;
+  double criterion_before = std::numeric_limits<double>::quiet_NaN();
+  double criterion_after = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The objective's value and its gradient in the parameters' own units.
@@ -107,6 +113,9 @@ struct StartResult {
   bool converged = false;
   int hops = 0;           ///< basin hops tried (OptimizerOptions::hops)
   int hops_improved = 0;  ///< of them, those that found a lower optimum (kept)
+  std::string start_status;        ///< prepare_start's PreparedStart::status (empty: none said)
+  double start_criterion_before = std::numeric_limits<double>::quiet_NaN();  ///< and its criterion
+  double start_criterion_after = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct OptimizationResult {

@@ -29,10 +29,12 @@ TEST_CASE("input derivatives: closed forms agree with differences of the mapping
 
 namespace {
 
+const std::vector<Parameter> kParams{{"a.mean", 3, 7, 4.6}, {"a.std", 0.05, 1, 0.4}, {"b.mean", 1, 3, 2.2},
+                                     {"b.std", 0.05, 1, 0.3}, {"c.mean", 0.5, 2, 1.1}, {"c.std", 0.05, 0.5, 0.2}};
+
 /// y1 = a + b², y2 = 3a − b·c with its Jacobian; inputs a normal, b lognormal, c uniform.
-StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "silverman", Eigen::Index grid_nodes = 1001) {
-  std::vector<Parameter> p{{"a.mean", 3, 7, 4.6}, {"a.std", 0.05, 1, 0.4}, {"b.mean", 1, 3, 2.2},
-                           {"b.std", 0.05, 1, 0.3}, {"c.mean", 0.5, 2, 1.1}, {"c.std", 0.05, 0.5, 0.2}};
+StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "silverman", Eigen::Index grid_nodes = 1001,
+                          const std::vector<Parameter>& p = kParams) {
   std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::lognormal, 0, 0, 2, 3},
                             {"c", InputFamily::uniform, 0, 0, 4, 5}};
   smi::Rng g(11);
@@ -133,6 +135,34 @@ TEST_CASE("moment residuals: the chain-rule Jacobian agrees with forward differe
     CHECK(ym == Approx(dm).epsilon(1e-6));
     CHECK(ys == Approx(ds).epsilon(1e-5));
   }
+}
+
+TEST_CASE("moment start with sds the bounds cannot reach: the constrained minimum of the mismatch, on a criterion") {
+  // The data's sds (y1 about 0.85, y2 about 0.92) are below what the stds' lower bounds allow
+  // (a.std >= 0.5 and b.std >= 0.3 give y1 an sd of 1.3 at least): the mismatch's minimum in the
+  // box has the stds on their lower bounds (each input's spread only adds to the sds) and the
+  // means trading the mean residuals against the sd ones. A full LM step projected on the box
+  // crawled along the bounds there and stopped on its iteration budget.
+  std::vector<Parameter> p = kParams;
+  p[1].lower = 0.5, p[1].start = 0.7;
+  p[3].lower = 0.3, p[3].start = 0.5;
+  const StatisticalObjective f = make(MetricKind::pr, "silverman", 1001, p);
+  const Eigen::VectorXd far = (Eigen::VectorXd(6) << 3.5, 0.9, 2.8, 0.9, 1.9, 0.45).finished();
+  const PreparedStart ps = moment_start(f, far);
+  // The reference minimum: SLSQP on the mismatch itself (central differences) with tight
+  // tolerances from the same start.
+  std::vector<Parameter> from = p;
+  for (std::size_t i = 0; i < from.size(); ++i) from[i].start = far[static_cast<Eigen::Index>(i)];
+  OptimizerOptions oo;
+  oo.xtol_rel = 1e-10, oo.ftol_abs = 1e-12, oo.maxeval = 3000;
+  const OptimizationResult ref = minimize(from, [&f](const Eigen::VectorXd& t) { return Evaluation{moment_mismatch(f, t), {}}; }, oo);
+  INFO(ps.note << "\nstatus " << ps.status << " at " << ps.theta.transpose() << "\nreference " << ref.value << " at "
+                << ref.theta.transpose() << " (" << ref.status << ")");
+  CHECK((ps.status == "ftol_reached" || ps.status == "stationary"));
+  const double reached = moment_mismatch(f, ps.theta);
+  CHECK(ps.criterion_after == Approx(reached).epsilon(1e-12));
+  CHECK(reached <= ref.value * (1.0 + 1e-3));
+  for (Eigen::Index i : {1, 3, 5}) CHECK(ps.theta[i] == p[static_cast<std::size_t>(i)].lower);
 }
 
 TEST_CASE("no gradient for a custom metric, a data-driven bandwidth or a model without Jacobian") {
