@@ -196,7 +196,9 @@ local function optimum(t, predicted, grids, params)
   local restarted = kept and not r0.converged and r.converged
   r.status = restarted and ("%s, then %s on the restart from its point"):format(r0.status, r.status) or r0.status
   r.converged = r0.converged or restarted
-  r.starts, r.history = r0.starts, r0.history
+  -- with --multistart: the starts, their distinct optima and whether they reached the same
+  -- optimum where the data can tell (smi.calibrate's agreement, at its PR tolerance)
+  r.starts, r.history, r.optima, r.agreement = r0.starts, r0.history, r0.optima, r0.agreement
   if not restarted then r.at_bounds = r0.at_bounds end
   return r, tol, moments_record(r0, params)
 end
@@ -338,7 +340,8 @@ function M.calibrate(t)
     status = r.status, warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
     theta = r.params, history = history, weak = r.identifiability and r.identifiability.weak or {},
     n = t.n, seed = t.seed,
-    maxeval = t.maxeval, metric = t.metric, starts = r.starts, priors = t.prior_labels or {},
+    maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,
+    priors = t.prior_labels or {},
     cover_mass_ratio = rho and tc and inputs.cover_mass_ratio(rho, tc),
     moments_stage = r1 }
   local data_objective = M.objective(t.metric, predicted, grids, t.f_exp, t.data)
