@@ -185,9 +185,9 @@ if os.path.isdir(f"{d}/p8"):
 L.append("- why the ratios: a gradient saves the k probes of each iterate (SciPy's 2-point differences cost k + 1 evaluations "
          "per gradient), so the evaluation ratio is about (k + 1) × SciPy's iterates / ours. NLopt's SLSQP takes more iterates "
          "than SciPy's and also asks for the value alone at line-search points (the bracketed counts), so its ratio stays "
-         "near 3x at 4 and at 8 parameters. L-BFGS takes about as many iterates as SciPy (one value-and-gradient each), so "
-         "its ratio grows with k: about 4x with 4 parameters (5x would need fewer iterates than SciPy's SLSQP), above 5x with 8. "
-         "The moment start (Levenberg–Marquardt on the responses' means and sds: model + Jacobian runs, no KDE) removes "
+         "between 3x and 4.5x. L-BFGS takes about as many iterates as SciPy (one value-and-gradient each), so "
+         "its ratio grows with k: at most about 5x with 4 parameters (at the edge: whether a run passes depends on the tolerance that lands "
+         "within 1e-4), above 5x with 8. The moment start (Levenberg–Marquardt on the responses' means and sds: model + Jacobian runs, no KDE) removes "
          "the first iterates. Per evaluation the gradient costs less than a second KDE pass, so the CPU ratio is larger "
          "than the evaluation ratio. PR on a grid is piecewise smooth (sign changes of f_exp − f_pre at the nodes).")
 L.append("- side by side (accuracy-matched, SciPy / ours, evaluations and CPU): " + "; ".join(
