@@ -360,10 +360,7 @@ void report_agreement(const char* key, const Run& run, const StatisticalObjectiv
   }
   std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
   // smi.calibrate's own account (start_agreement.hpp) at its PR default tolerance, 0.01 per response
-  PredictionCheck pc;
-  pc.summaries = [&obj](const Eigen::VectorXd& t) { return obj.summaries(t); };
-  pc.resolution = Eigen::VectorXd::Constant(4 * static_cast<Eigen::Index>(obj.responses().size()), 1.0 / std::sqrt(static_cast<double>(obj.responses()[0].data.size())));
-  const StartAgreement a = start_agreement(params, [&obj](const Eigen::VectorXd& t) { return obj(t); }, run.r, 0.02, pc);
+  const StartAgreement a = start_agreement(params, [&obj](const Eigen::VectorXd& t) { return obj(t); }, run.r, 0.02, prediction_check(obj));
   std::printf("%s_same %d\n%s_largest_gap %.4g\n%s_largest_barrier %.4g\n%s_largest_prediction_distance %.4g\n", key, a.same, key,
               a.largest_gap, key, a.largest_barrier, key, a.largest_prediction_distance);
 }

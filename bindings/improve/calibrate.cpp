@@ -267,42 +267,17 @@ void add_identifiability(const CalibrateSpec& s, const Objective& f, Calibration
   append(out.warnings, out.directions->warnings);
 }
 
-/// The number of observations behind a response: its data, or the sample of a KDE given as its
-/// experimental PDF (a KDE-ebd's added points are not observations); 0 when unknown.
-double observations(const ResponseSpec& r) {
-  if (r.data.size() > 0) return static_cast<double>(r.data.size());
-  if (!r.f_exp) return 0.0;
-  const double n = r.f_exp->field("n").value_or(0.0), added = r.f_exp->field("added").value_or(0.0);
-  return std::max(0.0, n - added);
-}
-
-/// The statistical form's predictions to compare the starts by: the summaries of the predicted
-/// responses, each resolvable to one standard error of the data's own, 1/sqrt(n) (n the
-/// response's observations). None when some response's observations are unknown.
-PredictionCheck prediction_check(const CalibrationOutcome& out) {
-  if (!out.stat) return {};
-  const auto& rs = out.stat->responses();
-  PredictionCheck pc;
-  pc.resolution.resize(4 * static_cast<Eigen::Index>(rs.size()));
-  for (std::size_t j = 0; j < rs.size(); ++j) {
-    const double n = observations(rs[j]);
-    if (n < 2) return {};
-    pc.resolution.segment(4 * static_cast<Eigen::Index>(j), 4).setConstant(1.0 / std::sqrt(n));
-  }
-  pc.summaries = [&obj = *out.stat](const Eigen::VectorXd& t) { return obj.summaries(t); };
-  return pc;
-}
-
 /// With several starts: whether they reached the best's optimum where the data can tell (within
 /// the tolerance, no barrier above it between them; start_agreement.hpp). The starts' optima
 /// that fit as well join the near-optimal set: they are calibrations the data cannot reject.
 void add_start_agreement(const CalibrateSpec& s, const Objective& f, CalibrationOutcome& out) {
-  out.agreement = start_agreement(s.params, f, out.opt, default_tolerance(s, out.opt.value), prediction_check(out));
+  out.agreement = start_agreement(s.params, f, out.opt, default_tolerance(s, out.opt.value),
+                                  out.stat ? prediction_check(*out.stat) : PredictionCheck{});
   if (!out.opt.starts_agree) out.warnings.push_back(describe(*out.agreement));
   if (!out.directions) return;
   for (std::size_t i = 0; i < out.opt.starts.size(); ++i) {
     const StartResult& st = out.opt.starts[i];
-    if (!out.agreement->rows[i].within || st.theta == out.opt.theta) continue;
+    if (!out.agreement->rows[i].within || static_cast<int>(i) == out.opt.best) continue;
     out.directions->near_optimal.push_back(st.theta);
     out.directions->near_optimal_values.push_back(st.value);
   }

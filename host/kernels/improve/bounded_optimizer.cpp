@@ -300,7 +300,6 @@ Eigen::VectorXd scaled_point(const std::vector<Parameter>& params, const Eigen::
 void hop_basins(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt, int s, StartRun& out) {
   const Eigen::Index k = static_cast<Eigen::Index>(params.size());
   Rng rng(opt.seed, hash_label("hops") + static_cast<std::uint64_t>(s));
-  auto scaled = [&params](const Eigen::VectorXd& t) { return scaled_point(params, t); };
   // A hop only has to tell which basin it fell into: its local run stops at a looser tolerance
   // (most of a local run's evaluations go into its last digits), and the best point is polished
   // at the caller's tolerances once, after the last hop.
@@ -309,7 +308,7 @@ void hop_basins(const std::vector<Parameter>& params, const Objective& f, const 
   loose.ftol_abs = std::max(opt.ftol_abs, 1e-5);
   bool moved = false;
   for (int h = 0; h < opt.hops; ++h) {
-    Eigen::VectorXd u = scaled(out.sr.theta);
+    Eigen::VectorXd u = scaled_point(params, out.sr.theta);
     for (Eigen::Index i = 0; i < k; ++i) u[i] = std::clamp(u[i] + opt.hop_step * (2.0 * rng.uniform01() - 1.0), 0.0, 1.0);
     const StartResult hop = run_start(params, f, loose, u, s, out.history, out.warnings);
     out.sr.evaluations += hop.evaluations;
@@ -322,7 +321,7 @@ void hop_basins(const std::vector<Parameter>& params, const Objective& f, const 
     }
   }
   if (!moved) return;
-  const StartResult polish = run_start(params, f, opt, scaled(out.sr.theta), s, out.history, out.warnings);
+  const StartResult polish = run_start(params, f, opt, scaled_point(params, out.sr.theta), s, out.history, out.warnings);
   out.sr.evaluations += polish.evaluations;
   out.sr.status = polish.status;
   out.sr.converged = polish.converged;
@@ -367,6 +366,7 @@ void merge_starts(std::vector<StartRun>& runs, OptimizationResult& res) {
     res.warnings.insert(res.warnings.end(), r.warnings.begin(), r.warnings.end());
     res.evaluations += r.sr.evaluations;
     if (s == 0 || r.sr.value < res.value) {
+      res.best = static_cast<int>(s);
       res.theta = r.sr.theta;
       res.value = r.sr.value;
       res.status = r.sr.status;
@@ -401,13 +401,12 @@ void cluster_optima(const std::vector<Parameter>& params, const OptimizerOptions
   std::vector<int> order(res.starts.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return res.starts[static_cast<std::size_t>(a)].value < res.starts[static_cast<std::size_t>(b)].value; });
-  auto scaled = [&params](const Eigen::VectorXd& t) { return scaled_point(params, t); };
   for (int s : order) {
     const StartResult& a = res.starts[static_cast<std::size_t>(s)];
     bool known = false;
     for (int o : res.optima) {
       const StartResult& b = res.starts[static_cast<std::size_t>(o)];
-      known = known || (std::abs(a.value - b.value) <= 1e-6 + 1e-4 * std::abs(b.value) && (scaled(a.theta) - scaled(b.theta)).norm() <= 1e-2 * std::sqrt(static_cast<double>(k)));
+      known = known || (std::abs(a.value - b.value) <= 1e-6 + 1e-4 * std::abs(b.value) && (scaled_point(params, a.theta) - scaled_point(params, b.theta)).norm() <= 1e-2 * std::sqrt(static_cast<double>(k)));
     }
     if (!known) res.optima.push_back(s);
   }

@@ -126,6 +126,7 @@ struct OptimizationResult {
   int start_evaluations = 0;  ///< spent by prepare_start (checking and moving starts)
   bool converged = false;
   std::string status;  ///< status of the best start
+  int best = 0;        ///< index into `starts` of the start whose optimum is theta (the first on ties)
   std::vector<HistoryEntry> history;
   std::vector<StartResult> starts;
   std::vector<std::string> warnings;

@@ -13,16 +13,6 @@ namespace smi::improve {
 
 namespace {
 
-/// Index of the best start: the one whose optimum is res.theta (the first on ties).
-std::size_t best_start(const OptimizationResult& res) {
-  for (std::size_t s = 0; s < res.starts.size(); ++s)
-    if (res.starts[s].value == res.value && res.starts[s].theta == res.theta) return s;
-  std::size_t b = 0;
-  for (std::size_t s = 1; s < res.starts.size(); ++s)
-    if (res.starts[s].value < res.starts[b].value) b = s;
-  return b;
-}
-
 /// The path's interior fractions, middle first: a single ridge between two basins is found by
 /// the first evaluations, and the walk stops there.
 std::vector<double> middle_first(int m) {
@@ -68,6 +58,8 @@ StartAgreement start_agreement(const std::vector<Parameter>& params, const Objec
     throw InvalidArgument(fmt::format("start agreement: tolerance must be a finite number >= 0, got {}", tolerance));
   if (path_points < 1) throw InvalidArgument(fmt::format("start agreement: path_points must be >= 1, got {}", path_points));
   if (res.starts.empty()) throw InvalidArgument("start agreement: the result has no starts");
+  if (res.best < 0 || res.best >= static_cast<int>(res.starts.size()))
+    throw InvalidArgument(fmt::format("start agreement: best start {} is not one of the {} starts", res.best, res.starts.size()));
   if (predictions.summaries && !(predictions.resolution.array() > 0.0).all())
     throw InvalidArgument("start agreement: every prediction resolution must be > 0");
   StartAgreement a;
@@ -75,7 +67,7 @@ StartAgreement start_agreement(const std::vector<Parameter>& params, const Objec
   a.path_points = path_points;
   const bool predict = static_cast<bool>(predictions.summaries);
   if (!predict) a.largest_prediction_distance = std::numeric_limits<double>::quiet_NaN();
-  const std::size_t best = best_start(res);
+  const std::size_t best = static_cast<std::size_t>(res.best);
   const std::vector<double> fractions = middle_first(path_points);
   Eigen::VectorXd best_summary;
   for (std::size_t s = 0; s < res.starts.size(); ++s) {
@@ -106,6 +98,32 @@ StartAgreement start_agreement(const std::vector<Parameter>& params, const Objec
   }
   a.agree = a.same == static_cast<int>(a.rows.size());
   return a;
+}
+
+namespace {
+
+/// The number of observations behind a response: its data, or the sample of a KDE given as its
+/// experimental PDF (a KDE-ebd's added points are not observations); 0 when unknown.
+double observations(const ResponseSpec& r) {
+  if (r.data.size() > 0) return static_cast<double>(r.data.size());
+  if (!r.f_exp) return 0.0;
+  const double n = r.f_exp->field("n").value_or(0.0), added = r.f_exp->field("added").value_or(0.0);
+  return std::max(0.0, n - added);
+}
+
+}  // namespace
+
+PredictionCheck prediction_check(const StatisticalObjective& obj) {
+  const auto& rs = obj.responses();
+  PredictionCheck pc;
+  pc.resolution.resize(4 * static_cast<Eigen::Index>(rs.size()));
+  for (std::size_t j = 0; j < rs.size(); ++j) {
+    const double n = observations(rs[j]);
+    if (n < 2) return {};
+    pc.resolution.segment(4 * static_cast<Eigen::Index>(j), 4).setConstant(1.0 / std::sqrt(n));
+  }
+  pc.summaries = [&obj](const Eigen::VectorXd& t) { return obj.summaries(t); };
+  return pc;
 }
 
 std::string describe(const StartAgreement& a) {

@@ -21,6 +21,7 @@
 
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/directions.hpp"
+#include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::improve {
 
@@ -61,6 +62,13 @@ struct StartAgreement {
 /// objective's exceptions.
 StartAgreement start_agreement(const std::vector<Parameter>& params, const Objective& f, const OptimizationResult& res, double tolerance,
                                const PredictionCheck& predictions = {}, int path_points = 9);
+
+/// The statistical form's predictions to compare starts by: the summaries of the predicted
+/// responses (StatisticalObjective::summaries), each resolvable to one standard error of the
+/// data's own, 1/sqrt(n), n the response's observations (its data, or the sample of a KDE given
+/// as f_exp without a KDE-ebd's added points). Empty when some response's count is unknown.
+/// Keeps a reference to obj.
+PredictionCheck prediction_check(const StatisticalObjective& obj);
 
 /// One line for the result's warnings or a report: how many starts reached the best's optimum
 /// where the data can tell, the largest gap and barrier, against the tolerance.

@@ -82,6 +82,7 @@ TEST_CASE("a start whose optimum fits worse than the tolerance needs no path") {
   two.starts[1].value = 0.0;
   two.theta = two.starts[1].theta;
   two.value = 0.0;
+  two.best = 1;
   const StartAgreement a = start_agreement(p, f, two, 0.01);
   CHECK_FALSE(a.rows[0].within);
   CHECK(a.rows[0].gap == Approx(r.value).margin(1e-12));
