@@ -86,7 +86,9 @@ doc.add[==[
 @ smi.study:step(name [, opts], fn) -> study
 Adds a step. fn(ctx) returns a table of results (or sets them with ctx:set(key, value)); ctx.results
 holds the earlier steps' results (from this run or results.json), ctx:log(fmt, ...) writes a
-progress line, ctx.report is the study's report when it has one.
+progress line, ctx.report is the study's report when it has one. A step with nothing to do now
+returns ctx:skip("why") (or {skipped = true, reason = "why"}): it is recorded and reported as
+"not run" with that reason, never as passed.
 options:
   description = nil   -- a sentence on what the step does
 returns: the study (calls chain)
@@ -265,6 +267,12 @@ local function step_context(study, st, results)
     end
   end
   function ctx.set(c, key, value) c.result[key] = value end
+  -- a step that has nothing to do now: return ctx:skip("why") (the record {skipped = true,
+  -- reason = ...}, which a step may also return itself)
+  function ctx.skip(c, reason)
+    if c ~= ctx then reason = c end
+    return { skipped = true, reason = tostring(reason or "no reason given") }
+  end
   return ctx
 end
 
@@ -313,12 +321,19 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   -- keep only what JSON can hold in the file
   local skipped = {}
   local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
+  -- a step that returned {skipped = true, reason = ...} did not run: its record (status "ok", so
+  -- that later steps can read why) says not_run, and the report and the console say "not run"
+  local not_run = result.skipped == true and tostring(result.reason or "no reason given") or nil
   saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.decode(text),
-                           not_saved = #skipped > 0 and skipped or nil }
-  self.timings[#self.timings + 1] = { st.name, "ok", dt }
+                           not_saved = #skipped > 0 and skipped or nil, not_run = not_run }
+  self.timings[#self.timings + 1] = { st.name, not_run and "not run" or "ok", dt, not_run }
   self:_save(saved)
-  self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
-    #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+  if not_run then
+    self:_say("step %d/%d %s not run: %s", k, nsel, st.name, not_run)
+  else
+    self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
+      #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+  end
 end
 
 doc.add[==[
@@ -392,8 +407,13 @@ function Study:_finish_report(partial, selected, total)
   end
   r:section("Study steps")
   local rows = {}
-  for _, t in ipairs(self.timings) do rows[#rows + 1] = { t[1], { status = t[2] == "ok" and "pass" or "fail" }, t[3] } end
-  r:table{ caption = ("Steps run, %s in total."):format(fmt.seconds(total)), columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
+  for _, t in ipairs(self.timings) do
+    local badge = ({ ok = { status = "pass", text = "ran" }, failed = { status = "fail", text = "failed" } })[t[2]]
+      or { status = "skip", text = t[4] }
+    rows[#rows + 1] = { t[1], badge, t[2] == "not run" and "" or t[3] }
+  end
+  r:table{ caption = ("Steps of this run, %s in total; a step not run says why."):format(fmt.seconds(total)),
+           columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
   r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
   local p = provenance{ files = false }
   if p then
@@ -407,11 +427,18 @@ function Study:_finish_report(partial, selected, total)
   self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
   self:_say("report: %s", self.report_path)
   -- the verdicts are the study's answer, not progress: printed on stdout even when quiet
+  local words = require("smi.report.html").STATUS_TEXT
   for _, it in ipairs(r.items) do
     if it.kind == "verdict" then
-      io.stdout:write(("%-7s %s%s\n"):format(it.status:upper(), it.name, it.detail and (": " .. it.detail) or ""))
+      io.stdout:write(("%-7s %s%s\n"):format(words[it.status], it.name, it.detail and (": " .. it.detail) or ""))
+      for _, c in ipairs(it.checks or {}) do
+        io.stdout:write(("        %s: %s%s\n"):format(c.name, words[c.status]:lower(), c.detail and (" (" .. c.detail .. ")") or ""))
+      end
+      if it.governs then io.stdout:write("        ", it.governs, "\n") end
     end
   end
+  local n, counted = r:tally()
+  if n.pass + n.fail + n.warn + n.inconclusive + n.skip > 0 then io.stdout:write(counted, "\n") end
 end
 
 doc.add[==[
