@@ -157,6 +157,9 @@ const char* help_text() {
 
 Runs a study script (or stdin with '-') in a sandbox; with no script, starts the REPL on a
 terminal and runs stdin otherwise. The script gets its arguments as arg[1..n] and as '...'.
+The options below go before the script: everything after it is the script's own (a study's
+--help lists them), so `smi-lua study.lua --out DIR` is refused by smi.options with
+"smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ...".
 
 Lua options (as the lua program):
   -e chunk            run the string 'chunk' (in order with -l, before the script)
