@@ -448,7 +448,7 @@ function M.help_text(x)
     return ("nothing documented mentions '%s'%s (help() lists the modules)"):format(tostring(x),
       #near > 0 and ("; did you mean " .. table.concat(near, ", ") .. "?") or ""), "none"
   end
-  local out = { ("%d entr%s mention '%s' (help(\"name\") shows one):"):format(#hits, #hits == 1 and "y" or "ies", x) }
+  local out = { ("%d entr%s '%s' (help(\"name\") shows one):"):format(#hits, #hits == 1 and "y mentions" or "ies mention", x) }
   for i, h in ipairs(hits) do
     if i > 40 then out[#out + 1] = ("  ... and %d more"):format(#hits - 40) break end
     out[#out + 1] = ("  %-30s %s"):format(h.name, h.summary or "")
