@@ -47,6 +47,19 @@ bool cell_number(const std::string& cell, char decimal, double& v) {
   return csv::parse_number(t, v);
 }
 
+/// The column names of the header record: trimmed, none empty, none twice.
+std::vector<std::string> header_names(const csv::Record& head, const std::string& file) {
+  std::vector<std::string> out;
+  for (std::size_t j = 0; j < head.fields.size(); ++j) {
+    std::string name = csv::trim(head.fields[j]);
+    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, head.line, j + 1));
+    for (const auto& h : out)
+      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, head.line, name));
+    out.push_back(std::move(name));
+  }
+  return out;
+}
+
 Table parse_table(const std::string& raw, char sep, char decimal, const std::string& file,
                   const std::set<std::string>& strings) {
   csv::ReadOptions ro;
@@ -60,13 +73,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
     throw Error(fmt::format("{}:{}: {} (the header '{}' reads as one column name)", file, recs[0].line, hint,
                             csv::trim(recs[0].fields[0]).substr(0, 60)));
   Table t;
-  for (std::size_t j = 0; j < recs[0].fields.size(); ++j) {
-    std::string name = csv::trim(recs[0].fields[j]);
-    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, recs[0].line, j + 1));
-    for (const auto& h : t.header)
-      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, recs[0].line, name));
-    t.header.push_back(std::move(name));
-  }
+  t.header = header_names(recs[0], file);
   const std::size_t ncol = t.header.size();
   if (recs.size() == 1) {
     std::string names;

@@ -81,9 +81,9 @@ example:
   print(v:curve().x)
 
 @ smi.metric.upool_threshold(n, confidence [, opts]) -> U_crit
-The (confidence) quantile of U under H0 for n u-values: seeded Monte Carlo (cached per n) for
-n <= 50; for n > 50 a fitted table of the quantiles of sqrt(n) U (replications and seed then do
-not apply); n = 1 exact.
+The (confidence) quantile of U under H0 for n u-values. For n <= 50 from seeded Monte Carlo
+(cached per n); for n > 50 from a fitted table of the quantiles of sqrt(n) U (replications and
+seed then do not apply); n = 1 exact.
 options:
   replications = ${replications}  -- Monte Carlo sets
   seed = ${seed}           -- the Monte Carlo seed
