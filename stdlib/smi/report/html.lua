@@ -50,7 +50,9 @@ local function cell_html(v, col, default_digits)
 end
 
 local function table_html(t)
-  local out = { '<div class="table-wrap"><table class="data" id="' .. esc(t.id) .. '">' }
+  -- a table of many columns is printed in smaller type (style.lua's table.wide)
+  local wide = #t.columns >= 9 and " wide" or ""
+  local out = { '<div class="table-wrap"><table class="data' .. wide .. '" id="' .. esc(t.id) .. '">' }
   out[#out + 1] = ("<caption><b>Table %d.</b> %s</caption>"):format(t.number, tesc(t.caption or ""))
   local head = {}
   for j, col in ipairs(t.columns) do
@@ -166,7 +168,10 @@ local function summary_html(items, counts)
       end
       out[#out + 1] = ('<li>%s<a href="#%s">%s</a>%s</li>'):format(M.badge(it.status), esc(it.id), tesc(it.name), sub)
     elseif it.kind == "callout" and it.status == "warn" then
-      warns[#warns + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge("warn"), esc(it.id), tesc(it.text))
+      -- the list names each warning in a line; the whole text stays where it was raised
+      local text = fmt.tidy(it.text)
+      if #text > 110 then text = text:sub(1, 100):gsub("[%s,;:]+%S*$", "") .. " ..." end
+      warns[#warns + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge("warn"), esc(it.id), esc(text))
     end
   end
   if #out == 0 and #warns == 0 then return "" end

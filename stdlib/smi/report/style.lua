@@ -88,11 +88,13 @@ footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line);
   nav.toc { display: none; }
   .table-wrap { overflow: visible; }
   table.data { width: 100%; font-size: 8pt; }
+  table.data.wide { font-size: 7pt; }
   table.data th, table.data td { padding: 2px 3px; }
+  /* the printed page cannot scroll: a header word may break too ("Calibrat-ed" beats a cut column) */
+  table.data th { overflow-wrap: anywhere; }
   thead { display: table-header-group; }
   tr, figure, .figrow figure, .verdict, .callout { break-inside: avoid; }
-  .figrow { display: block; }
-  .figrow figure { margin: 8px 0; }
+  .figrow figure { flex: 1 1 300px; margin: 6px 0; }  /* two charts a row on the page */
   figure .chart { display: block; border: 0; padding: 0; }
   figure svg { max-width: 100%; max-height: 120mm; width: auto; }
   h2, h3, caption { break-after: avoid; }
