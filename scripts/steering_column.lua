@@ -1,5 +1,5 @@
 --- The steering-column study of Son et al. (2020), end to end, on the open FE model column-fe
--- (shared/spec/steering-column.md): trials of statistical model improvement until the model is
+-- (docs/spec/steering-column.md): trials of statistical model improvement until the model is
 -- valid, the data cannot decide, or the analyst's limit of refinements is reached.
 --
 --   build/smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]
