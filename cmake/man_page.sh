@@ -28,8 +28,8 @@ esc() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/" -e 's/-/\\-/g'; }
   printf '.SH DESCRIPTION\n'
   # --help without its usage line: prose, then sections of options.
   "$smi" --help 2>&1 | sed '1{/^usage:/d}' | esc | awk '
-    function flush() { if (opt != "") { print ".TP"; print "\\fB" opt "\\fR" (arg != "" ? " \\fI" arg "\\fR" : ""); print text }; opt = ""; arg = ""; text = "" }
-    /^$/ { flush(); if (!blank) print ".PP"; blank = 1; next }
+    function flush() { if (opt != "") { print ".TP"; print "\\fB" opt "\\fR" (arg != "" ? " \\fI" arg "\\fR" : ""); print text; in_list = 1 }; opt = ""; arg = ""; text = "" }
+    /^$/ { flush(); if (!blank) print ".PP"; blank = 1; in_list = 0; next }
     { blank = 0 }
     /^[^ ].*:$/ { flush(); sub(/:$/, ""); print ".SS " $0; next }
     /^  [^ ]/ && match($0, /^  [^ ]([^ ]| [^ ])*  +/) {
@@ -42,7 +42,8 @@ esc() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/" -e 's/-/\\-/g'; }
       next
     }
     /^    / && opt != "" { s = $0; sub(/^ +/, "", s); text = text "\n" s; next }
-    { flush(); print }
+    # prose; after a list of options it starts a paragraph of its own
+    { flush(); if (in_list) { print ".PP"; in_list = 0 }; s = $0; sub(/^ +/, "", s); print s }
     END { flush() }
   '
   printf '.SH THE REFERENCE\n.TP\n\\fBsmi\\-lua %s\\fR\n' "$(printf '%s' "$doc_usage" | esc)"
