@@ -60,5 +60,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The second product's study drives CalculiX (ccx); smi-lua itself runs without it.
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS calculix-ccx)
 set(CPACK_GENERATOR DEB)
 include(CPack)
