@@ -1,5 +1,5 @@
 --- The steering-column study of Son et al. (2020), end to end, on the open FE model column-fe
--- (shared/spec/steering-column.md): trials of statistical model improvement until the model is
+-- (docs/spec/steering-column.md): trials of statistical model improvement until the model is
 -- valid, the data cannot decide, or the analyst's limit of refinements is reached.
 --
 --   build/smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]
@@ -8,7 +8,7 @@
 --   --data FILE.csv   measurements (columns mode1_hz, mode2_hz, mode4_hz; default: the committed
 --                     scripts/steering_column/data/tests.csv). Give --allow-read for its folder.
 --   --solver PATH     the column-fe program (default: <repo>/build/column-fe, next to the
---                     scripts folder); it must be allowed with --allow-exec PATH.
+--                     scripts folder; installed: column-fe on PATH); allow it with --allow-exec.
 --   --quick           CI form: a 40-point screening sample, no bootstrap, a smaller solver check;
 --                     surrogates, calibration and verdicts as in the full run.
 --   --metric pr|loglik  calibration metric per mode: the paper's probability residual (default)
@@ -53,6 +53,10 @@ local MODES = { "mode1", "mode2", "mode4" }
 -- Options
 -- ---------------------------------------------------------------------------------------------
 local here = smi.script_dir or "scripts"
+-- The solver: in the source tree (scripts/CMakeLists.txt beside this script) the one built in
+-- build/; an installed copy (share/smi-lua/scripts, no build files) runs column-fe from PATH.
+local in_tree = io.open(here .. "/CMakeLists.txt")
+if in_tree then in_tree:close() end
 local options = require "smi.options"
 local opt = options.parse(arg, {
   name = "steering_column",
@@ -60,7 +64,7 @@ local opt = options.parse(arg, {
   usage = "smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]",
   { name = "data", type = "path", default = here .. "/steering_column/data/tests.csv",
     meaning = "measurements, columns mode1_hz, mode2_hz, mode4_hz (give --allow-read for its folder)" },
-  { name = "solver", type = "path", default = here .. "/../build/column-fe",
+  { name = "solver", type = "path", default = in_tree and here .. "/../build/column-fe" or "column-fe",
     meaning = "the column-fe program; allow it with --allow-exec PATH" },
   { name = "quick", type = "flag", default = false,
     meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },

@@ -1,4 +1,4 @@
---- The steering-column model's inputs (shared/spec/steering-column.md §2) and the unknowns of
+--- The steering-column model's inputs (docs/spec/steering-column.md §2) and the unknowns of
 -- the two trials of Son et al. (2020), Tables 4 and 8: distribution type, bounds of the mean and
 -- standard deviation, and start values. Pure data plus small helpers; no solver, no I/O.
 local M = {}

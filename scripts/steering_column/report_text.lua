@@ -278,7 +278,7 @@ end
 function M.validation_intro(res, n, cfg)
   return ("u-pooling area metric (eq. 11 and 12) of the data of each mode against the KDE of %d samples of the"
     .. " calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
-    .. " shared/spec/algorithms.md §5). Modes 1 and 4 were used by the calibration: their verdict is the optimum's."
+    .. " docs/spec/algorithms.md §5). Modes 1 and 4 were used by the calibration: their verdict is the optimum's."
     .. " Mode 2 was not: the calibration data leave combinations of the means undetermined, so its metric is"
     .. " computed over every near-optimal calibration (%d samples each) and it is valid or invalid only when that"
     .. " whole range lies on one side of the threshold, else inconclusive. The trial is valid when every calibrated"

@@ -12,7 +12,7 @@
 --                    a model twice as expensive and flip the choice from run to run
 --   implementation   the analyst's estimate of the time to implement the revision (minutes)
 -- Weights: correctness 0.4, the three others 0.2 each. The weights of Oh et al. (2016) could not
--- be recovered (shared/spec/algorithms.md §6); correctness counts double because a revision that
+-- be recovered (docs/spec/algorithms.md §6); correctness counts double because a revision that
 -- does not move the failed response cannot make the model valid.
 local M = {}
 
