@@ -105,7 +105,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
   if (!lua_istable(L, -1)) lua_pop(L, 1);  // [env]
   else lua_remove(L, -2);                  // [returned]
 
-  static const char* const kKnown[] = {"name", "version", "description", "requires", "license", "authors", "homepage"};
+  static const char* const kKnown[] = {"name", "version", "description", "requires", "sources", "license", "authors", "homepage"};
   lua_pushnil(L);
   while (lua_next(L, -2)) {
     lua_pop(L, 1);
@@ -117,7 +117,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
                              ? " (did you mean 'requires'?)"
                              : "";
       throw Error(where(file) + ": unknown field '" + key + "'" + hint +
-                  "; known fields: name, version, description, requires, license, authors, homepage");
+                  "; known fields: name, version, description, requires, sources, license, authors, homepage");
     }
   }
 
@@ -152,6 +152,22 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
     }
   } else if (!lua_isnil(L, -1)) {
     throw Error(where(file) + ": field 'requires' must be a list of strings like {\"other >= 1.2\"}, got a " +
+                luaL_typename(L, -1));
+  }
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "sources");
+  if (lua_istable(L, -1)) {
+    lua_pushnil(L);
+    while (lua_next(L, -2)) {
+      if (lua_type(L, -2) != LUA_TSTRING || lua_type(L, -1) != LUA_TSTRING)
+        throw Error(where(file) + ": field 'sources' must map library names to where they are fetched, like "
+                    "{kdetools = \"https://git.example.org/kdetools.git\"}; found a " + luaL_typename(L, -2) +
+                    " key with a " + luaL_typename(L, -1) + " value");
+      m.sources[lua_tostring(L, -2)] = lua_tostring(L, -1);
+      lua_pop(L, 1);
+    }
+  } else if (!lua_isnil(L, -1)) {
+    throw Error(where(file) + ": field 'sources' must be a table like {kdetools = \"https://...\"}, got a " +
                 luaL_typename(L, -1));
   }
   return m;
