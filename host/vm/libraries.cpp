@@ -248,7 +248,7 @@ std::vector<std::string> LibrarySet::problems() const {
         out.push_back(who + ", but " + dep->describe() + " does not satisfy " + r.constraint() + "; put a version of " +
                       r.name + " with " + r.constraint() + " on the library path (e.g. check out a matching tag in " +
                       dep->folder.string() + "), or use a release of " + a.name() + " that accepts " + r.name + " " +
-                      dep->manifest.version.text);
+                      dep->manifest.version.text + seen_versions(r.name));
       }
     }
   }

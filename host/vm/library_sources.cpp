@@ -75,7 +75,7 @@ GitResult run_git(const std::vector<std::string>& args, const fs::path& scratch)
                                    "-c", "advice.detachedHead=false"};
   argv.insert(argv.end(), args.begin(), args.end());
   std::vector<std::string> env = {"HOME=" + home.string(), "GIT_CONFIG_NOSYSTEM=1", "GIT_CONFIG_GLOBAL=/dev/null",
-                                  "GIT_TERMINAL_PROMPT=0", "GIT_PROTOCOL_FROM_USER=0", "LANG=C", "LC_ALL=C"};
+                                  "GIT_TERMINAL_PROMPT=0", "LANG=C", "LC_ALL=C"};
   for (const char* keep : {"PATH", "SSH_AUTH_SOCK", "http_proxy", "https_proxy", "no_proxy", "HTTP_PROXY",
                            "HTTPS_PROXY", "NO_PROXY"})
     if (const char* v = std::getenv(keep)) env.push_back(std::string(keep) + "=" + v);
