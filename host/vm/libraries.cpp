@@ -71,6 +71,73 @@ std::vector<fs::path> version_folders(const fs::path& name_dir) {
   return out;
 }
 
+/// Chooses one of the side-by-side versions of each library of a tree (appended to `libs`): the
+/// version the lockfile pins (the others stay hidden; a pinned version not installed is a
+/// problem), else the highest that satisfies every requirement on it from the libraries seen.
+void choose_versions(std::map<std::string, std::vector<Library>>& versioned, const ProjectLibraries* project,
+                     std::vector<Library>& libs, std::vector<std::string>& problems,
+                     std::map<std::string, std::vector<std::string>>& versions) {
+  const Lockfile* lock = project && project->lock ? &*project->lock : nullptr;
+  // A lockfile pins one version of each library it names and hides the others.
+  if (lock)
+    for (const LockEntry& e : lock->libs) {
+      auto it = versioned.find(e.name);
+      bool found = false;
+      if (it != versioned.end())
+        for (Library& l : it->second)
+          if (!found && l.manifest.version.text == e.version) {
+            l.source = e.source;
+            l.git = GitInfo{};
+            l.git.commit = e.commit.size() == 40 ? e.commit : "";
+            libs.push_back(l);
+            found = true;
+          }
+      if (!found)
+        problems.push_back(project->lockfile.string() + " pins " + e.name + " " + e.version + ", but " +
+                                     (project->tree / e.name / e.version).string() +
+                                     " is not installed; run smi-lua libs sync");
+    }
+  // Without a lock entry: the highest version that satisfies every requirement on it.
+  std::map<std::string, std::size_t> pick;  // name -> index in versioned[name]
+  for (auto& [name, libs] : versioned) {
+    std::sort(libs.begin(), libs.end(), [](const Library& a, const Library& b) {
+      return compare(a.manifest.version, b.manifest.version) > 0;
+    });
+    for (const Library& l : libs) versions[name].push_back(l.manifest.version.text);
+    if (lock) continue;
+    pick[name] = 0;
+  }
+  const auto chosen = [&](const std::string& name) { return &versioned[name][pick[name]]; };
+  for (int round = 0; round < 20; ++round) {
+    bool changed = false;
+    for (auto& [name, idx] : pick) {
+      std::vector<const Requirement*> on;
+      const auto collect = [&](const Library& l) {
+        for (const Requirement& r : l.manifest.requires_)
+          if (r.name == name) on.push_back(&r);
+      };
+      for (const Library& l : libs) collect(l);
+      for (const auto& [other, j] : pick)
+        if (other != name) collect(versioned[other][j]);
+      std::size_t best = idx;
+      for (std::size_t k = 0; k < versioned[name].size(); ++k) {
+        bool ok = true;
+        for (const Requirement* r : on) ok = ok && r->accepts(versioned[name][k].manifest.version);
+        if (ok) {
+          best = k;
+          break;
+        }
+      }
+      if (best != idx) {
+        idx = best;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  for (const auto& [name, idx] : pick) libs.push_back(*chosen(name));
+}
+
 }  // namespace
 
 LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& given, const ProjectLibraries* project) {
@@ -136,64 +203,7 @@ LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& given, const Pro
       }
     }
   }
-  // A lockfile pins one version of each library it names and hides the others.
-  if (lock)
-    for (const LockEntry& e : lock->libs) {
-      auto it = versioned.find(e.name);
-      bool found = false;
-      if (it != versioned.end())
-        for (Library& l : it->second)
-          if (!found && l.manifest.version.text == e.version) {
-            l.source = e.source;
-            l.git = GitInfo{};
-            l.git.commit = e.commit.size() == 40 ? e.commit : "";
-            set.libs_.push_back(l);
-            found = true;
-          }
-      if (!found)
-        set.tree_problems_.push_back(project->lockfile.string() + " pins " + e.name + " " + e.version + ", but " +
-                                     (project->tree / e.name / e.version).string() +
-                                     " is not installed; run smi-lua libs sync");
-    }
-  // Without a lock entry: the highest version that satisfies every requirement on it.
-  std::map<std::string, std::size_t> pick;  // name -> index in versioned[name]
-  for (auto& [name, libs] : versioned) {
-    std::sort(libs.begin(), libs.end(), [](const Library& a, const Library& b) {
-      return compare(a.manifest.version, b.manifest.version) > 0;
-    });
-    for (const Library& l : libs) set.versions_[name].push_back(l.manifest.version.text);
-    if (lock) continue;
-    pick[name] = 0;
-  }
-  const auto chosen = [&](const std::string& name) { return &versioned[name][pick[name]]; };
-  for (int round = 0; round < 20; ++round) {
-    bool changed = false;
-    for (auto& [name, idx] : pick) {
-      std::vector<const Requirement*> on;
-      const auto collect = [&](const Library& l) {
-        for (const Requirement& r : l.manifest.requires_)
-          if (r.name == name) on.push_back(&r);
-      };
-      for (const Library& l : set.libs_) collect(l);
-      for (const auto& [other, j] : pick)
-        if (other != name) collect(versioned[other][j]);
-      std::size_t best = idx;
-      for (std::size_t k = 0; k < versioned[name].size(); ++k) {
-        bool ok = true;
-        for (const Requirement* r : on) ok = ok && r->accepts(versioned[name][k].manifest.version);
-        if (ok) {
-          best = k;
-          break;
-        }
-      }
-      if (best != idx) {
-        idx = best;
-        changed = true;
-      }
-    }
-    if (!changed) break;
-  }
-  for (const auto& [name, idx] : pick) set.libs_.push_back(*chosen(name));
+  choose_versions(versioned, project, set.libs_, set.tree_problems_, set.versions_);
   return set;
 }
 
