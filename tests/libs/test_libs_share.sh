@@ -73,11 +73,18 @@ has_out "unitconv  2.0.0    ${u_commit:0:12}"
 files_sha smi-libs > ../before.sha
 cp smi-lock.json ../lock.before
 rm -rf smi-libs
+# a study does not start on a lockfile whose libraries are not installed
+run study-unsynced 1 "$SMI" --quiet --out out2 study.lua
+has_err "smi-lock.json pins refcrit 1.2.0, but"
+has_err "is not installed; run smi-lua libs sync"
 run sync 0 "$SMI" libs sync
 has_out "installed  refcrit 1.2.0 from $C (${r_commit:0:12})"
 has_out "every file matches its SHA-256"
 files_sha smi-libs > ../after.sha
 if cmp -s ../before.sha ../after.sha && cmp -s smi-lock.json ../lock.before; then ok; else bad "sync restored other bytes"; fi
+# the results file written before the tree was deleted matches the synced tree
+run verify-after-sync 0 "$SMI" verify out/results.json
+has_out "ok       unitconv 2.0.0"
 run sync-again 0 "$SMI" libs sync
 has_out "ok         unitconv 2.0.0 (3 files)"
 run check 0 "$SMI" libs sync --check
