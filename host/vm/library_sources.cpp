@@ -302,6 +302,10 @@ SourceKind source_kind(const std::string& source, const std::string& ref) {
 Fetched fetch_library(const std::string& source, const std::string& ref, const fs::path& dest, const fs::path& scratch) {
   Fetched f;
   f.ref = ref;
+  // git would read a leading '-' as an option ("--upload-pack=..."): no ref or source starts so
+  if (!ref.empty() && ref[0] == '-') throw Error("'" + ref + "' is not a tag, branch or commit name (it starts with '-')");
+  if (!source.empty() && source[0] == '-')
+    throw Error("'" + source + "' is not a library source (it starts with '-'); write ./" + source + " for a folder");
   const SourceKind kind = source_kind(source, ref);
   std::string what = "'" + source + "'" + (ref.empty() ? "" : " at " + ref);
   if (kind == SourceKind::git) {
