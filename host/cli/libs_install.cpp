@@ -25,9 +25,10 @@ namespace {
 /// A temporary folder inside the tree (same file system, so installing is a rename), removed
 /// when done whatever happened.
 struct Scratch {
-  fs::path dir;
+  fs::path dir, made_tree;  // made_tree: the tree, when this created it (removed again if left empty)
   explicit Scratch(const fs::path& tree) {
     std::error_code ec;
+    if (!fs::exists(tree, ec)) made_tree = tree;
     fs::create_directories(tree, ec);
     if (ec) throw Error("cannot create the library tree '" + tree.string() + "': " + ec.message());
     std::string tmpl = (tree / ".smi-tmp-XXXXXX").string();
@@ -37,6 +38,7 @@ struct Scratch {
   ~Scratch() {
     std::error_code ec;
     fs::remove_all(dir, ec);
+    if (!made_tree.empty() && fs::is_empty(made_tree, ec)) fs::remove(made_tree, ec);
   }
 };
 

@@ -37,8 +37,10 @@ std::string trim(std::string s) {
   return s;
 }
 
-/// The last non-empty line of git's error output (its "fatal: ..." line).
+/// git's reason: its first "fatal: ..." line, else the last non-empty line of its error output.
 std::string last_line(const std::string& s) {
+  const std::size_t f = s.find("fatal: ");
+  if (f != std::string::npos) return trim(s.substr(f + 7, s.find('\n', f) - f - 7));
   std::string t = trim(s);
   const std::size_t nl = t.rfind('\n');
   return nl == std::string::npos ? t : t.substr(nl + 1);
