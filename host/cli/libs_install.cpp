@@ -300,8 +300,10 @@ int libs_sync(const Args& a, const std::vector<std::string>& args) {
     }
     if (!sc) sc = std::make_unique<Scratch>(pr.tree);
     const fs::path dir = sc->dir / ("lib" + std::to_string(++counter));
-    // a git source is fetched at the locked commit, so a moved tag cannot change what is restored
-    const std::string at = e.commit.size() == 40 ? e.commit : e.ref;
+    // a git source is fetched at the locked commit, so a moved tag cannot change what is restored;
+    // a folder added without a ref is copied again (its commit only says what was checked out)
+    const bool plain_folder = e.ref.empty() && vm::source_kind(e.source, "") == vm::SourceKind::folder;
+    const std::string at = plain_folder ? "" : e.commit.size() == 40 ? e.commit : e.ref;
     try {
       const vm::Fetched f = vm::fetch_library(e.source, at, dir, sc->dir);
       if (f.manifest.name != e.name || f.manifest.version.text != e.version) {
@@ -311,9 +313,9 @@ int libs_sync(const Args& a, const std::vector<std::string>& args) {
       }
       const auto diff = differences(e.files, f.hash.files);
       for (const auto& d : diff) errors.push_back(lib + " fetched from " + e.source + ": " + d);
-      if (diff.empty() && !e.commit.empty() && f.commit != e.commit)
-        errors.push_back(lib + ": " + e.source + " resolved to " + f.commit + ", locked " + e.commit);
-      if (!diff.empty() || (!e.commit.empty() && f.commit != e.commit)) continue;
+      const bool moved = !plain_folder && !e.commit.empty() && f.commit != e.commit;
+      if (diff.empty() && moved) errors.push_back(lib + ": " + e.source + " resolved to " + f.commit + ", locked " + e.commit);
+      if (!diff.empty() || moved) continue;
     } catch (const Error& err) {
       errors.push_back(lib + ": " + err.what());
       continue;

@@ -238,6 +238,21 @@ run add-altered 1 "$SMI" libs add ../altered.tar.gz
 has_err "file 'init.lua' does not match its SHA-256 in smi-pack.sha256"
 cd ..
 
+# --- a local folder (not a git checkout) as the source: copied, and copied again by sync ---------
+mkdir -p plain/helpers && printf 'name = "plain"\nversion = "0.3.0"\n' > plain/smi-lib.lua
+printf 'return 42\n' > plain/helpers/answer.lua
+mkdir -p p7 && cd p7
+run add-folder 0 "$SMI" libs add ../plain
+has_out "installed plain 0.3.0 from ../plain into"
+rm -rf smi-libs
+run sync-folder 0 "$SMI" libs sync
+if cmp -s smi-libs/plain/0.3.0/helpers/answer.lua ../plain/helpers/answer.lua; then ok; else bad "folder source not restored"; fi
+printf 'return 43\n' > ../plain/helpers/answer.lua
+rm -rf smi-libs
+run sync-folder-changed 1 "$SMI" libs sync
+has_err "library plain 0.3.0 fetched from ../plain: file 'helpers/answer.lua' differs from smi-lock.json"
+cd ..
+
 # --- hostile archives: .., absolute, symlink, device members are refused by name ------------------
 python3 - <<'PY'
 import io, tarfile
