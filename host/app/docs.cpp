@@ -77,7 +77,8 @@ library's version, content hash and git commit. smi.study records it in results.
 options:
   files = true  -- include each library file's SHA-256 (false: only the folder hash)
 returns: {smi_lua =, seed =, script = {path =, hash =}, libraries = {{name =, version =,
-  path =, hash =, commit =, files = {...}}, ...}}
+  path =, hash =, commit =, source =, files = {...}}, ...}} (source and commit of a library of the
+  project's tree come from smi-lock.json: where `smi-lua libs add` fetched it and what it resolved)
 errors: a library file that cannot be read
 example:
   local p = smi.provenance{files = false}

@@ -250,7 +250,10 @@ void Runtime::build_policy() {
 Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   build_policy();
   // Two versions of a library or an unmet requirement stop the run before any code runs.
-  libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")));
+  // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too.
+  const ProjectLibraries project = project_libraries(fs::current_path());
+  if (!project.tree.empty()) policy_.read_roots.push_back(resolve_path(project.tree.string()));
+  libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")), &project);
   libs_.check();
   limits_.timeout_s = cfg_.timeout_s;
   limits_.mem_limit = cfg_.max_memory_mb << 20;

@@ -211,8 +211,17 @@ Cluster (solver runs of smi.model.command / smi.model.batch):
 
 Commands (sharing libraries; options such as --lib go before or after them):
   libs                the libraries a study would see: name, version, git commit, path
+  libs add SRC[@REF]  install a library (git URL, folder or .tar.gz; REF a tag, branch or
+                      commit) and what it requires into ./smi-libs (--into DIR); records
+                      name, version, source, commit and every file's SHA-256 in smi-lock.json
+  libs sync [--check] install exactly what smi-lock.json says, checking every file (--check:
+                      only check)
+  libs tree           what requires what, with versions
+  libs outdated       newer version tags at each locked library's source
+  libs remove NAME[@VERSION]   uninstall (and drop from smi-lock.json)
+  libs pack DIR       DIR's library as NAME-VERSION.tar.gz with a checksum file
   new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
-  test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed"
+  test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
   verify RESULTS      do the libraries at hand match those recorded in RESULTS (results.json)?
   (a script file named like a command runs as ./NAME)
 

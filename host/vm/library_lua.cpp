@@ -75,6 +75,7 @@ void push_library_fields(lua_State* L, const Library& l) {
   set_string(L, "path", l.folder.string());
   if (!l.git.commit.empty()) set_string(L, "commit", l.git.commit);
   if (!l.git.branch.empty()) set_string(L, "branch", l.git.branch);
+  if (!l.source.empty()) set_string(L, "source", l.source);  // smi-lock.json: where libs add fetched it
   lua_pushboolean(L, l.used);
   lua_setfield(L, -2, "used");
 }
