@@ -88,6 +88,8 @@ Args parse(int argc, char** argv) {
       a.warnings = true;
     } else if (s == "-E") {
       a.ignore_env = true;
+    } else if (s == "--version") {
+      a.version_build = true;
     } else if (s == "-h" || s == "--help") {
       a.help = true;
     } else if (s == "--quiet" || s == "-q") {
@@ -163,6 +165,8 @@ Lua options (as the lua program):
   -l mod              require 'mod' into the global 'mod'; -l g=mod names the global g
   -i                  enter the REPL after running the script
   -v                  print version information
+  --version           print the version and the build (compiler, Lua, Eigen, NLopt, SQLite,
+                      RE2, nettle, fmt versions) and exit
   -W                  turn warnings on
   -E                  ignore the environment variables SMI_PATH and SMI_STDLIB_DIR
   --                  stop handling options (the next argument is the script)
