@@ -314,42 +314,10 @@ json::Value diffs_json(const std::string& file, const Recorded& rec, const std::
   return out;
 }
 
-}  // namespace
-
-int cmd_verify(const Args& a, const std::vector<std::string>& words) {
-  bool as_json = false;
-  std::vector<std::string> args;
-  for (const auto& w : words) (w == "--json" ? as_json = true : (args.push_back(w), false));
-  if (args.size() != 1) {
-    std::fprintf(stderr,
-                 "usage: smi-lua verify RESULTS.json [--json]   (the results file a study wrote, e.g. "
-                 "smi-out/study/results.json)\n");
-    return 2;
-  }
-  Recorded rec;
-  try {
-    rec = read_recorded(args[0]);
-  } catch (const NotResults& e) {
-    std::fprintf(stderr, "smi-lua verify: %s\n", e.what());
-    return 2;
-  }
-  const bool text = !as_json;
-  const vm::LibrarySet here = current_libraries(a);
-  std::vector<Diff> diffs;
+/// Every recorded input against the one at hand: libraries, the script, files, programs, the
+/// build. Adds the differences; prints a line for each in text mode. Returns how many were checked.
+int check_all(const Recorded& rec, const vm::LibrarySet& here, bool text, std::vector<Diff>& diffs) {
   int checked = 0;
-  if (text) {
-    std::printf("verifying %s (schema %d): %zu librar%s, %zu file%s, %zu program%s recorded", args[0].c_str(), rec.schema,
-                rec.libs.size(), rec.libs.size() == 1 ? "y" : "ies", rec.files.size(), rec.files.size() == 1 ? "" : "s",
-                rec.programs.size(), rec.programs.size() == 1 ? "" : "s");
-    if (!rec.smi_lua.empty()) std::printf(", smi-lua %s", rec.smi_lua.c_str());
-    if (rec.has_seed) std::printf(", seed %llu", rec.seed);
-    std::printf("\n");
-    if (rec.schema < vm::kResultsSchema)
-      std::printf("note     schema %d is older than this smi-lua's (%d): it recorded only the script, the seed and the "
-                  "libraries, so files read, programs and the build are not checked\n",
-                  rec.schema, vm::kResultsSchema);
-  }
-
   for (const RecordedLib& r : rec.libs) {
     ++checked;
     check_library(r, here, text, diffs);
@@ -389,6 +357,46 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
   } else if (text && !rec.smi_lua.empty() && rec.smi_lua != vm::host_version()) {
     std::printf("note     recorded with smi-lua %s, this is %s\n", rec.smi_lua.c_str(), vm::host_version());
   }
+
+  return checked;
+}
+
+}  // namespace
+
+int cmd_verify(const Args& a, const std::vector<std::string>& words) {
+  bool as_json = false;
+  std::vector<std::string> args;
+  for (const auto& w : words) (w == "--json" ? as_json = true : (args.push_back(w), false));
+  if (args.size() != 1) {
+    std::fprintf(stderr,
+                 "usage: smi-lua verify RESULTS.json [--json]   (the results file a study wrote, e.g. "
+                 "smi-out/study/results.json)\n");
+    return 2;
+  }
+  Recorded rec;
+  try {
+    rec = read_recorded(args[0]);
+  } catch (const NotResults& e) {
+    std::fprintf(stderr, "smi-lua verify: %s\n", e.what());
+    return 2;
+  }
+  const bool text = !as_json;
+  const vm::LibrarySet here = current_libraries(a);
+  std::vector<Diff> diffs;
+  if (text) {
+    std::printf("verifying %s (schema %d): %zu librar%s, %zu file%s, %zu program%s recorded", args[0].c_str(), rec.schema,
+                rec.libs.size(), rec.libs.size() == 1 ? "y" : "ies", rec.files.size(), rec.files.size() == 1 ? "" : "s",
+                rec.programs.size(), rec.programs.size() == 1 ? "" : "s");
+    if (!rec.smi_lua.empty()) std::printf(", smi-lua %s", rec.smi_lua.c_str());
+    if (rec.has_seed) std::printf(", seed %llu", rec.seed);
+    std::printf("\n");
+    if (rec.schema < vm::kResultsSchema)
+      std::printf("note     schema %d is older than this smi-lua's (%d): it recorded only the script, the seed and the "
+                  "libraries, so files read, programs and the build are not checked\n",
+                  rec.schema, vm::kResultsSchema);
+  }
+
+  const int checked = check_all(rec, here, text, diffs);
 
   if (as_json) {
     std::printf("%s\n", json::write(diffs_json(args[0], rec, diffs, checked), {.indent = 2}).c_str());
