@@ -207,6 +207,17 @@ int smi_digest(lua_State* L) {
   return 1;
 }
 
+/// smi._not_input(path): reads of `path` are outputs of the run, not inputs (smi.study's
+/// results file when it lies outside --out).
+int smi_not_input(lua_State* L) {
+  const std::string path = luaL_checkstring(L, 1);
+  lua::protect(L, "smi._not_input", [&] {
+    if (RunRecord* r = lua::policy(L).record) r->exclude(resolve_path(path).string());
+    return 0;
+  });
+  return 0;
+}
+
 /// smi._sha256(text) -> "sha256:<hex>" (step results, options).
 int smi_sha256(lua_State* L) {
   std::size_t n = 0;
@@ -247,6 +258,8 @@ void install_provenance(lua_State* L, const LibrarySet* libs) {
   lua_setfield(L, -2, "_digest");
   lua_pushcfunction(L, smi_sha256);
   lua_setfield(L, -2, "_sha256");
+  lua_pushcfunction(L, smi_not_input);
+  lua_setfield(L, -2, "_not_input");
   lua_pushinteger(L, kResultsSchema);  // what smi.study writes as results.json's "schema"
   lua_setfield(L, -2, "results_schema");
   lua_pop(L, 1);

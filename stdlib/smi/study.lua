@@ -32,17 +32,15 @@ doc.add[==[
 A study as named steps that run in order, are timed, report progress, and save their results to
 results.json, so that any step can run again alone later (s:run{only = "fit"}).
 
-results.json (schema 2; smi.study.SCHEMA; docs/provenance.md has every field):
-  schema = 2          -- the layout's version; a file without it is schema 1 (older smi-lua)
-  study, seed, order  -- the study's name, smi.seed, the step names in order
-  steps = {[name] = {status = "ok" | "failed", seconds =, result = {...}, result_hash =,
-           inputs = {options = {seed =, arguments = {...}}, files = {[path] = {kind =, hash =}},
-                     results = {[earlier step] = "sha256:..."}},
-           stale = {reason =, command =} (a partial run changed what it read), not_saved = {...}}}
-  provenance = smi.provenance() -- every file read, program, option, library and the build
-A partial run (only/from) refuses to read a saved step whose inputs changed (naming the change
-and the command to run) and marks later steps stale when it recomputes what they read; a stale
-step's results are never returned as current. A file of a newer schema is refused.
+results.json, schema 2 (smi.study.SCHEMA; docs/provenance.md lists every field): "schema" (the
+layout's version; a file without it is schema 1, from an older smi-lua; a newer one is refused);
+"study", "seed", "order"; "steps" by name, each {status = "ok" | "failed", seconds, result,
+result_hash, inputs = {options = {seed, arguments}, files = {[path] = {kind, hash, size}},
+results = {[earlier step] = hash}}, stale = {reason, command} when a partial run changed what it
+read, not_saved}; "provenance" (smi.provenance(): every file read, program, option, library and
+the build). A partial run (only, from) refuses to read a saved step whose inputs changed, naming
+the change and the command to run, and marks later steps stale when it recomputes what they
+read; a stale step's results are never returned as current.
 ]==]
 local M = {}
 
@@ -95,6 +93,8 @@ function M.new(opts)
     quiet = opts.quiet, seed = opts.seed or (type(smi) == "table" and smi.seed) or nil,
     report_opts = opts.report,
   }, Study)
+  -- the results file is this study's output: reading it back is not an input of the run
+  if type(smi) == "table" and type(smi._not_input) == "function" then smi._not_input(s.results_path) end
   return s
 end
 
@@ -522,6 +522,7 @@ end
 function Study:_mark_stale(selected, saved)
   self.currency = {}
   local first
+  local groups, order = {}, {} -- steps by reason (an option change makes them all stale alike)
   for _, st in ipairs(self.steps) do
     local s = saved.steps[st.name]
     if not selected[st.name] and s and s.status == "ok" then
@@ -530,10 +531,20 @@ function Study:_mark_stale(selected, saved)
       if why then
         first = first or st.name
         s.stale = { reason = why, command = inputs.rerun_command(first) }
-        io.stderr:write(("[%s] step '%s' is now stale: %s; its saved results will not be used. Run: %s\n"):format(
-          self.name, st.name, why, s.stale.command))
+        local short = why:gsub("^step '[^']*' ", "")
+        if not groups[short] then groups[short] = {}; order[#order + 1] = short end
+        table.insert(groups[short], st.name)
       end
     end
+  end
+  if first then -- said even when quiet: the saved results of these steps are no longer the study's answer
+    local names = {}
+    for _, r in ipairs(order) do for _, n in ipairs(groups[r]) do names[#names + 1] = n end end
+    io.stderr:write(("[%s] now stale, their saved results will not be used: %s\n"):format(self.name, table.concat(names, ", ")))
+    for _, r in ipairs(order) do
+      io.stderr:write(("[%s]   %s: %s\n"):format(self.name, table.concat(groups[r], ", "), r))
+    end
+    io.stderr:write(("[%s] to bring them up to date, run: %s\n"):format(self.name, inputs.rerun_command(first)))
   end
   self:_save(saved) -- the marks (set or cleared) go into results.json
 end

@@ -158,8 +158,10 @@ run only-edited-data 1 "${RUN[@]}" study/study.lua --data study/a.csv --only sol
 has_err "a.csv, which changed since"
 # recomputing a step marks the later ones stale; no conclusion comes from a stale step
 run only-data 1 "${RUN[@]}" study/study.lua --data study/a.csv --only data
-has_err "step 'solve' is now stale"
-has_err "step 'verdict' is now stale"
+has_err "now stale, their saved results will not be used: solve, verdict"
+has_err "solve: read the results of step 'data', which this run recomputed with a different result"
+has_err "verdict: read step 'solve'"
+has_err "to bring them up to date, run: "
 has_err "--from solve"
 lacks_out "CONCLUSION"
 if grep -q '"stale"' $results; then ok; else bad "results.json does not mark the stale steps"; fi

@@ -97,6 +97,13 @@ void RunRecord::program(ProgramRun p) {
   programs_.push_back(std::move(p));
 }
 
+void RunRecord::exclude(const std::string& path) {
+  std::lock_guard<std::mutex> lock(mu_);
+  exclude_roots.push_back(path);
+  for (auto it = files_.begin(); it != files_.end();)
+    it = pathwalk::within(it->first, path) ? files_.erase(it) : std::next(it);
+}
+
 std::map<std::string, InputFile> RunRecord::files() const {
   std::lock_guard<std::mutex> lock(mu_);
   return files_;

@@ -59,6 +59,9 @@ class RunRecord {
   /// A file read by name (the script, which Lua loads itself).
   void path(const std::string& kind, const std::string& path);
   void program(ProgramRun p);
+  /// `path` (canonical; a file or a folder) is an output of the run, not an input: reads of it
+  /// are not recorded, and a record already made is dropped (smi.study's results file).
+  void exclude(const std::string& path);
 
   /// Files read so far, by path.
   std::map<std::string, InputFile> files() const;

@@ -64,10 +64,14 @@ function M.rows(p, extra)
   end
   if embedded > 0 then add("stdlib", ("%d module%s embedded in smi-lua"):format(embedded, embedded == 1 and "" or "s"), "", "") end
   for _, pr in ipairs(p.programs or {}) do
-    add("solver", pr.path, (pr.name or "") .. (pr.version and (", version " .. pr.version) or "")
-      .. (pr.version_line and (", says: " .. pr.version_line) or ""),
+    local detail = {}
+    if pr.name and pr.name ~= pr.path then detail[#detail + 1] = "run as " .. pr.name end
+    if pr.version then detail[#detail + 1] = "version " .. pr.version end
+    if pr.version_line then detail[#detail + 1] = "says: " .. pr.version_line end
+    add("solver", pr.path, table.concat(detail, ", "),
       file_digest(pr))
   end
+  if not p.libraries or #p.libraries == 0 then add("libraries", "none (no --lib, no SMI_PATH)", "", "") end
   for _, l in ipairs(p.libraries or {}) do
     add("library", l.name .. " " .. tostring(l.version),
       (l.commit and ("commit " .. l.commit:sub(1, 12) .. ", ") or "") .. tostring(l.path), short(l.hash))
