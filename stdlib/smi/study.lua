@@ -68,6 +68,9 @@ options:
   results = nil        -- the path of results.json (default <out>/results.json)
   quiet = nil          -- no progress lines (default: smi.quiet)
   seed = smi.seed      -- recorded in results.json
+  volatile = nil       -- result keys that differ between identical runs (timings, counts of reused
+                       -- solver runs), e.g. {"wall_seconds"}: left out of the result hash that
+                       -- decides whether later steps are stale (every step; steps add their own)
   report = nil         -- {title =, subtitle =, ...}: creates ctx.report (smi.report), written at the end
 returns: a study with the methods smi.study:step, :run, :load
 errors: no name ("expects {name = \"...\", out = folder}")
@@ -91,7 +94,7 @@ function M.new(opts)
     name = opts.name, out = out, steps = {}, by_name = {},
     results_path = opts.results or (out .. "/results.json"),
     quiet = opts.quiet, seed = opts.seed or (type(smi) == "table" and smi.seed) or nil,
-    report_opts = opts.report,
+    report_opts = opts.report, volatile = opts.volatile or {},
   }, Study)
   -- the results file is this study's output: reading it back is not an input of the run
   if type(smi) == "table" and type(smi._not_input) == "function" then smi._not_input(s.results_path) end
@@ -105,6 +108,7 @@ holds the earlier steps' results (from this run or results.json), ctx:log(fmt, .
 progress line, ctx.report is the study's report when it has one.
 options:
   description = nil   -- a sentence on what the step does
+  volatile = nil      -- result keys left out of its result hash (as in smi.study.new)
 returns: the study (calls chain)
 errors: a name already used; fn not a function
 example:
@@ -314,7 +318,7 @@ local function results_view(study, selected, saved, live)
           error(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
             inputs.rerun_command(name)), 2)
         end
-        if study.reading then study.reading[name] = s.result_hash or inputs.hash(s.result) end
+        if study.reading then study.reading[name] = s.result_hash or study:_result_hash(name, s.result) end
         return s.result
       end
       local why = not study.by_name[name] and "there is no such step"
@@ -388,6 +392,20 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   error(("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also), 0)
 end
 
+-- The hash of a step's saved result that later steps record when they read it: every key but the
+-- volatile ones (timings and the like, which differ between identical runs and would make every
+-- later step stale after any rerun).
+function Study:_result_hash(name, result)
+  local skip = {}
+  for _, k in ipairs(self.volatile) do skip[k] = true end
+  local st = self.by_name[name]
+  for _, k in ipairs(st and st.opts.volatile or {}) do skip[k] = true end
+  if type(result) ~= "table" or next(skip) == nil then return inputs.hash(result) end
+  local kept = {}
+  for k, v in pairs(result) do if not skip[k] then kept[k] = v end end
+  return inputs.hash(kept)
+end
+
 -- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what
 -- JSON can hold in results.json.
 function Study:_run_step(st, k, nsel, results, saved, live)
@@ -411,7 +429,7 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   for path, d in pairs(self.preamble_files) do files[path] = d end
   for path, d in pairs(inputs.files_since(seq0)) do files[path] = d end
   local decoded = json.decode(text)
-  local result_hash = inputs.hash(decoded)
+  local result_hash = self:_result_hash(st.name, decoded)
   self.live_hash[st.name] = result_hash
   saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = decoded, result_hash = result_hash,
                            inputs = { options = self.options, files = files, results = reads },

@@ -190,4 +190,18 @@ T.case("a partial run that changes a step's result marks the steps that read it 
   T.eq(read_json(results_path("study_stale")).steps.scaled.stale, nil, "mark cleared")
 end)
 
+T.case("volatile keys (timings) do not make later steps stale", function()
+  local function mk(t)
+    local s = study.new{ name = "study_volatile", out = dir, results = results_path("study_volatile"), quiet = true,
+                         volatile = { "wall_seconds" } }
+    s:step("a", function() return { x = 1, wall_seconds = t } end)
+    s:step("b", function(ctx) return { y = ctx.results.a.x + 1 } end)
+    return s
+  end
+  mk(1):run()
+  local r = mk(2):run{ only = "a" } -- the same numbers, another timing
+  T.eq(r.b.y, 2, "b still current")
+  T.eq(read_json(results_path("study_volatile")).steps.b.stale, nil, "not marked")
+end)
+
 T.finish()
