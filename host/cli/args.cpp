@@ -214,7 +214,9 @@ Commands (sharing libraries; options such as --lib go before or after them):
   libs                the libraries a study would see: name, version, git commit, path
   new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
   test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed"
-  verify RESULTS      do the libraries at hand match those recorded in RESULTS (results.json)?
+  verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,
+                      solvers, libraries, build; lists each difference; exit 0 all match, 1 a
+                      difference, 2 not a results file (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
