@@ -273,6 +273,7 @@ function Study:_why_not_current(name, saved, live_hash)
     why = ("step '%s' is stale: %s"):format(name, tostring(s.stale.reason))
   elseif inputs.available() and not s.inputs then
     why = ("step '%s' was saved without its inputs (%s)"):format(name, self.old_schema and "results.json of schema 1, from an older smi-lua" or "by an older smi.study")
+    self.old_schema = true -- the command to give is then the whole study: no step before it is known current
   elseif s.inputs then
     local change = inputs.options_change(s.inputs.options, self.options)
     if change ~= "" then why = ("step '%s' ran with other options: %s"):format(name, change) end
@@ -316,7 +317,7 @@ local function results_view(study, selected, saved, live)
         local why = study:_why_not_current(name, saved, study.live_hash)
         if why then
           error(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
-            inputs.rerun_command(name)), 2)
+            inputs.rerun_command(not study.old_schema and name or nil)), 2)
         end
         if study.reading then study.reading[name] = s.result_hash or study:_result_hash(name, s.result) end
         return s.result
@@ -527,7 +528,7 @@ function Study:_check_kept(selected, saved)
         local why = self:_why_not_current(dep, saved, self.live_hash)
         if why then
           error(("study '%s': step '%s' reads the saved results of step '%s', which cannot be used: %s. Run: %s"):format(
-            self.name, st.name, dep, why, inputs.rerun_command(dep)), 0)
+            self.name, st.name, dep, why, inputs.rerun_command(not self.old_schema and dep or nil)), 0)
         end
       end
     end

@@ -114,10 +114,10 @@ local function shell_word(w)
 end
 
 --- The command line that reruns this study from step `name` (this run's own command with
--- --only/--from replaced), or a hint when the command is not known.
+-- --only/--from replaced; the whole study when name is nil), or a hint when the command is not known.
 function M.rerun_command(name)
   local _, command = study_arguments()
-  if not command or #command == 0 then return ("run the study with --from %s"):format(name) end
+  if not command or #command == 0 then return name and ("run the study with --from %s"):format(name) or "run the whole study" end
   local out, i = {}, 1
   while i <= #command do
     local a = command[i]
@@ -125,8 +125,10 @@ function M.rerun_command(name)
     elseif a:match("^%-%-only=") or a:match("^%-%-from=") then i = i + 1
     else out[#out + 1] = shell_word(a); i = i + 1 end
   end
-  out[#out + 1] = "--from"
-  out[#out + 1] = shell_word(name)
+  if name then
+    out[#out + 1] = "--from"
+    out[#out + 1] = shell_word(name)
+  end
   return table.concat(out, " ")
 end
 

@@ -175,4 +175,11 @@ if grep -q '"stale"' $results; then bad "stale marks left after the rerun"; else
 run only-verdict 0 "${RUN[@]}" study/study.lua --data study/a.csv --only verdict
 has_out "CONCLUSION large"
 
+# a results file of schema 1 (no "schema", steps without inputs): a partial run says so and asks
+# for the whole study, instead of trusting steps whose inputs are unknown
+printf '{"study": "prov", "seed": 11, "order": ["data", "solve", "verdict"], "steps": {"data": {"status": "ok", "result": {"mean": 2}}, "solve": {"status": "ok", "result": {"y": 4}}}, "provenance": {"seed": 11, "libraries": []}}\n' > $results
+run schema1-only 1 "${RUN[@]}" study/study.lua --data study/a.csv --only verdict
+has_err "was saved without its inputs (results.json of schema 1, from an older smi-lua)"
+lacks_out "CONCLUSION"
+
 finish
