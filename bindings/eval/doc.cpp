@@ -32,6 +32,9 @@ options:
                              -- the program must be allowed with --allow-exec
   parse = (required)         -- function(dir, h) returning {output = number, ...}
   version = ""               -- the solver's version in the store key ("" = the program's SHA-256)
+  version_args = nil         -- e.g. {"--version"}: run the program once with these arguments when
+                             -- the model is made; the first line it prints is recorded in the
+                             -- provenance (results.json, the report) as its version line
   timeout = ${timeout}       -- seconds per run, 0 = none; the process group is killed
   retries = ${retries}       -- extra attempts after a failure
   on_failure = "stop"        -- "stop" (raise after the batch), "skip" (NaN, reported in info),
@@ -45,7 +48,8 @@ returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.output
 errors: a missing or mistyped option (named); both or neither template; a program path that does
   not exist or is not an executable file (refused here, not at the first run); the sandbox refuses
   the program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
-  placeholder (file and line)
+  placeholder (file and line); version_args given and the program prints nothing on stdout or
+  takes more than 10 s
 example:
   local m = smi.model.command{
     name = "doc-square", inputs = {"x"}, outputs = {"y"}, version = "doc-1",

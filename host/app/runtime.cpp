@@ -245,6 +245,22 @@ void Runtime::build_policy() {
   policy_.slurm_opts = cfg_.slurm_opts;
   policy_.detach = cfg_.detach;
   policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
+
+  // Provenance (issue 24): the options of smi-lua that change results, and where reads are
+  // outputs of the run rather than inputs (the output folder: results.json, the runs' folders).
+  policy_.record = &record_;
+  record_.exclude_roots.push_back(policy_.out_root.string());
+  std::error_code ec;
+  record_.cwd = fs::current_path(ec).string();
+  auto opt = [&](const char* k, std::string v) { record_.options.emplace_back(k, std::move(v)); };
+  opt("seed", std::to_string(cfg_.seed));
+  opt("executor", cfg_.executor.empty() ? "local" : cfg_.executor);
+  for (const auto& s : cfg_.slurm_opts) opt("slurm-opt", s);
+  if (cfg_.timeout_s > 0) opt("timeout", std::to_string(cfg_.timeout_s));
+  if (cfg_.max_memory_mb > 0) opt("max-memory", std::to_string(cfg_.max_memory_mb));
+  if (!cfg_.store_path.empty()) opt("store", resolve_path(cfg_.store_path).string());
+  if (cfg_.dry_run) opt("dry-run", "true");
+  if (!cfg_.stdlib_dir.empty()) opt("stdlib-dir", resolve_path(cfg_.stdlib_dir).string());
 }
 
 Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
@@ -325,6 +341,10 @@ void Runtime::set_arg(int argc, char** argv, int script_index) {
     lua_rawseti(L_, -2, i - script_index);
   }
   lua_setglobal(L_, "arg");
+  record_.command_line.assign(argv, argv + argc);
+  record_.script_args.clear();
+  if (script_index > 0)
+    for (int i = script_index + 1; i < argc; ++i) record_.script_args.emplace_back(argv[i]);
 }
 
 int Runtime::docall(int nargs, int nresults) {
@@ -384,6 +404,12 @@ int Runtime::report(int status) {
 
 int Runtime::run_file(const std::string& path, const std::vector<std::string>& args) {
   const bool stdin_script = path == "-";
+  if (!stdin_script) {
+    try {  // provenance: the script itself (a file that cannot be read fails in the load below)
+      record_.path("script", resolve_path(path).string());
+    } catch (const std::exception&) {
+    }
+  }
   int status = luaL_loadfilex(L_, stdin_script ? nullptr : path.c_str(), "t");
   if (status == LUA_OK) {
     for (const auto& a : args) lua_pushstring(L_, a.c_str());

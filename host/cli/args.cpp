@@ -88,6 +88,8 @@ Args parse(int argc, char** argv) {
       a.warnings = true;
     } else if (s == "-E") {
       a.ignore_env = true;
+    } else if (s == "--version") {
+      a.version_build = true;
     } else if (s == "-h" || s == "--help") {
       a.help = true;
     } else if (s == "--quiet" || s == "-q") {
@@ -166,6 +168,8 @@ Lua options (as the lua program):
   -l mod              require 'mod' into the global 'mod'; -l g=mod names the global g
   -i                  enter the REPL after running the script
   -v                  print version information
+  --version           print the version and the build (compiler, Lua, Eigen, NLopt, SQLite,
+                      RE2, nettle, fmt versions) and exit
   -W                  turn warnings on
   -E                  ignore the environment variables SMI_PATH and SMI_STDLIB_DIR
   --                  stop handling options (the next argument is the script)
@@ -222,7 +226,9 @@ Commands (sharing libraries; options such as --lib go before or after them):
   libs pack DIR       DIR's library as NAME-VERSION.tar.gz with a checksum file
   new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
   test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
-  verify RESULTS      do the libraries at hand match those recorded in RESULTS (results.json)?
+  verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,
+                      solvers, libraries, build; lists each difference; exit 0 all match, 1 a
+                      difference, 2 not a results file (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on

@@ -19,6 +19,7 @@ struct Args {
   std::vector<Action> actions;
   bool interactive = false;   // -i
   bool version = false;       // -v
+  bool version_build = false;  // --version: version and build line, then exit 0
   bool help = false;          // --help / -h
   bool warnings = false;      // -W
   bool quiet_given = false;   // --quiet

@@ -50,7 +50,9 @@ int run_command(const Args& first, int argc, char** argv) {
       for (++i; i < argc; ++i) pos.push_back(argv[i]);
       break;
     }
-    if (s.size() > 1 && s[0] == '-') {
+    if (word == "verify" && s == "--json") {  // verify's own option
+      pos.push_back(s);
+    } else if (s.size() > 1 && s[0] == '-') {
       char* probe[] = {argv[0], const_cast<char*>(s.c_str()), nullptr};
       const Args t = parse(2, probe);
       opts.push_back(s);

@@ -7,7 +7,8 @@
 //                                smi-lock.json (libs_install.cpp, libs_pack.cpp)
 //   smi-lua new-lib NAME [DIR]   scaffold a library (manifest, module, a passing test, README)
 //   smi-lua test DIR             run DIR/tests/test_*.lua sandboxed; prints "N passed, N failed"
-//   smi-lua verify RESULTS.json  do the libraries at hand still match those a study recorded?
+//   smi-lua verify RESULTS.json  does everything a study recorded (files, programs, libraries,
+//                                build) still hash the same? (--json for tools)
 //   smi-lua doc [NAME]           the reference (help() text); doc --html DIR writes it as pages
 // Options such as --lib, --allow-read and --seed may come before or after the command word.
 #include <string>

@@ -96,6 +96,12 @@ CheckedFile open_read_within(const std::string& path, const std::vector<fs::path
 }
 
 CheckedFile Policy::open_read(const std::string& path) const {
+  CheckedFile f = open_read_unrecorded(path);
+  if (record) record->file("data", f.path, f.fd.get());
+  return f;
+}
+
+CheckedFile Policy::open_read_unrecorded(const std::string& path) const {
   if (unrestricted) {
     std::vector<fs::path> all{"/"};
     return open_read_within(path, all, "");

@@ -133,7 +133,7 @@ mv team/kdetools kdetools.gone
 run verify-missing 1 "$SMI" verify --lib team $results
 has_out "MISSING  kdetools 1.3.0"
 mv kdetools.gone team/kdetools
-run verify-no-provenance 1 "$SMI" verify study/uses.lua
+run verify-no-provenance 2 "$SMI" verify study/uses.lua   # not a results file: exit 2 (issue 24)
 has_err "not valid JSON"
 # the recorded seed is the integer itself, also above 2^53 (a double rounded it to another seed)
 # and above 2^63 (smi.seed is a Lua integer: the results file holds it negative)
