@@ -138,7 +138,9 @@ example:
   local line = function(applied, unknowns, ctx)
     return smi.model.lua{inputs = unknowns, outputs = {"y"}, fn = function(X) return {y = X:col(1) * 2} end}
   end
-  improve.run({name = "doc_improve", data = "tests.csv", responses = {{name = "y", unit = "mm"}},
+  local data = smi.out("doc_improve_tests.csv")
+  smi.csv.write(data, {y = {4.1, 3.8, 4.3, 3.9, 4.0}})
+  improve.run({name = "doc_improve", data = data, responses = {{name = "y", unit = "mm"}},
                unknowns = {{name = "a", dist = "normal", mean = {1, 3, 2}, std = {0.1, 0.3, 0.2}}},
                model = line}, {"--dry-run", "--quick"})
 ]==]
