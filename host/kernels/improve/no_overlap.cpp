@@ -85,7 +85,9 @@ std::string describe(const std::vector<NoOverlap>& rows) {
                      r.value);
     if (!r.units_hint.empty()) s += "; " + r.units_hint;
   }
-  if (!s.empty()) s += " — the optimum is no calibration: check the inputs' units and ranges, and the model's outputs";
+  if (!s.empty())
+    s += " — no calibration within these ranges reaches the data: check the inputs' units and ranges and the model's outputs, "
+         "or whether the model's form can produce such values at all (a model-form error: refine the model)";
   return s;
 }
 
