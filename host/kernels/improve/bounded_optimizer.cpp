@@ -187,7 +187,8 @@ std::string stop_criterion(const std::string& status, const OptimizerOptions& op
   const HistoryEntry *last = nullptr, *before = nullptr;
   for (auto it = history.rbegin(); it != history.rend() && !before; ++it) {
     if (it->start != index || it->probe) continue;
-    (last ? before : last) = &*it;
+    if (!last) last = &*it;
+    else if (it->theta != last->theta) before = &*it;  // the previous distinct point
   }
   std::string moved;
   if (last && before) {

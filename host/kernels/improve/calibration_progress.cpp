@@ -18,7 +18,10 @@ void ProgressTracker::evaluation(const HistoryEntry& h) {
   // Starts run in order (or side by side, each thread in order): a start above the highest seen
   // means the ones below it have ended.
   highest_start_ = std::max(highest_start_, h.start);
-  done_ = std::max(done_, highest_start_);
+  if (highest_start_ > done_) {
+    done_ = highest_start_;
+    evaluations_at_done_ = evaluations_ - 1;  // this evaluation belongs to the next start
+  }
   show(false);
 }
 
@@ -62,6 +65,13 @@ void ProgressTracker::show(bool final) {
   // else of the units at the evaluations per unit seen.
   if (final) {
     row.eta = 0.0;
+  } else if (evaluations_ > 0 && done_ > 0 && units_ > 0 && evaluations_at_done_ > 0) {
+    // the units ended so far took evaluations_at_done_ evaluations; those left take as many each,
+    // less what the running one has done (at least a tenth of a unit: it may run long)
+    const double per_unit = static_cast<double>(evaluations_at_done_) / static_cast<double>(done_);
+    const double left = std::max(0.1 * per_unit, per_unit * static_cast<double>(units_ - done_) -
+                                                     static_cast<double>(evaluations_ - evaluations_at_done_));
+    row.eta = elapsed / static_cast<double>(evaluations_) * left;
   } else if (evaluations_ > 0 && done_ > 0 && units_ > 0) {
     row.eta = elapsed * static_cast<double>(units_ - done_) / static_cast<double>(done_);
   } else if (evaluations_ > 0 && budget_ > 0) {

@@ -37,6 +37,7 @@ class ProgressTracker {
   std::mutex mu_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
   long evaluations_ = 0;
+  long evaluations_at_done_ = 0;  ///< evaluations when the last unit ended (the optimiser's starts)
   int done_ = 0;
   int highest_start_ = 0;
   double best_ = 0.0;
