@@ -164,6 +164,16 @@ void StatisticalObjective::set_model_differences(bool central, double rel_step) 
   diff_step_ = rel_step;
 }
 
+std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::predict_with_jacobian(const Eigen::VectorXd& theta) const {
+  const Eigen::MatrixXd X = inputs_at(theta);
+  if (jacobian_) {
+    Eigen::MatrixXd Y = run_model(theta);
+    return {std::move(Y), model_jacobian(X)};
+  }
+  if (diff_step_ > 0.0) return differences(theta, X);
+  throw InvalidArgument("the model has no gradient and no model differences are set");
+}
+
 std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::differences(const Eigen::VectorXd& theta,
                                                                                            const Eigen::MatrixXd& X) const {
   const Eigen::Index N = X.rows(), k = X.cols();

@@ -93,6 +93,9 @@ class StatisticalObjective {
   /// needs a larger rel_step (about the square root of their relative resolution).
   void set_model_differences(bool central, double rel_step);
   bool has_model_differences() const { return diff_step_ > 0.0; }
+  /// The predictions at θ and dY/dX per response at its CRN inputs, from the model's Jacobian or
+  /// its differences (one model call either way); throws when it has neither.
+  std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> predict_with_jacobian(const Eigen::VectorXd& theta) const;
   /// Sample passes of the model so far (N rows each): one per objective evaluation, k + 1 (or
   /// 2k + 1) per gradient by model differences.
   long model_passes() const { return passes_->load(); }

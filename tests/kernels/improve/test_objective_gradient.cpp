@@ -212,3 +212,21 @@ TEST_CASE("model differences reject a step outside (0, 0.1)") {
   CHECK_THROWS_WITH(f.set_model_differences(false, 0.0), Catch::Contains("model_step"));
   CHECK_THROWS_WITH(f.set_model_differences(false, 0.5), Catch::Contains("model_step"));
 }
+
+TEST_CASE("moment residuals on model differences: one model call, the analytic Jacobian's values") {
+  const StatisticalObjective f = make(MetricKind::pr);
+  StatisticalObjective diff = f;
+  diff.set_model_jacobian({});
+  diff.set_model_differences(false, 1e-6);
+  const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
+  int ra = 0, rd = 0;
+  Eigen::MatrixXd Ja, Jd;
+  const Eigen::VectorXd a = moment_residuals(f, t, &Ja, ra);
+  const long passes = diff.model_passes();
+  const Eigen::VectorXd d = moment_residuals(diff, t, &Jd, rd);
+  CHECK(rd == 1);                                 // one batch, not 1 + 6 predictions
+  CHECK(diff.model_passes() - passes == 1 + 3);   // X and one block per calibrated input
+  CHECK((a - d).norm() == 0.0);
+  INFO("analytic\n" << Ja << "\nmodel differences\n" << Jd);
+  CHECK((Ja - Jd).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + Ja.cwiseAbs().maxCoeff()));
+}
