@@ -25,6 +25,7 @@
 
 #include "kernels/core/rng.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/overlap_start.hpp"
 #include "kernels/improve/start_agreement.hpp"
 #include "kernels/improve/statistical_objective.hpp"
@@ -338,6 +339,16 @@ void profile_evaluation(const TrialProblem& tp, const StatisticalObjective& obj,
   std::printf("profile_value_and_gradient %.6f\n", best([&] { (void)obj.value_and_gradient(t0, gr); }));
 }
 
+/// smi.calibrate's own near-optimal tolerance for this objective (calibration.hpp: PR 0.01 per
+/// response), read from the pipeline rather than restated here.
+double pipeline_tolerance(const StatisticalObjective& obj, double value) {
+  CalibrationProblem p;
+  p.responses = obj.responses();
+  p.stat = obj.options();
+  p.model = [](const Eigen::MatrixXd& X) { return X; };
+  return near_optimal_tolerance(p, CalibrationOptions{}, value).first;
+}
+
 /// A multistart run's report plus agreement where the data can tell: the starts whose objective
 /// is within the near-optimal tolerance of the best (smi.calibrate's PR default, 0.01 per
 /// response) and the largest difference of their predicted responses' summaries (four
@@ -352,15 +363,16 @@ void report_agreement(const char* key, const Run& run, const StatisticalObjectiv
   const Eigen::VectorXd best = obj.summaries(run.r.theta);
   int near = 0;
   double gap = 0.0, dsum = 0.0;
+  const double tolerance = pipeline_tolerance(obj, run.r.value);
   for (const auto& st : run.r.starts) {
-    if (st.value - run.r.value > 0.02) continue;
+    if (st.value - run.r.value > tolerance) continue;
     ++near;
     gap = std::max(gap, st.value - run.r.value);
     dsum = std::max(dsum, (obj.summaries(st.theta) - best).cwiseAbs().maxCoeff());
   }
   std::printf("\n%s_near %d\n%s_near_gap %.3g\n%s_near_summary_diff %.3g\n", key, near, key, gap, key, dsum);
   // smi.calibrate's own account (start_agreement.hpp) at its PR default tolerance, 0.01 per response
-  const StartAgreement a = start_agreement(params, [&obj](const Eigen::VectorXd& t) { return obj(t); }, run.r, 0.02, prediction_check(obj));
+  const StartAgreement a = start_agreement(params, [&obj](const Eigen::VectorXd& t) { return obj(t); }, run.r, tolerance, prediction_check(obj));
   std::printf("%s_same %d\n%s_largest_gap %.4g\n%s_largest_barrier %.4g\n%s_largest_prediction_distance %.4g\n", key, a.same, key,
               a.largest_gap, key, a.largest_barrier, key, a.largest_prediction_distance);
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bindings/improve/calibrate_spec.hpp"
-#include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
@@ -16,20 +16,12 @@
 
 namespace smi::bind::improve {
 
-struct CalibrationOutcome {
-  smi::improve::OptimizationResult opt;
-  std::vector<std::string> part_names;  ///< labels of Evaluation::parts (responses)
-  std::optional<smi::improve::IdentifiabilityResult> ident;
-  std::optional<smi::improve::DirectionsResult> directions;
-  std::optional<smi::improve::ProfileResult> profile;
-  std::optional<smi::improve::BootstrapResult> boot;
-  std::optional<smi::improve::StartAgreement> agreement;  ///< with multistart > 1
-  std::optional<smi::improve::StatisticalObjective> stat;
-  std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included
-  bool analytic_gradient = false;     ///< SLSQP ran on the analytic gradient
-};
+using smi::improve::CalibrationOutcome;
 
-/// Runs optimisation and diagnostics. Calls back into Lua through the spec's slots.
+/// The kernel's problem from the spec: Lua callbacks wrapped as capabilities (they call through
+/// the spec's slots, so the spec and its stack must outlive the problem).
+smi::improve::CalibrationProblem calibration_problem(lua_State* L, const CalibrateSpec& s);
+/// Runs the kernel's pipeline (smi::improve::calibrate) on the spec.
 CalibrationOutcome run_calibration(lua_State* L, const CalibrateSpec& s);
 /// Pushes the result table. Stack: [] -> [result].
 void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out);

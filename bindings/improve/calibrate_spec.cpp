@@ -574,7 +574,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
                  "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
                  "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals",
-                 "hops", "hop_step"});
+                 "hops", "hop_step", "model_differences", "model_step"});
   CalibrateSpec s;
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   s.optimizer = read_optimizer(o, seed);
@@ -589,8 +589,15 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   s.overlap_start = o.boolean("overlap_start", s.overlap_start);
   s.moment_start = o.boolean("moment_start", s.moment_start);
   s.gradient = o.string("gradient", s.gradient);
-  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "differences")
-    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\" or \"differences\", got \"{}\"", s.gradient));
+  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "model" && s.gradient != "differences")
+    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\", \"model\" or \"differences\", got \"{}\"", s.gradient));
+  s.model_differences = o.string("model_differences", s.model_differences);
+  if (s.model_differences != "forward" && s.model_differences != "central")
+    throw InvalidArgument(fmt::format("model_differences must be \"forward\" or \"central\", got \"{}\"", s.model_differences));
+  s.model_step = o.number("model_step", s.model_step);
+  if (!(s.model_step > 0.0 && s.model_step < 0.1))
+    throw InvalidArgument(fmt::format("model_step must be a relative step in (0, 0.1) (1e-6 for a smooth model; about the square root of the "
+                                      "outputs' relative resolution for a solver's printed results), got {}", s.model_step));
   s.prior_weight = o.number("prior_weight", s.prior_weight);
   if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
     throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
@@ -600,9 +607,16 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   read_bootstrap(L, idx, s, seed);
   read_intervals(L, idx, s);
   const int pt = lua_getfield(L, idx, "progress");
-  if (pt == LUA_TFUNCTION) s.progress_slot = lua_gettop(L);
-  else if (pt == LUA_TNIL) lua_pop(L, 1);
-  else throw InvalidArgument("progress must be a function(row) called after each optimiser step");
+  if (pt == LUA_TFUNCTION) {
+    s.progress_slot = lua_gettop(L);
+  } else if (pt == LUA_TBOOLEAN) {
+    s.progress_line = lua_toboolean(L, -1);
+    lua_pop(L, 1);
+  } else if (pt == LUA_TNIL) {
+    lua_pop(L, 1);
+  } else {
+    throw InvalidArgument("progress must be a function(row) called after each optimiser step, or false (no progress line)");
+  }
   validate_parameters(s.params);
   return s;
 }

@@ -11,6 +11,7 @@
 
 #include "bindings/improve/lua_callbacks.hpp"
 #include "kernels/improve/bootstrap.hpp"
+#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/design_bounds.hpp"
 #include "kernels/improve/directions.hpp"
@@ -30,8 +31,9 @@ struct PriorSpec {
   double std = 1.0;
 };
 
-struct CalibrateSpec {
-  smi::improve::OptimizerOptions optimizer;
+/// The table as read: the kernel's options (every default there, calibration.hpp) and problem
+/// data, plus the stack slots of the Lua values the calibration calls back.
+struct CalibrateSpec : smi::improve::CalibrationOptions {
   std::vector<smi::improve::Parameter> params;
   bool statistical = false;
 
@@ -48,28 +50,9 @@ struct CalibrateSpec {
   int data_slot = 0;          ///< the data table as given
   int metric_slot = 0;        ///< a Lua metric function, 0 for "pr"/"loglik"
   int progress_slot = 0;      ///< progress(row) called after each optimiser step (not probes), or 0
+  bool progress_line = true;  ///< progress = false: no terminal line either
   int penalty_slot = 0;       ///< penalty(theta) added to the metric (model form), or 0
-  std::vector<smi::improve::DesignRange> design;
   std::vector<PriorSpec> priors;  ///< prior = {...} (both forms)
-  double prior_weight = 1.0;
-  /// "auto": analytic when the model has a gradient (Kriging, m:gradient) and the metric is PR or
-  /// loglik, else differences; "analytic" requires it; "differences" never uses it.
-  std::string gradient = "auto";
-  bool overlap_start = true;  ///< move a start where PR saturates at 2 (overlap_start = false: keep it)
-  bool moment_start = false;  ///< move every start by Levenberg-Marquardt on the responses' moments (kept when better)
-
-  // Diagnostics.
-  bool identifiability = true;
-  bool identifiability_directions = true;  ///< identifiability = {directions = false} skips them (and near_optimal)
-  smi::improve::IdentifiabilityOptions ident;
-  smi::improve::DirectionsOptions directions;
-  /// identifiability.tolerance as given, or 0: then chosen by the metric at run time (PR: 0.01
-  /// per response; loglik: 1.92 = half the 95 % chi-square quantile; otherwise 1e-6 max(1, |f*|)).
-  double directions_tolerance = 0.0;
-  std::optional<smi::improve::BootstrapOptions> bootstrap;
-  /// intervals = true | {level = 0.9, delta =}: per-parameter profile intervals.
-  std::optional<smi::improve::ProfileOptions> intervals;
-  double interval_level = 0.9;  ///< 0 when delta was given instead
 };
 
 /// Reads the spec table at `idx`; pushes the callback values (see slots above).

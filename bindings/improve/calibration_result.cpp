@@ -7,6 +7,7 @@
 
 #include "bindings/improve/calibrate.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "kernels/core/errors.hpp"
 #include "kernels/stats/families.hpp"
 #include "luax/luax.hpp"
 
@@ -69,6 +70,7 @@ void push_statistical(lua_State* L, const CalibrateSpec& s, const CalibrationOut
   }
   lua_setfield(L, -2, "grids");
   lua::set_integer(L, "model_runs", obj.model_runs());
+  lua::set_integer(L, "model_passes", obj.model_passes());
   lua::set_integer(L, "n", static_cast<lua_Integer>(s.stat.n));
   lua::set_integer(L, "seed", static_cast<lua_Integer>(s.stat.seed));
   lua::set_string(L, "metric", s.metric_slot ? "custom" : (s.stat.metric == MetricKind::pr ? "pr" : "loglik"));
@@ -132,6 +134,7 @@ void push_starts(lua_State* L, const std::vector<std::string>& names, const Opti
     lua::set_number(L, "objective", st.value);
     lua::set_integer(L, "evaluations", st.evaluations);
     lua::set_string(L, "status", st.status);
+    lua::set_string(L, "criterion", st.criterion);
     lua::set_boolean(L, "converged", st.converged);
     if (!st.start_status.empty()) {
       // how the start's preparation (moment_start's Levenberg-Marquardt) ended, and its mismatch
@@ -277,6 +280,102 @@ void push_profile_intervals(lua_State* L, const std::vector<std::string>& names,
   lua_setfield(L, -2, "intervals");
 }
 
+/// no_overlap = {{response =, metric =, value =, predicted = {lo, hi}, measured = {lo, hi}, ratio =,
+/// units_hint =}, ...}. Stack: [res] -> [res].
+void push_no_overlap(lua_State* L, const std::vector<NoOverlap>& rows) {
+  lua_createtable(L, static_cast<int>(rows.size()), 0);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const NoOverlap& r = rows[i];
+    lua_createtable(L, 0, 7);
+    lua::set_string(L, "response", r.response);
+    lua::set_string(L, "metric", r.metric);
+    lua::set_number(L, "value", r.value);
+    lua::set_vec(L, "predicted", Eigen::Vector2d(r.predicted_lo, r.predicted_hi));
+    lua::set_vec(L, "measured", Eigen::Vector2d(r.measured_lo, r.measured_hi));
+    lua::set_number(L, "ratio", r.ratio);
+    if (!r.units_hint.empty()) lua::set_string(L, "units_hint", r.units_hint);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "no_overlap");
+}
+
+/// r.prior_at(theta): the prior sum at θ ({name = value} or a list in r.names order), computed by
+/// the kernel's prior_sum, the very sum the calibration minimised. Upvalues: the priors
+/// ({{param =, mean =, std =, fn =, label =}, ...}), the parameter names, the weight.
+int prior_at(lua_State* L) {
+  return lua::protect(L, "prior_at", [&] {
+    const int priors = lua_upvalueindex(1), names_t = lua_upvalueindex(2);
+    const double weight = lua_tonumber(L, lua_upvalueindex(3));
+    const std::vector<std::string> names = lua::to_strings(L, names_t, "names");
+    if (!lua_istable(L, 1)) throw InvalidArgument("prior_at(theta): theta must be {name = value, ...} or a list in r.names order");
+    Eigen::VectorXd t(static_cast<Eigen::Index>(names.size()));
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (lua_getfield(L, 1, names[i].c_str()) == LUA_TNIL) {
+        lua_pop(L, 1);
+        lua_rawgeti(L, 1, static_cast<lua_Integer>(i + 1));
+      }
+      if (!lua_isnumber(L, -1)) throw InvalidArgument(fmt::format("prior_at(theta): theta has no number for '{}'", names[i]));
+      t[static_cast<Eigen::Index>(i)] = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+    }
+    std::vector<PriorTerm> terms;
+    const auto n = static_cast<lua_Integer>(lua_rawlen(L, priors));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, priors, i);
+      const int e = lua_gettop(L);
+      PriorTerm p;
+      lua_getfield(L, e, "label");
+      p.label = lua_tostring(L, -1);
+      lua_getfield(L, e, "param");
+      p.param = static_cast<int>(lua_tointeger(L, -1));
+      lua_getfield(L, e, "mean");
+      p.mean = lua_tonumber(L, -1);
+      lua_getfield(L, e, "std");
+      p.std = lua_tonumber(L, -1);
+      lua_pop(L, 4);
+      if (lua_getfield(L, e, "fn") == LUA_TFUNCTION) {
+        const int fn = lua_gettop(L);  // stays until the sum is taken
+        p.fn = [L, fn, names](const Eigen::VectorXd& th) {
+          lua_pushvalue(L, fn);
+          lua_createtable(L, 0, static_cast<int>(names.size()));
+          for (std::size_t j = 0; j < names.size(); ++j) lua::set_number(L, names[j].c_str(), th[static_cast<Eigen::Index>(j)]);
+          lua::call(L, 1, 1);
+          const double v = lua_isnumber(L, -1) ? lua_tonumber(L, -1) : std::nan("");
+          lua_pop(L, 1);
+          return v;
+        };
+      } else {
+        lua_pop(L, 1);
+      }
+      terms.push_back(std::move(p));
+    }
+    lua_pushnumber(L, prior_sum(terms, weight, t));
+    return 1;
+  });
+}
+
+/// r.prior_at. Stack: [res] -> [res].
+void push_prior_at(lua_State* L, const CalibrateSpec& s, const std::vector<std::string>& names) {
+  lua_createtable(L, static_cast<int>(s.priors.size()), 0);
+  for (std::size_t i = 0; i < s.priors.size(); ++i) {
+    const PriorSpec& p = s.priors[i];
+    lua_createtable(L, 0, 5);
+    lua::set_string(L, "label", p.label);
+    lua::set_integer(L, "param", p.param);
+    lua::set_number(L, "mean", p.mean);
+    lua::set_number(L, "std", p.std);
+    if (p.fn_slot) {
+      lua_pushvalue(L, p.fn_slot);
+      lua_setfield(L, -2, "fn");
+    }
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  push_strings(L, names);
+  lua_pushnumber(L, s.prior_weight);
+  lua_pushcclosure(L, prior_at, 3);
+  lua_setfield(L, -2, "prior_at");
+}
+
 }  // namespace
 
 void push_calibration_result(lua_State* L, const CalibrateSpec& s, const CalibrationOutcome& out) {
@@ -294,10 +393,17 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   lua_setfield(L, -2, "metrics");
   lua::set_integer(L, "evaluations", r.evaluations);
   lua::set_integer(L, "start_evaluations", r.start_evaluations);
-  lua::set_boolean(L, "converged", r.converged);
-  lua::set_string(L, "status", r.status);
+  lua::set_boolean(L, "converged", out.converged);
+  lua::set_string(L, "status", out.status);
+  lua::set_string(L, "optimizer_status", r.status);
+  if (!out.message.empty()) lua::set_string(L, "message", out.message);
+  if (!out.no_overlap.empty()) push_no_overlap(L, out.no_overlap);
+  lua::set_number(L, "tolerance", out.tolerance);
+  lua::set_string(L, "tolerance_basis", out.tolerance_basis);
+  lua::set_number(L, "prior_value", out.prior_value);
+  push_prior_at(L, s, names);
   lua::set_string(L, "method", method_name(s.optimizer.method));
-  lua::set_string(L, "gradient", !uses_gradient(s.optimizer.method) ? "none" : out.analytic_gradient ? "analytic" : "differences");
+  lua::set_string(L, "gradient", out.gradient);
   push_strings(L, out.warnings);
   lua_setfield(L, -2, "warnings");
   push_strings(L, r.at_bounds);

@@ -33,8 +33,17 @@ options:
   prior = nil                 -- {{param = "x.mean", mean =, std =} | {name =, fn = function(theta), mean =,
                               -- std =}, ...}: adds 0.5((v - mean)/std)^2 each, reported as metrics.prior
   prior_weight = 1            -- factor on the prior part
-  gradient = "auto"           -- "auto" (analytic where the model gives one: Kriging, m:gradient),
-                              -- "analytic" or "differences"
+  gradient = "auto"           -- "auto": analytic where the model gives one (Kriging, m:gradient),
+                              -- else the MODEL's differences at the CRN sample ("model": one call
+                              -- of the model on k + 1 stacked blocks of n rows for k calibrated
+                              -- inputs, chained through the quantile derivatives, KDE and metric
+                              -- like the analytic path; a solver model runs the blocks as one
+                              -- parallel, resumable evaluation), else (custom metric, lscv/sj)
+                              -- the objective's differences ("differences": 2k' + 1 evaluations
+                              -- a gradient for k' parameters); r.gradient says which ran
+  model_differences = "forward" -- or "central" (2k + 1 blocks, O(h^2))
+  model_step = 1e-6           -- relative step of model differences (input sd units); a solver whose
+                              -- printed outputs carry d digits needs about 10^(-d/2)
   overlap_start = true        -- a start where a response's PR is near 2 (no overlap) is first moved
                               -- to a moment-matching start
   moment_start = false        -- true: every start is first moved to match the responses' means and
@@ -59,6 +68,17 @@ options:
   maxeval = ${maxeval}        -- objective evaluations per start (finite-difference probes included)
   xtol_rel = ${xtol_rel}      -- relative tolerance on the scaled parameters
   ftol_abs = ${ftol_abs}      -- absolute tolerance on the objective
+                              -- Why these fit a Monte Carlo objective: on common random numbers
+                              -- the objective is a fixed, smooth function of the parameters (PR's
+                              -- grid makes it piecewise smooth at about 1e-9), so with a gradient
+                              -- from the model (analytic, or model differences, exact to ~1e-7) the
+                              -- optimiser reaches them like on any smooth function: ftol_abs sits
+                              -- just above that 1e-9 roughness, xtol_rel far above the differences'
+                              -- error. The Monte Carlo error of the optimum (the sample of n, about
+                              -- 1/sqrt(n)) is not an optimiser tolerance: r.tolerance and bootstrap
+                              -- report it. Objective differences (2k + 1 evaluations a gradient)
+                              -- may spend maxeval first: r.starts[i].criterion then says which
+                              -- tolerance was missed and by how much.
   fd_step = ${fd_step}        -- central-difference step in scaled units
   initial_step = ${initial_step}  -- derivative-free methods' first step, scaled units
   seed = smi.seed             -- CRN sample, multistart points and bootstrap
@@ -71,11 +91,24 @@ options:
   bootstrap = nil             -- replicates, or {replicates = ${boot_replicates}, level = ${boot_level},
                               -- seed =, maxeval =, multistart =, warm = false}: full calibrations
                               -- on resampled data (model form; warm = true starts at the optimum)
-  progress = nil              -- function(row) called after each optimizer step
+  progress = nil              -- function(row) called after each optimizer step; false: no progress
+                              -- line (by default one line on stderr when it is a terminal and not
+                              -- --quiet: "calibration: start 2/4, 137 evaluations, best 0.288,
+                              -- ETA 0:42", and the same for the bootstrap and near-optimal stages)
 returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
-  r.metrics (per output), r.inputs {input = {dist =, mean =, std =}} and r.distributions
-  {input = dist} (model form), r.history (every evaluation), r.converged, r.status, r.method,
-  r.evaluations, r.model_runs, r.starts {{start, params, objective, evaluations, status, converged,
+  r.metrics (per output), r.tolerance (the objective rise that still fits as well as the optimum:
+  identifiability.tolerance, or PR 0.01 per response, loglik 1.920729 = chi2_1(0.95)/2, else 1e-6
+  of the optimum) and r.tolerance_basis (its reason in words), r.prior_value (the prior part at the
+  optimum, 0 without prior) and r.prior_at(theta) (the same sum anywhere), r.inputs {input = {dist =, mean =, std =}} and r.distributions
+  {input = dist} (model form), r.history (every evaluation), r.converged, r.status (NLopt's stop
+  reason, or "no_overlap": some response's PR within 1e-3 of 2, or loglik with every datum outside
+  the predicted support; then converged = false, r.message names the response, the predicted and
+  measured ranges and a units hint when their ratio is near a power of ten, and r.no_overlap
+  {{response, metric, value, predicted = {lo, hi}, measured = {lo, hi}, ratio, units_hint}}),
+  r.optimizer_status (NLopt's stop reason always), r.method,
+  r.evaluations, r.model_runs (model calls), r.model_passes (n-row blocks the model computed), r.starts {{start, params, objective, evaluations, status, converged, criterion (the
+  stopping rule it ended on, or "missed: maxeval 500 spent before xtol_rel ... or ftol_abs ..." with
+  the last step's size),
   prepared = {status = "tolerance_reached"|"ftol_reached"|"stationary"|"max_iterations", before,
   after} (moment_start: how its Levenberg-Marquardt ended, the mismatch before and after)}, ...},
   r.start_evaluations,

@@ -17,7 +17,10 @@ end
 
 T.case("SLSQP from (30.0, 0.5) reaches the spec optimum (30.21768, 0.42734), PR 0.0786579", function()
   local r = smi.calibrate(spec())
-  T.near(r.params["x.mean"], 30.21768, 3e-5, "mean")
+  -- The default tolerances stop where a step changes PR by less than ftol_abs = 1e-8: at this flat
+  -- minimum that is 4e-5 in the mean (PR 5e-8 above the minimum) with the model's own differences
+  -- (issue 29: the default gradient of a function model); tight tolerances reach it (below).
+  T.near(r.params["x.mean"], 30.21768, 5e-5, "mean")
   T.near(r.params["x.std"], 0.42734, 2e-5, "std")
   T.near(r.objective, 0.0786579, 2e-7, "PR")
   T.near(r.metrics.y, r.objective, 1e-15, "single response PR")
@@ -35,6 +38,14 @@ T.case("SLSQP from (30.0, 0.5) reaches the spec optimum (30.21768, 0.42734), PR 
   T.near(d:mean(), r.params["x.mean"], 1e-12, "calibrated distribution mean")
   T.near(d:std(), r.params["x.std"], 1e-12, "calibrated distribution std")
   T.eq(r.grids.y[3], 6501, "grid recorded")
+end)
+
+T.case("with tight tolerances SLSQP on the model's differences reaches the spec optimum to 1e-6", function()
+  local r = smi.calibrate(spec{xtol_rel = 1e-10, ftol_abs = 1e-14, identifiability = false})
+  T.eq(r.gradient, "model_differences")
+  T.near(r.params["x.mean"], 30.21768, 1e-6, "mean")
+  T.near(r.params["x.std"], 0.42734, 1e-5, "std")
+  T.near(r.objective, 0.0786579, 1e-7, "PR")
 end)
 
 T.case("Nelder-Mead agrees with SLSQP", function()

@@ -74,7 +74,11 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(t1.modes.mode1, "valid", "trial 1 fits mode 1")
   T.eq(t1.modes.mode4, "invalid", "trial 1 fails on mode 4")
   for i, t in ipairs(C.trials) do
-    T.truthy(t.calibration.converged, ("trial %d's calibration converged (%s)"):format(i, t.calibration.status))
+    -- trial 1's rigid airbag cannot reach mode 4 at all (PR 2: the model-form error that the
+    -- refinement fixes); smi.calibrate says so (status "no_overlap", issue 29), not "converged"
+    local no_overlap = i == 1 and t.calibration.status == "no_overlap"
+      and tostring(S.trial1_calibration.result.warnings[1]):find("response 'mode4'", 1, true) ~= nil
+    T.truthy(t.calibration.converged or no_overlap, ("trial %d's calibration converged (%s)"):format(i, t.calibration.status))
     -- stage 1 (the moment start) ends on its own criterion too, never on its budget (the
     -- objective-form stage 1 ran out of its 400 evaluations on trial 2)
     local m = S["trial" .. i .. "_calibration"].result.moments_stage

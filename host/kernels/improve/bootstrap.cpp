@@ -66,6 +66,7 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
       ++res.failed;
       if (res.failed <= 3) res.warnings.push_back(fmt::format("bootstrap replicate {} failed: {}", b + 1, e.what()));
     }
+    if (opt.progress) opt.progress(b + 1, opt.replicates, res.evaluations);
   }
   if (rows.size() < 2) throw Error(fmt::format("bootstrap: only {} of {} replicates succeeded", rows.size(), opt.replicates));
   if (res.failed > 0) res.warnings.push_back(fmt::format("{} of {} bootstrap replicates failed and were left out", res.failed, opt.replicates));

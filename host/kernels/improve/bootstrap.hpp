@@ -23,6 +23,8 @@ struct BootstrapOptions {
   double level = 0.95;          ///< two-sided percentile interval
   OptimizerOptions optimizer;   ///< the replicates' calibration (its starts, multistart, budget)
   bool warm_start = false;      ///< start each replicate at the optimum, one start only
+  /// Called after each replicate with (replicates done, replicates, evaluations so far).
+  std::function<void(int, int, long)> progress;
 };
 
 struct BootstrapResult {

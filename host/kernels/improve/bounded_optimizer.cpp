@@ -175,6 +175,38 @@ double trampoline(const std::vector<double>& u, std::vector<double>& grad, void*
   return (*static_cast<Run*>(data))(u, grad);
 }
 
+/// Which stopping criterion a start ended on, or which it missed and by how much (issue 29): the
+/// last two points the optimiser asked for (not probes) give the relative step in scaled units and
+/// the objective change that xtol_rel and ftol_abs are compared with.
+std::string stop_criterion(const std::string& status, const OptimizerOptions& opt, const std::vector<Parameter>& params,
+                           const std::vector<HistoryEntry>& history, int index) {
+  if (status == "xtol_reached") return fmt::format("xtol_rel {:g} reached", opt.xtol_rel);
+  if (status == "ftol_reached") return fmt::format("ftol_abs {:g} reached", opt.ftol_abs);
+  if (status == "success" || status == "stopval_reached") return "NLopt's own test (" + status + ")";
+  if (status == "roundoff_limited") return "round-off: no smaller step lowers the objective (the best point is kept)";
+  const HistoryEntry *last = nullptr, *before = nullptr;
+  for (auto it = history.rbegin(); it != history.rend() && !before; ++it) {
+    if (it->start != index || it->probe) continue;
+    if (!last) last = &*it;
+    else if (it->theta != last->theta) before = &*it;  // the previous distinct point
+  }
+  std::string moved;
+  if (last && before) {
+    double dx = 0.0, x = 0.0;
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      const double w = params[i].upper - params[i].lower;
+      const auto j = static_cast<Eigen::Index>(i);
+      dx = std::max(dx, std::abs(last->theta[j] - before->theta[j]) / w);
+      x = std::max(x, std::abs(last->theta[j] - params[i].lower) / w);
+    }
+    moved = fmt::format("; the last step moved the parameters by {:.2g} (relative) and the objective by {:.2g}", x > 0 ? dx / x : dx,
+                        std::abs(last->value - before->value));
+  }
+  if (status == "maxeval_reached")
+    return fmt::format("missed: maxeval {} spent before xtol_rel {:g} or ftol_abs {:g}{}", opt.maxeval, opt.xtol_rel, opt.ftol_abs, moved);
+  return fmt::format("missed: stopped by {} before xtol_rel {:g} or ftol_abs {:g}{}", status, opt.xtol_rel, opt.ftol_abs, moved);
+}
+
 StartResult run_start(const std::vector<Parameter>& params, const Objective& f, const OptimizerOptions& opt,
                       const Eigen::VectorXd& u0, int index, std::vector<HistoryEntry>& history,
                       std::vector<std::string>& warnings) {
@@ -221,8 +253,10 @@ StartResult run_start(const std::vector<Parameter>& params, const Objective& f, 
     out.status = "maxeval_reached";
     out.converged = false;
   }
+  out.criterion = stop_criterion(out.status, opt, params, history, index);
   if (out.status == "maxeval_reached")
-    warnings.push_back(fmt::format("start {}: evaluation budget of {} spent before convergence (raise maxeval)", index + 1, opt.maxeval));
+    warnings.push_back(fmt::format("start {}: evaluation budget of {} spent before convergence (raise maxeval): {}", index + 1, opt.maxeval,
+                                   out.criterion));
   if (run.evaluations == 0) throw Error(fmt::format("start {}: NLopt made no evaluation ({})", index + 1, out.status));
   out.theta = run.best_theta;
   out.value = run.best.value;
@@ -324,6 +358,7 @@ void hop_basins(const std::vector<Parameter>& params, const Objective& f, const 
   const StartResult polish = run_start(params, f, opt, scaled_point(params, out.sr.theta), s, out.history, out.warnings);
   out.sr.evaluations += polish.evaluations;
   out.sr.status = polish.status;
+  out.sr.criterion = polish.criterion;
   out.sr.converged = polish.converged;
   if (polish.value < out.sr.value) {
     out.sr.theta = polish.theta;

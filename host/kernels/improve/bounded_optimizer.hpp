@@ -110,6 +110,9 @@ struct StartResult {
   double value = 0.0;
   int evaluations = 0;
   std::string status;  ///< NLopt's stop reason: "xtol_reached", "roundoff_limited", ...
+  /// The criterion it ended on ("xtol_rel 1e-06 reached") or "missed: ..." naming the tolerances
+  /// it did not reach and how far the last step was from them.
+  std::string criterion;
   bool converged = false;
   int hops = 0;           ///< basin hops tried (OptimizerOptions::hops)
   int hops_improved = 0;  ///< of them, those that found a lower optimum (kept)

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "kernels/core/descriptive.hpp"
@@ -292,7 +293,7 @@ void chain_to_parameters(const std::vector<InputSpec>& inputs, const Eigen::Matr
 }  // namespace
 
 bool StatisticalObjective::has_gradient() const {
-  return jacobian_ && opt_.metric != MetricKind::custom && (sd_based(opt_.bandwidth) || robust_rule(opt_.bandwidth) || mad_rule(opt_.bandwidth));
+  return (jacobian_ || diff_step_ > 0.0) && opt_.metric != MetricKind::custom && (sd_based(opt_.bandwidth) || robust_rule(opt_.bandwidth) || mad_rule(opt_.bandwidth));
 }
 
 std::vector<Eigen::MatrixXd> StatisticalObjective::model_jacobian(const Eigen::MatrixXd& X) const {
@@ -315,8 +316,14 @@ Evaluation StatisticalObjective::value_and_gradient(const Eigen::VectorXd& theta
                           "and a model "
                           "with a gradient)");
   const Eigen::MatrixXd X = inputs_at(theta);
-  const Eigen::MatrixXd Y = run_model(theta);
-  const std::vector<Eigen::MatrixXd> J = model_jacobian(X);
+  Eigen::MatrixXd Y;
+  std::vector<Eigen::MatrixXd> J;
+  if (jacobian_) {
+    Y = run_model(theta);
+    J = model_jacobian(X);
+  } else {
+    std::tie(Y, J) = differences(theta, X);
+  }
 
   const Eigen::Index N = Y.rows();
   Evaluation e;

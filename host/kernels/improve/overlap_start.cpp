@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "kernels/core/descriptive.hpp"
@@ -43,12 +44,17 @@ Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::V
     }
     return Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
   };
-  const Eigen::MatrixXd Y = obj.predict(theta);
+  // With a Jacobian or model differences the predictions come with dY/dX (one model call).
+  const bool chain = jacobian && (obj.has_model_jacobian() || obj.has_model_differences());
+  Eigen::MatrixXd Y;
+  std::vector<Eigen::MatrixXd> J;
+  if (chain) std::tie(Y, J) = obj.predict_with_jacobian(theta);
+  else Y = obj.predict(theta);
   ++runs;
   const Eigen::VectorXd r = residuals(Y);
   if (!jacobian) return r;
   jacobian->setZero(r.size(), k);
-  if (!obj.has_model_jacobian()) {
+  if (!chain) {
     // Forward differences, 1e-6 of each range (away from the upper bound).
     for (Eigen::Index p = 0; p < k; ++p) {
       const Parameter& par = obj.parameters()[static_cast<std::size_t>(p)];
@@ -61,8 +67,6 @@ Eigen::VectorXd moment_residuals(const StatisticalObjective& obj, const Eigen::V
     return r;
   }
   // dr/dθ_p = Σ_i w_i Σ_c J_ic dx_ic/dθ_p with w = 1/(N sd_r) (mean) or (y_i − ȳ)/((N − 1) sd(y)²) (log sd).
-  const Eigen::MatrixXd X = obj.inputs_at(theta);
-  const std::vector<Eigen::MatrixXd> J = obj.model_jacobian(X);
   const auto mom = obj.input_moments(theta);
   std::vector<InputDerivatives> dx;
   for (std::size_t c = 0; c < obj.inputs().size(); ++c)

@@ -141,15 +141,76 @@ Eigen::MatrixXd StatisticalObjective::run_model(const Eigen::VectorXd& theta) co
   const Eigen::MatrixXd X = inputs_at(theta);
   Eigen::MatrixXd Y = model_(X);
   ++*runs_;
-  if (Y.rows() != X.rows() || Y.cols() != static_cast<Eigen::Index>(responses_.size()))
-    throw DimensionMismatch(fmt::format("the model returned {}×{} outputs for {} samples and {} responses", Y.rows(), Y.cols(), X.rows(),
+  ++*passes_;
+  check_output(Y, X.rows(), theta);
+  return Y;
+}
+
+void StatisticalObjective::check_output(const Eigen::MatrixXd& Y, Eigen::Index rows, const Eigen::VectorXd& theta) const {
+  if (Y.rows() != rows || Y.cols() != static_cast<Eigen::Index>(responses_.size()))
+    throw DimensionMismatch(fmt::format("the model returned {}×{} outputs for {} samples and {} responses", Y.rows(), Y.cols(), rows,
                                         responses_.size()));
   for (Eigen::Index j = 0; j < Y.cols(); ++j)
     for (Eigen::Index i = 0; i < Y.rows(); ++i)
       if (!std::isfinite(Y(i, j)))
         throw InvalidArgument(fmt::format("the model returned {} for response '{}' at sample {} (θ: {})", Y(i, j),
-                                          responses_[static_cast<std::size_t>(j)].name, i + 1, theta_text(params_, theta)));
-  return Y;
+                                          responses_[static_cast<std::size_t>(j)].name, i % opt_.n + 1, theta_text(params_, theta)));
+}
+
+void StatisticalObjective::set_model_differences(bool central, double rel_step) {
+  if (!(rel_step > 0.0 && rel_step < 0.1) || !std::isfinite(rel_step))
+    throw InvalidArgument(fmt::format("model_step must be a relative step in (0, 0.1), got {}", rel_step));
+  diff_central_ = central;
+  diff_step_ = rel_step;
+}
+
+std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::predict_with_jacobian(const Eigen::VectorXd& theta) const {
+  const Eigen::MatrixXd X = inputs_at(theta);
+  if (jacobian_) {
+    Eigen::MatrixXd Y = run_model(theta);
+    return {std::move(Y), model_jacobian(X)};
+  }
+  if (diff_step_ > 0.0) return differences(theta, X);
+  throw InvalidArgument("the model has no gradient and no model differences are set");
+}
+
+std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::differences(const Eigen::VectorXd& theta,
+                                                                                           const Eigen::MatrixXd& X) const {
+  const Eigen::Index N = X.rows(), k = X.cols();
+  std::vector<Eigen::Index> cols;  // inputs that carry a calibrated parameter
+  for (std::size_t j = 0; j < inputs_.size(); ++j)
+    if (inputs_[j].mean_param >= 0 || inputs_[j].std_param >= 0) cols.push_back(static_cast<Eigen::Index>(j));
+  const Eigen::Index per = diff_central_ ? 2 : 1;
+  const Eigen::Index blocks = 1 + per * static_cast<Eigen::Index>(cols.size());
+  Eigen::MatrixXd batch(N * blocks, k);
+  batch.topRows(N) = X;
+  std::vector<double> h(cols.size());
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const Eigen::VectorXd x = X.col(cols[c]);
+    const double sd = stddev(x), scale = std::max(sd, 1e-6 * std::abs(x.mean()));
+    h[c] = diff_step_ * (scale > 0.0 ? scale : 1.0);
+    for (Eigen::Index s = 0; s < per; ++s) {
+      const Eigen::Index b = 1 + per * static_cast<Eigen::Index>(c) + s;
+      batch.middleRows(b * N, N) = X;
+      batch.middleRows(b * N, N).col(cols[c]).array() += (s == 0 ? h[c] : -h[c]);
+    }
+  }
+  const Eigen::MatrixXd out = model_(batch);
+  ++*runs_;
+  *passes_ += static_cast<long>(blocks);
+  check_output(out, batch.rows(), theta);
+  const Eigen::Index R = out.cols();
+  std::vector<Eigen::MatrixXd> J(static_cast<std::size_t>(R), Eigen::MatrixXd::Zero(N, k));
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const Eigen::Index up = (1 + per * static_cast<Eigen::Index>(c)) * N;
+    for (Eigen::Index r = 0; r < R; ++r) {
+      if (diff_central_)
+        J[static_cast<std::size_t>(r)].col(cols[c]) = (out.col(r).segment(up, N) - out.col(r).segment(up + N, N)) / (2.0 * h[c]);
+      else
+        J[static_cast<std::size_t>(r)].col(cols[c]) = (out.col(r).segment(up, N) - out.col(r).head(N)) / h[c];
+    }
+  }
+  return {out.topRows(N), std::move(J)};
 }
 
 Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const {

@@ -83,6 +83,22 @@ class StatisticalObjective {
   /// Set when the model has a gradient (a Kriging's closed form, a model's own `gradient`).
   void set_model_jacobian(ModelJacobian j) { jacobian_ = std::move(j); }
   bool has_model_jacobian() const { return static_cast<bool>(jacobian_); }
+  /// Without a model Jacobian: differentiate the model itself at the CRN sample (issue 29). Each
+  /// gradient is ONE model call on the stacked batch [X; X + h_1 e_1; ...; X + h_k e_k] (forward,
+  /// k + 1 passes for the k inputs that carry a calibrated parameter) or [X; X ± h_j e_j] (central,
+  /// 2k + 1), so a solver model runs the perturbed points as one parallel, resumable evaluation.
+  /// The step of input j is rel_step times its scale at θ (its standard deviation, at least 1e-6 of
+  /// its |mean|); the rows then go through the quantile derivatives, the KDE and the metric exactly
+  /// as a model Jacobian would. A model whose outputs carry few digits (a solver's printed results)
+  /// needs a larger rel_step (about the square root of their relative resolution).
+  void set_model_differences(bool central, double rel_step);
+  bool has_model_differences() const { return diff_step_ > 0.0; }
+  /// The predictions at θ and dY/dX per response at its CRN inputs, from the model's Jacobian or
+  /// its differences (one model call either way); throws when it has neither.
+  std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> predict_with_jacobian(const Eigen::VectorXd& theta) const;
+  /// Sample passes of the model so far (N rows each): one per objective evaluation, k + 1 (or
+  /// 2k + 1) per gradient by model differences.
+  long model_passes() const { return passes_->load(); }
   /// The model's Jacobian at the rows of X, checked (one per response, N×k each, finite).
   std::vector<Eigen::MatrixXd> model_jacobian(const Eigen::MatrixXd& X) const;
   /// value_and_gradient works: metric PR or loglik, a bandwidth rule with a closed-form derivative
@@ -123,6 +139,10 @@ class StatisticalObjective {
 
  private:
   Eigen::MatrixXd run_model(const Eigen::VectorXd& theta) const;
+  /// Checks a model's output Y for the N×k inputs X (shape, finiteness), naming the response.
+  void check_output(const Eigen::MatrixXd& Y, Eigen::Index rows, const Eigen::VectorXd& theta) const;
+  /// Y at the CRN inputs X of θ and dY/dX per response by model differences (one model call).
+  std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> differences(const Eigen::VectorXd& theta, const Eigen::MatrixXd& X) const;
   void prepare_responses(const Eigen::VectorXd& start);
 
   std::vector<InputSpec> inputs_;
@@ -132,12 +152,15 @@ class StatisticalObjective {
   StatisticalOptions opt_;
   CustomMetric custom_;
   ModelJacobian jacobian_;
+  bool diff_central_ = false;
+  double diff_step_ = 0.0;  ///< > 0: gradient by model differences (set_model_differences)
   Eigen::MatrixXd z_;
   std::vector<Eigen::VectorXd> f_exp_grid_;   // f_exp at each response's grid nodes
   std::vector<double> exp_outside_;           // f_exp mass outside each grid
   // Atomic: starts optimised side by side (OptimizerOptions::start_threads) share the objective.
   std::shared_ptr<std::atomic<long>> runs_ = std::make_shared<std::atomic<long>>(0);
   std::shared_ptr<std::atomic<long>> floored_ = std::make_shared<std::atomic<long>>(0);
+  std::shared_ptr<std::atomic<long>> passes_ = std::make_shared<std::atomic<long>>(0);
 };
 
 }  // namespace smi::improve

@@ -186,6 +186,22 @@ double TruncNormal::sf(double x) const {
   const double xi = (x - mu_) / sig_;
   return (std::isfinite(b_) ? normal_mass_width(xi, (b_ - x) / sig_) : normal_cdf(-xi)) / z_;
 }
+// In log space: far below the mean (α, ξ < −5) both Φ's underflow long before their logarithms;
+// log(Φ(ξ) − Φ(α)) = logΦ(ξ) + log1p(−exp(logΦ(α) − logΦ(ξ))).
+double TruncNormal::logcdf(double x) const {
+  if (x <= a_) return -kInf;
+  if (x >= b_) return 0.0;
+  const double xi = (x - mu_) / sig_;
+  const double logz = std::log(z_);
+  if (!std::isfinite(a_)) return log_normal_cdf(xi) - logz;
+  if (xi < -5.0) {
+    const double lx = log_normal_cdf(xi), la = log_normal_cdf(al_);
+    return lx + std::log(-std::expm1(la - lx)) - logz;
+  }
+  const double c = cdf(x);
+  if (c > 0.5) return std::log1p(-sf(x));  // the complement keeps what rounding c to 1 loses
+  return c > 0.0 ? std::log(c) : std::log(normal_pdf(xi)) + std::log((x - a_) / sig_) - logz;  // a sliver above a
+}
 double TruncNormal::logpdf(double x) const {
   if (x < a_ || x > b_) return -kInf;
   const double z = (x - mu_) / sig_;
@@ -219,23 +235,50 @@ double Triangular::pdf(double x) const {
   if (x < a_ || x > b_) return 0.0;
   return x < c_ ? 2.0 * (x - a_) / ((b_ - a_) * (c_ - a_)) : x == c_ ? 2.0 / (b_ - a_) : 2.0 * (b_ - x) / ((b_ - a_) * (b_ - c_));
 }
+// Near a mode at a bound, 1 − (b − x)²/((b − a)(b − c)) and b − √(…) cancel (1e-4 relative lost
+// at x − a = 1e-8 (b − a)). Expanding with b − a = (b − x) + (x − a) and b − c = (b − x) + (x − c):
+//   (b − a)(b − c) − (b − x)² = (b − x)(x − c) + (x − a)(b − x) + (x − a)(x − c),
+// a sum of non-negative terms for c <= x <= b; the mirror image serves sf below the mode, and the
+// quantiles use (b − a) − √((1 − p)(b − a)(b − c)) = (b − a)((c − a) + p (b − c)) / ((b − a) + √(…)).
 double Triangular::cdf(double x) const {
   if (x <= a_) return 0.0;
   if (x >= b_) return 1.0;
-  return x <= c_ ? (x - a_) * (x - a_) / ((b_ - a_) * (c_ - a_)) : 1.0 - (b_ - x) * (b_ - x) / ((b_ - a_) * (b_ - c_));
+  if (x <= c_) return (x - a_) * (x - a_) / ((b_ - a_) * (c_ - a_));
+  return ((b_ - x) * (x - c_) + (x - a_) * (b_ - x) + (x - a_) * (x - c_)) / ((b_ - a_) * (b_ - c_));
 }
+double Triangular::logcdf(double x) const {
+  if (x <= a_) return -kInf;
+  if (x >= b_) return 0.0;
+  // in log space below the mode: (x − a)² underflows long before its logarithm does
+  const double c = cdf(x);
+  if (c > 0.5) return std::log1p(-sf(x));  // the complement keeps what rounding c to 1 loses
+  if (x <= c_) return 2.0 * std::log(x - a_) - std::log(b_ - a_) - std::log(c_ - a_);
+  return std::log(c);
+}
+// Each point from its nearer bound: b − d is exact near b, a + (b − a)(…)/(…) near a.
 double Triangular::quantile(double p) const {
   const double fc = (c_ - a_) / (b_ - a_);
-  return p < fc ? a_ + std::sqrt(p * (b_ - a_) * (c_ - a_)) : b_ - std::sqrt((1.0 - p) * (b_ - a_) * (b_ - c_));
+  if (p < fc) return a_ + std::sqrt(p * (b_ - a_) * (c_ - a_));
+  const double s = std::sqrt((1.0 - p) * (b_ - a_) * (b_ - c_));
+  if (s <= 0.5 * (b_ - a_)) return b_ - s;
+  return a_ + (b_ - a_) * ((c_ - a_) + p * (b_ - c_)) / ((b_ - a_) + s);
 }
 double Triangular::sf(double x) const {
   if (x <= a_) return 1.0;
   if (x >= b_) return 0.0;
-  return x <= c_ ? 1.0 - (x - a_) * (x - a_) / ((b_ - a_) * (c_ - a_)) : (b_ - x) * (b_ - x) / ((b_ - a_) * (b_ - c_));
+  if (x >= c_) return (b_ - x) * (b_ - x) / ((b_ - a_) * (b_ - c_));
+  return ((x - a_) * (c_ - x) + (b_ - x) * (x - a_) + (b_ - x) * (c_ - x)) / ((b_ - a_) * (c_ - a_));
 }
 double Triangular::isf(double q) const {
   const double fc = (b_ - c_) / (b_ - a_);  // sf at the mode
-  return q <= fc ? b_ - std::sqrt(q * (b_ - a_) * (b_ - c_)) : a_ + std::sqrt((1.0 - q) * (b_ - a_) * (c_ - a_));
+  if (q <= fc) {
+    const double s = std::sqrt(q * (b_ - a_) * (b_ - c_));
+    if (s <= 0.5 * (b_ - a_)) return b_ - s;
+    return a_ + (b_ - a_) * ((c_ - a_) + (1.0 - q) * (b_ - c_)) / ((b_ - a_) + s);
+  }
+  const double s = std::sqrt((1.0 - q) * (b_ - a_) * (c_ - a_));
+  if (s <= 0.5 * (b_ - a_)) return a_ + s;
+  return b_ - (b_ - a_) * ((b_ - c_) + q * (c_ - a_)) / ((b_ - a_) + s);
 }
 double Triangular::logpdf(double x) const { return std::log(pdf(x)); }
 double Triangular::stddev() const {

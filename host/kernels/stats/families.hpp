@@ -104,6 +104,7 @@ class TruncNormal : public Parametric {
   double pdf(double x) const override;
   double cdf(double x) const override;
   double logpdf(double x) const override;
+  double logcdf(double x) const override;
   double sf(double x) const override;
   double mean() const override;
   double stddev() const override;
@@ -203,6 +204,7 @@ class Triangular : public Parametric {
   double pdf(double x) const override;
   double cdf(double x) const override;
   double logpdf(double x) const override;
+  double logcdf(double x) const override;
   double sf(double x) const override;
   double isf(double q) const override;
   double quantile(double p) const override;

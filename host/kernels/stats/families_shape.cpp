@@ -47,7 +47,11 @@ double Weibull::sf(double x) const {
 double Weibull::logcdf(double x) const {
   const double z = (x - loc_) / l_;
   if (z <= 0) return -kInf;
-  const double t = std::pow(z, k_);
+  // t = z^k in log space: far in the lower tail z^k underflows while log cdf = log t − t/2 + …
+  // is an ordinary number (k·log z).
+  const double log_t = k_ * std::log(z);
+  if (log_t < -30.0) return log_t - 0.5 * std::exp(log_t);
+  const double t = std::exp(log_t);
   return t > M_LN2 ? std::log1p(-std::exp(-t)) : std::log(-std::expm1(-t));
 }
 double Weibull::logpdf(double x) const {

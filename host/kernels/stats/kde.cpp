@@ -7,6 +7,7 @@
 
 #include "kernels/core/errors.hpp"
 #include "kernels/core/normal.hpp"
+#include "kernels/stats/special.hpp"
 #include "kernels/stats/bandwidth.hpp"
 
 namespace smi::stats {
@@ -61,11 +62,73 @@ Eigen::VectorXd Kde::pdf(const Eigen::VectorXd& x) const {
 Eigen::VectorXd Kde::cdf(const Eigen::VectorXd& x) const { return kde_cdf(t_, h_, x, opt_.threads); }
 
 double Kde::pdf(double x) const { return kde_pdf(t_, h_, Eigen::VectorXd::Constant(1, x), 1)[0]; }
-double Kde::cdf(double x) const { return kde_cdf(t_, h_, Eigen::VectorXd::Constant(1, x), 1)[0]; }
+double Kde::cdf(double x) const {
+  // beyond 8 h below the data the fast kernel cdf rounds to 0; the log-space sum does not
+  if (x < t_[0] - 8.0 * h_) return std::exp(logcdf(x));
+  return kde_cdf(t_, h_, Eigen::VectorXd::Constant(1, x), 1)[0];
+}
+
+namespace {
+/// log Σ exp(l_i) without overflow or underflow.
+double log_sum_exp(const Eigen::VectorXd& l) {
+  const double m = l.maxCoeff();
+  if (!std::isfinite(m)) return m;
+  return m + std::log((l.array() - m).exp().sum());
+}
+/// x in [lo, hi] where the increasing (up) or decreasing function g crosses 0, by bisection to
+/// the last bit.
+template <class G>
+double bisect(G&& g, double lo, double hi, bool up) {
+  for (int it = 0; it < 400 && hi - lo > 4e-16 * std::max(std::abs(lo), std::abs(hi)); ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    if ((g(mid) > 0.0) == up) hi = mid;
+    else lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+}  // namespace
+
+double Kde::logpdf(double x) const {
+  const Eigen::VectorXd t = (x - t_.array()) / h_;
+  return log_sum_exp((-0.5 * t.array().square()).matrix()) - std::log(static_cast<double>(t_.size()) * h_ * std::sqrt(2.0 * M_PI));
+}
+
+double Kde::logcdf(double x) const {
+  const double n = static_cast<double>(t_.size());
+  Eigen::VectorXd l(t_.size());
+  for (Eigen::Index i = 0; i < l.size(); ++i) l[i] = log_normal_cdf((x - t_[i]) / h_);
+  const double lc = log_sum_exp(l) - std::log(n);
+  // above the median log1p(−sf) keeps what rounding the cdf to 1 loses
+  return lc > -M_LN2 ? std::log1p(-sf(x)) : lc;
+}
+
+double Kde::sf(double x) const {
+  Eigen::VectorXd l(t_.size());
+  for (Eigen::Index i = 0; i < l.size(); ++i) l[i] = log_normal_cdf((t_[i] - x) / h_);
+  return std::exp(log_sum_exp(l) - std::log(static_cast<double>(t_.size())));
+}
+
+double Kde::isf(double q) const {
+  if (q >= 1e-3) return quantile(1.0 - q);
+  if (q <= 0.0) return std::numeric_limits<double>::infinity();
+  // every kernel's own q-isf brackets the mixture's
+  const double zq = -normal_quantile(q);
+  const double lq = std::log(q);
+  const double lo = t_[0] + h_ * zq, hi = t_[t_.size() - 1] + h_ * zq;
+  if (lo == hi) return lo;
+  return bisect([&](double x) { return std::log(sf(x)) - lq; }, lo, hi, false);
+}
 
 double Kde::quantile(double p) const {
   if (p <= 0.0) return -std::numeric_limits<double>::infinity();
   if (p >= 1.0) return std::numeric_limits<double>::infinity();
+  if (p < 1e-3) {
+    const double zp = normal_quantile(p), lp = std::log(p);
+    const double lo = t_[0] + h_ * zp, hi = t_[t_.size() - 1] + h_ * zp;
+    if (lo == hi) return lo;
+    return bisect([&](double x) { return logcdf(x) - lp; }, lo, hi, true);
+  }
   // Bracket: every kernel's own p-quantile lies in [t_min + h z_p, t_max + h z_p].
   const double zp = normal_quantile(p);
   double lo = t_[0] + h_ * zp, hi = t_[t_.size() - 1] + h_ * zp;

@@ -69,8 +69,17 @@ class Kde : public Distribution {
   std::string family() const override { return "kde"; }
   double pdf(double x) const override;
   double cdf(double x) const override;
-  /// Inverse CDF by safeguarded Newton (bracketed by the data range ± 10h).
+  /// Inverse CDF by safeguarded Newton (bracketed by the data range ± 10h); below p = 1e-3 by
+  /// bisection on logcdf (relative accuracy down to p = 1e-300).
   double quantile(double p) const override;
+  // The tails in log space or by complements (issue 29): each kernel's own tail, summed by
+  // log-sum-exp, so the values keep their relative accuracy far from the data (exact sums, O(N)).
+  double logpdf(double x) const override;
+  double logcdf(double x) const override;
+  /// Σ Φ(−t_i)/N: the kernels' complements, not 1 − cdf.
+  double sf(double x) const override;
+  /// x with sf(x) = q: bisection on log sf for q < 1e-3, else quantile(1 − q).
+  double isf(double q) const override;
   double mean() const override { return mean_; }
   /// sqrt(biased data variance + h²): the exact std of the KDE mixture.
   double stddev() const override;

@@ -171,3 +171,62 @@ TEST_CASE("no gradient for a custom metric, a data-driven bandwidth or a model w
   Eigen::VectorXd g;
   CHECK_THROWS_WITH(f.value_and_gradient(Eigen::VectorXd::Constant(6, 1.0), g), Catch::Contains("no analytic gradient"));
 }
+
+TEST_CASE("model differences (issue 29): one batch of k + 1 (forward) or 2k + 1 (central) model passes gives the analytic gradient") {
+  for (MetricKind m : {MetricKind::pr, MetricKind::loglik}) {
+    const StatisticalObjective exact = make(m);
+    StatisticalObjective fwd = exact, ctr = exact;
+    fwd.set_model_jacobian({});
+    ctr.set_model_jacobian({});
+    REQUIRE_FALSE(fwd.has_gradient());
+    fwd.set_model_differences(false, 1e-6);
+    ctr.set_model_differences(true, 1e-5);
+    REQUIRE(fwd.has_gradient());
+    const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
+    Eigen::VectorXd ga, gf, gc;
+    const double va = exact.value_and_gradient(t, ga).value;
+    const long calls0 = fwd.model_runs(), passes0 = fwd.model_passes();
+    const double vf = fwd.value_and_gradient(t, gf).value;
+    CHECK(fwd.model_runs() - calls0 == 1);       // one model call: the batch
+    CHECK(fwd.model_passes() - passes0 == 1 + 3);  // X and one step per calibrated input (3 inputs, 6 parameters)
+    const long cpass0 = ctr.model_passes();
+    const double vc = ctr.value_and_gradient(t, gc).value;
+    CHECK(ctr.model_passes() - cpass0 == 1 + 2 * 3);
+    CHECK(vf == va);  // the batch's first block is the model at X itself
+    CHECK(vc == va);
+    // Against the objective's own central differences (the reference the issue names) and the
+    // closed-form Jacobian's gradient.
+    const Eigen::VectorXd fd = central_gradient(exact, t, 1e-6 * Eigen::VectorXd::Ones(6));
+    INFO((m == MetricKind::pr ? "pr" : "loglik") << "\nanalytic " << ga.transpose() << "\nforward  " << gf.transpose() << "\ncentral  "
+                                                  << gc.transpose() << "\nobjective differences " << fd.transpose());
+    const double scale = 1.0 + fd.cwiseAbs().maxCoeff();
+    CHECK((gf - fd).cwiseAbs().maxCoeff() < 1e-4 * scale);
+    CHECK((gc - fd).cwiseAbs().maxCoeff() < 1e-4 * scale);
+    CHECK((gf - ga).cwiseAbs().maxCoeff() < 1e-5 * scale);
+    CHECK((gc - ga).cwiseAbs().maxCoeff() < 1e-7 * scale);
+  }
+}
+
+TEST_CASE("model differences reject a step outside (0, 0.1)") {
+  StatisticalObjective f = make(MetricKind::pr);
+  CHECK_THROWS_WITH(f.set_model_differences(false, 0.0), Catch::Contains("model_step"));
+  CHECK_THROWS_WITH(f.set_model_differences(false, 0.5), Catch::Contains("model_step"));
+}
+
+TEST_CASE("moment residuals on model differences: one model call, the analytic Jacobian's values") {
+  const StatisticalObjective f = make(MetricKind::pr);
+  StatisticalObjective diff = f;
+  diff.set_model_jacobian({});
+  diff.set_model_differences(false, 1e-6);
+  const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
+  int ra = 0, rd = 0;
+  Eigen::MatrixXd Ja, Jd;
+  const Eigen::VectorXd a = moment_residuals(f, t, &Ja, ra);
+  const long passes = diff.model_passes();
+  const Eigen::VectorXd d = moment_residuals(diff, t, &Jd, rd);
+  CHECK(rd == 1);                                 // one batch, not 1 + 6 predictions
+  CHECK(diff.model_passes() - passes == 1 + 3);   // X and one block per calibrated input
+  CHECK((a - d).norm() == 0.0);
+  INFO("analytic\n" << Ja << "\nmodel differences\n" << Jd);
+  CHECK((Ja - Jd).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + Ja.cwiseAbs().maxCoeff()));
+}
