@@ -199,23 +199,39 @@ T.case("the loop: trial 1 invalid, the joint applied on top, valid; the generic 
   T.near(last.calibration.means.a, 1.05, 0.02, "a near its truth")
 end)
 
-T.case("a calibration without overlap (status no_overlap) stops the study before validation", function()
-  -- the kernel's status of issue 29, forced here on trial 1's real calibration
+-- trial 1's real calibration with smi.calibrate's no_overlap status forced on it (hint: a units hint or none)
+local function run_forced_no_overlap(name, hint)
   local calibration = require "smi.improve.calibration"
   local real = calibration.calibrate
   calibration.calibrate = function(t)
     local out, r = real(t)
     out.converged, out.status = false, "no_overlap"
+    out.message = "response 'f1': no overlap between predicted and measured"
+    out.no_overlap = { { response = "f1", metric = "pr", value = 2, units_hint = hint } }
     return out, r
   end
-  local ok, R, C = pcall(run, declaration{ name = "improve_no_overlap" }, { "--quick" })
+  local ok, R, C = pcall(run, declaration{ name = name }, { "--quick" })
   calibration.calibrate = real
   T.truthy(ok, tostring(R))
+  return R, C
+end
+
+T.case("no overlap a power of ten apart (a units mistake) stops the study before validation", function()
+  local R, C = run_forced_no_overlap("improve_no_overlap_units",
+    "the predictions are about 1000x the data: are the inputs in the units the model expects?")
   T.eq(C.verdict, "inconclusive")
   T.eq(#C.trials, 1, "no trial after it")
   T.eq(#C.refinements, 0)
   T.truthy(R.trial1_validation.skipped and R.trial1_validation.reason:find("no_overlap", 1, true), "validation skipped, why")
+  T.truthy(R.trial1_validation.reason:find("units", 1, true), "the reason names units")
   T.eq(C.trials[1].calibration.status, "no_overlap")
+end)
+
+T.case("no overlap without a units hint (a model-form misfit) is validated and refined", function()
+  local R, C = run_forced_no_overlap("improve_no_overlap_form", nil)
+  T.truthy(not R.trial1_validation.skipped, "trial 1 validated")
+  T.eq(C.trials[1].calibration.status, "no_overlap")
+  T.truthy(#C.trials >= 1)
 end)
 
 T.finish()

@@ -337,6 +337,19 @@ end
 -- boot_maxeval, metric = "pr"|"loglik", multistart, prior (the analyst's, smi.calibrate's `prior`
 -- list; nil: none), prior_labels}. Both stages are one smi.calibrate call in its model form:
 -- stage 1 its moment start, stage 2 the paper's metric (analytic gradients).
+--- True when a calibration found no overlap (status no_overlap) AND the predictions and the data
+-- are about a power of ten apart (smi.calibrate's units hint): the inputs or the data are in
+-- other units than the model expects. A no_overlap without that hint is a model-form misfit (the
+-- steering column's rigid airbag cannot reach mode 4): the trial is validated, found invalid on
+-- that response, and refined like any other invalid trial.
+function M.units_stop(cal)
+  if not (cal and cal.converged == false and cal.status == "no_overlap") then return false end
+  for _, row in ipairs(cal.no_overlap or {}) do
+    if row.units_hint then return true end
+  end
+  return false
+end
+
 function M.calibrate(t)
   t.metric = t.metric or "pr"
   local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed)
@@ -346,7 +359,8 @@ function M.calibrate(t)
   local params = param_rows(t, r, r1)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
-    status = r.status, warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
+    status = r.status, message = r.message, no_overlap = r.no_overlap,
+    warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
     theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
     n = t.n, seed = t.seed, calibrate = t.calibrate,
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,
@@ -360,9 +374,9 @@ function M.calibrate(t)
   for i, h in ipairs(r.history) do
     if not h.probe then out.history[#out.history + 1] = { i, h.objective, h.metrics.prior } end
   end
-  -- PR saturated everywhere: the predicted and measured PDFs never overlap (issue 29's status);
-  -- the study stops on it, so nothing more is computed here
-  if out.converged == false and out.status == "no_overlap" then return out, r end
+  -- the predicted and measured PDFs never overlap with magnitudes a power of ten apart: a units
+  -- mistake no refinement fixes, so the study stops on it and nothing more is computed here
+  if M.units_stop(out) then return out, r end
   local data_objective = M.objective(t.metric, predicted, grids, t.f_exp, t.data, t.calibrate)
   -- the objective on the study's own CRN sample at this optimum: before/after comparisons
   out.objective_study_sample = data_objective(r.params)

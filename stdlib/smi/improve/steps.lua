@@ -280,7 +280,8 @@ local function calibration_report(E, ctx, L, T, res)
            columns = { "Input", "Type", "Unit", "Mean bounds", "Std bounds", "Initial mean", "Initial std",
                        "Stage-1 mean", "Stage-1 std", "Calibrated mean", "Calibrated std", "Bootstrap CI" } }
   for _, w in ipairs(res.warnings) do r:callout(L .. ": " .. w, "warn") end
-  if res.status == "no_overlap" and not res.converged then return end
+  if res.status == "no_overlap" and not res.converged then r:callout(L .. ": " .. tostring(res.message), "warn") end
+  if calibration.units_stop(res) then return end
   local sv = res.sensitivity
   local srows, columns = {}, { "Input" }
   for _, m in ipairs(sv.responses) do columns[#columns + 1] = figs.title[m] end
@@ -353,10 +354,10 @@ local function validation_step(E, k)
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
     local cal = ctx.results["trial" .. k .. "_calibration"]
-    if cal.converged == false and cal.status == "no_overlap" then
-      local why = ("trial %d's calibration found no overlap between the predicted and the measured distributions"
-        .. " (status no_overlap): the model cannot reach the data within the declared bounds; the study stops"
-        .. " before validation (widen the unknowns' bounds, check the data's units, or revise the model)"):format(k)
+    if calibration.units_stop(cal) then
+      local why = ("trial %d's calibration found no overlap between the predicted and the measured distributions,"
+        .. " a power of ten apart (status no_overlap): %s The study stops before validation: check the data's"
+        .. " units and the units the model expects."):format(k, tostring(cal.message))
       ctx.report:callout(why, "fail")
       return skipped(why)
     end
