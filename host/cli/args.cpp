@@ -153,6 +153,7 @@ static std::string fill_defaults(std::string s) {
   return s;
 }
 
+// long: one raw string literal, the help exactly as it prints (the man page is made from it)
 const char* help_text() {
   // The defaults named in the text come from where they are defined (core/defaults.hpp).
   static const std::string text = fill_defaults(R"(usage: smi-lua [options] [script [args]]
