@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/json.hpp"
+#include "kernels/core/printable.hpp"
 #include "kernels/core/sha256.hpp"
 
 namespace smi::cli {
@@ -151,7 +152,16 @@ int cmd_verify(const Args& a, const std::vector<std::string>& args) {
     std::fprintf(stderr, "usage: smi-lua verify RESULTS.json   (the results file a study wrote, e.g. smi-out/study/results.json)\n");
     return 2;
   }
-  const Recorded rec = read_recorded(args[0]);
+  // Everything shown comes from the results file: escaped, so a study cannot print its own
+  // "ok" lines over the real ones with terminal escapes.
+  Recorded rec = read_recorded(args[0]);
+  for (std::string* f : {&rec.smi_lua, &rec.script_path, &rec.script_hash}) *f = printable(*f);
+  for (RecordedLib& l : rec.libs) {
+    for (std::string* f : {&l.name, &l.version, &l.path, &l.hash, &l.commit}) *f = printable(*f);
+    std::map<std::string, std::string> files;
+    for (const auto& [rel, digest] : l.files) files[printable(rel)] = printable(digest);
+    l.files = std::move(files);
+  }
   const vm::LibrarySet here = current_libraries(a);
   int changed = 0, missing = 0;
   std::printf("verifying %s: %zu librar%s recorded", args[0].c_str(), rec.libs.size(), rec.libs.size() == 1 ? "y" : "ies");

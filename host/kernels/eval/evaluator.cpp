@@ -1,6 +1,7 @@
 #include "kernels/eval/evaluator.hpp"
 
 #include "kernels/core/csv.hpp"
+#include "kernels/core/printable.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -345,6 +346,7 @@ Job Evaluator::Run::make_job(std::size_t t) {
   job.spec.workdir = dirs[t];
   job.spec.stdout_path = (fs::path(dirs[t]) / kStdoutFile).string();
   job.spec.stderr_path = (fs::path(dirs[t]) / kStderrFile).string();
+  job.spec.env = solver_environment(cfg.env_names);
   job.spec.argv.push_back(cfg.program_name);
   for (std::string a : cfg.args) {
     for (auto [pat, val] : {std::pair<std::string, std::string>{"{deck}", cfg.deck_file}, {"{workdir}", dirs[t]}})
@@ -413,12 +415,12 @@ std::string Evaluator::Run::failure_reason(const Outcome& o, Eigen::MatrixXd& Yt
       reason = fmt::format("unparsable output: {}", e.what());
       // A solver that exits 0 after a fatal error says why only on stderr: show its end.
       const std::string err = last_lines(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes), 3);
-      if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", err);
+      if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", printable(err));
     }
     check_interrupt();  // a Ctrl-C that hit the parser is not the run's failure
   } else if (o.kind == Outcome::Exited || o.kind == Outcome::Signaled) {
     const std::string err = last_line(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes));
-    if (!err.empty()) reason += ": " + err;
+    if (!err.empty()) reason += ": " + printable(err);  // a solver's bytes, shown on a terminal
   }
   return reason;
 }

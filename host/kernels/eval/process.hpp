@@ -17,9 +17,19 @@ struct SpawnSpec {
   std::string workdir;            // current directory of the child
   std::string stdout_path;        // absolute paths of the capture files
   std::string stderr_path;
+  std::vector<std::string> env;   // the child's whole environment ("NAME=value"), see solver_environment
 };
 
-/// Starts the process; returns its pid, which is also its process-group id. Throws smi::Error
+/// The variables every solver gets from smi-lua's environment when they are set (the locale, the
+/// user, PATH, HOME, TMPDIR, TZ); nothing else reaches a solver unless named.
+extern const char* const kSolverBaseEnv[];
+
+/// "NAME=value" for the base variables and for `extra` (--allow-env), from this process's
+/// environment: a solver's environment is a list, never an inheritance (what a study cannot read
+/// with os.getenv must not come back to it through a solver's output).
+std::vector<std::string> solver_environment(const std::vector<std::string>& extra);
+
+/// Starts the process with exactly spec.env (plus kSolverMarkVar); returns its pid, which is also its process-group id. Throws smi::Error
 /// with the program and the system's reason when it cannot be started (missing, not executable).
 pid_t spawn_process(const SpawnSpec& spec);
 
