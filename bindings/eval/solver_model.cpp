@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "bindings/eval/model.hpp"
+#include "kernels/core/sha256.hpp"
 #include "kernels/eval/folder_lock.hpp"
 #include "kernels/eval/process.hpp"
 #include "kernels/eval/progress_line.hpp"
@@ -277,6 +278,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     c.on_failure = se::parse_on_failure(so.on_failure);
     apply_executor(pol, so, c);
     c.env_names = pol.allow_env;
+    if (!pol.script_path.empty()) c.script_hash = "sha256:" + sha256_file(pol.script_path);
     open_solver_inputs(pol, so, batch, fname, c);
     place_solver_outputs(pol, so, c);
     return 0;

@@ -133,6 +133,10 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
   h.field(fs::path(cfg_.program_name).filename().string()).field(program_hash).field(cfg_.version);
   for (const auto& a : cfg_.args) h.field(a);
   h.field(cfg_.deck_file);
+  // The study script decides what a record holds (its parse function reads the outputs), and a
+  // store may come from elsewhere (--store, or one unpacked with a study bundle): a record is
+  // reused only by the script that made it (issue 23). Editing the script means running again.
+  h.field(cfg_.script_hash);
   for (std::size_t i = 0; i < cfg_.files.size(); ++i)
     h.field(fs::path(cfg_.files[i]).filename().string())
         .field(i < cfg_.file_fds.size() && cfg_.file_fds[i] ? sha256_fd(cfg_.file_fds[i]->get(), cfg_.files[i])
