@@ -37,4 +37,30 @@ run "a program under --out" 1 "$SMI" --quiet --allow-exec "$WORK/o4/solver" --ou
 has_err "a folder the script may write"
 run "the same program outside" 0 "$SMI" --quiet --allow-exec "$WORK/bin/linker" --out o5 study/run.lua "$WORK/bin/linker"
 
+# --- a parser that evaluates another model: the nested scheduler's clean-up must not kill the
+# outer model's solver still running (it carries the same mark; the old code SIGKILLed it, and the
+# outer run ended "lost track of process" or "killed by signal 9")
+printf '#!/bin/sh\nx=$(sed -n "s/x = //p" "$1")\n[ "$x" = 2 ] && sleep 2\necho "y = $x"\n' > bin/slow
+printf '#!/bin/sh\necho "z = 7"\n' > bin/fast
+chmod +x bin/slow bin/fast
+cat > study/nested.lua <<'LUA'
+local slow, fast = ...
+local inner = smi.model.command{name = "inner", inputs = {"x"}, outputs = {"z"}, template_string = "x = {{x}}\n",
+  command = {fast, "{deck}"}, version = "1",
+  parse = function(dir, h) return {z = h.regex("stdout.log", "z = (\\S+)")} end}
+local n = 0
+local outer = smi.model.command{name = "outer", inputs = {"x"}, outputs = {"y"}, template_string = "x = {{x}}\n",
+  command = {slow, "{deck}"}, version = "1", concurrency = 2,
+  parse = function(dir, h)
+    n = n + 1
+    local Z = inner:evaluate(smi.mat{{n + 0.5}})
+    return {y = h.regex("stdout.log", "y = (\\S+)") + Z.z[1] - 7}
+  end}
+local Y = outer:evaluate(smi.mat{{1}, {2}})
+print(("y=%g,%g"):format(Y.y[1], Y.y[2]))
+LUA
+run "a nested evaluation leaves the outer solvers alone" 0 "$SMI" --quiet --allow-exec "$WORK/bin/slow" \
+    --allow-exec "$WORK/bin/fast" --out o6 study/nested.lua "$WORK/bin/slow" "$WORK/bin/fast"
+has_out "y=1,2"
+
 finish

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <dirent.h>
 #include <iterator>
+#include <mutex>
+#include <set>
 #include <csignal>
 #include <cstring>
 #include <ctime>
@@ -86,6 +88,21 @@ std::vector<std::string> solver_environment(const std::vector<std::string>& extr
   return env;
 }
 
+namespace {
+std::mutex g_live_mu;
+std::set<pid_t> g_live;  // solvers started and not yet waited for by their scheduler
+
+bool is_live_solver(pid_t pid) {
+  std::lock_guard<std::mutex> lock(g_live_mu);
+  return g_live.count(pid) > 0;
+}
+}  // namespace
+
+void solver_reaped(pid_t pid) {
+  std::lock_guard<std::mutex> lock(g_live_mu);
+  g_live.erase(pid);
+}
+
 pid_t spawn_process(const SpawnSpec& spec) {
   if (spec.argv.empty()) throw Error("spawn_process: empty argv");
   std::vector<char*> argv;
@@ -116,6 +133,10 @@ pid_t spawn_process(const SpawnSpec& spec) {
     exec_child(spec, argv.data(), envp.data(), parent, pipefd[1]);
   }
   ::close(pipefd[1]);
+  {
+    std::lock_guard<std::mutex> lock(g_live_mu);
+    g_live.insert(pid);
+  }
   // Also set the group from this side, so a kill(-pid) right after we return cannot miss it.
   ::setpgid(pid, pid);
   int err = 0;
@@ -127,6 +148,7 @@ pid_t spawn_process(const SpawnSpec& spec) {
     int st = 0;
     while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
     }
+    solver_reaped(pid);
     throw Error(fmt::format("cannot start '{}': {}", spec.program, std::strerror(err)));
   }
   return pid;
@@ -204,7 +226,7 @@ int reap_escaped_descendants(const std::vector<pid_t>& keep) {
   for (int round = 0; round < 50; ++round) {  // each round's victims' children come to us next
     std::vector<pid_t> victims;
     for (pid_t pid : own_children()) {
-      if (std::find(keep.begin(), keep.end(), pid) != keep.end()) continue;
+      if (std::find(keep.begin(), keep.end(), pid) != keep.end() || is_live_solver(pid)) continue;
       bool zombie = false;
       if (marked_as_ours(pid, zombie)) victims.push_back(pid);
       else if (zombie) {

@@ -44,6 +44,11 @@ void become_subreaper();
 /// is left (their own children are reparented to us in turn). Returns how many it killed.
 int reap_escaped_descendants(const std::vector<pid_t>& keep = {});
 
+/// Every scheduler's solvers are registered from spawn_process until their scheduler has waited
+/// for them (solver_reaped): a nested evaluation (a parser that evaluates another model) cleaning
+/// up after itself must not kill, nor reap, the outer model's solvers, which carry the same mark.
+void solver_reaped(pid_t pid);
+
 /// Sends `sig` to the whole process group `pgid` (ignores an already empty group).
 void signal_group(pid_t pgid, int sig);
 
