@@ -1,5 +1,5 @@
 // smi.csv: comma-separated tables with a header row, columns by name.
-//   local d, header, notes = smi.csv.read(path [, {sep = ",", strings = {"name", ...}}])
+//   local d, header, notes = smi.csv.read(path [, {sep = ",", decimal = ".", strings = {"name", ...}}])
 //       d.<column> is a smi.vec when every cell of the column is a number, a table of strings
 //       otherwise; header lists the column names in file order; notes.warnings lists data
 //       sanity warnings (duplicated rows, also printed on stderr unless quiet) for a report and
@@ -38,19 +38,42 @@ struct Table {
   std::vector<std::pair<long, long>> duplicates;  // (line of the first, line of the repeat)
 };
 
-Table parse_table(const std::string& raw, char sep, const std::string& file, const std::set<std::string>& strings) {
+/// A cell as a number, with ',' as the decimal mark when decimal == ','.
+bool cell_number(const std::string& cell, char decimal, double& v) {
+  if (decimal != ',' || cell.find('.') != std::string::npos) return csv::parse_number(cell, v);
+  std::string t = cell;
+  for (char& c : t)
+    if (c == ',') c = '.';
+  return csv::parse_number(t, v);
+}
+
+/// The column names of the header record: trimmed, none empty, none twice.
+std::vector<std::string> header_names(const csv::Record& head, const std::string& file) {
+  std::vector<std::string> out;
+  for (std::size_t j = 0; j < head.fields.size(); ++j) {
+    std::string name = csv::trim(head.fields[j]);
+    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, head.line, j + 1));
+    for (const auto& h : out)
+      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, head.line, name));
+    out.push_back(std::move(name));
+  }
+  return out;
+}
+
+Table parse_table(const std::string& raw, char sep, char decimal, const std::string& file,
+                  const std::set<std::string>& strings) {
   csv::ReadOptions ro;
   ro.sep = sep;
   const std::vector<csv::Record> recs = csv::read(raw, file, ro);
   if (recs.empty()) throw Error(fmt::format("{}: the file is empty (a header row is needed)", file));
+  // A one-column header holding ';' or a tab is a file written with another separator (a
+  // spreadsheet's "CSV" in a locale with decimal commas): say what the file uses.
+  const std::string hint = csv::sniff(raw, sep);
+  if (recs[0].fields.size() == 1 && !hint.empty())
+    throw Error(fmt::format("{}:{}: {} (the header '{}' reads as one column name)", file, recs[0].line, hint,
+                            csv::trim(recs[0].fields[0]).substr(0, 60)));
   Table t;
-  for (std::size_t j = 0; j < recs[0].fields.size(); ++j) {
-    std::string name = csv::trim(recs[0].fields[j]);
-    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, recs[0].line, j + 1));
-    for (const auto& h : t.header)
-      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, recs[0].line, name));
-    t.header.push_back(std::move(name));
-  }
+  t.header = header_names(recs[0], file);
   const std::size_t ncol = t.header.size();
   if (recs.size() == 1) {
     std::string names;
@@ -60,8 +83,8 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
   }
   for (std::size_t r = 1; r < recs.size(); ++r)
     if (recs[r].fields.size() != ncol)
-      throw Error(fmt::format("{}:{}: {} fields, but the header has {} columns", file, recs[r].line,
-                              recs[r].fields.size(), ncol));
+      throw Error(fmt::format("{}:{}: {} fields, but the header has {} columns{}", file, recs[r].line,
+                              recs[r].fields.size(), ncol, hint.empty() ? "" : "; " + hint));
   for (std::size_t j = 0; j < ncol; ++j) {
     // A column is numeric when its first non-empty cell is a number (and it is not listed in
     // opts.strings); from then on every cell must be one.
@@ -70,7 +93,12 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
       for (std::size_t r = 1; r < recs.size(); ++r) {
         if (csv::trim(recs[r].fields[j]).empty()) continue;
         double v;
-        numeric = csv::parse_number(recs[r].fields[j], v);
+        numeric = cell_number(recs[r].fields[j], decimal, v);
+        if (!numeric && decimal != ',' && csv::decimal_comma(recs[r].fields[j]))
+          throw Error(fmt::format("{}:{}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
+                                  "or save the file with '.' decimals (or read the column as text with "
+                                  "{{strings = {{\"{}\"}}}})",
+                                  file, recs[r].line, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
         break;
       }
     if (numeric) {
@@ -78,11 +106,16 @@ Table parse_table(const std::string& raw, char sep, const std::string& file, con
       col.reserve(recs.size() - 1);
       for (std::size_t r = 1; r < recs.size(); ++r) {
         double v = 0;
-        if (!csv::parse_number(recs[r].fields[j], v))
+        if (!cell_number(recs[r].fields[j], decimal, v)) {
+          if (decimal != ',' && csv::decimal_comma(recs[r].fields[j]))
+            throw Error(fmt::format("{}:{}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
+                                    "or save the file with '.' decimals",
+                                    file, recs[r].line, j + 1, t.header[j], recs[r].fields[j]));
           throw Error(fmt::format(
               "{}:{}: column {} ('{}'): bad number '{}' (the column holds numbers above; fix the cell, or "
               "read the column as text with {{strings = {{\"{}\"}}}})",
               file, recs[r].line, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
+        }
         col.push_back(v);
       }
       t.columns.emplace_back(std::move(col));
@@ -115,15 +148,18 @@ char sep_option(const lua::Options& o) {
 int csv_read(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
   lua::Options opts(L, 2, "smi.csv.read");
-  opts.check_known({"sep", "strings"});
+  opts.check_known({"sep", "decimal", "strings"});
   std::set<std::string> strings;
   if (opts.push("strings") != LUA_TNIL)
     for (auto& s : lua::to_strings(L, -1, "option 'strings'")) strings.insert(s);
   lua_pop(L, 1);
   return lua::protect(L, "smi.csv.read", [&] {
     const char sep = sep_option(opts);
+    const std::string decimal = opts.string("decimal", ".");
+    if (decimal != "." && decimal != ",") throw Error("option 'decimal' must be '.' or ',', got '" + decimal + "'");
+    if (decimal == "," && sep == ',') throw Error("decimal = ',' needs another separator: pass sep = ';' (or '\\t')");
     const CheckedFile f = lua::policy(L).open_read(path);
-    const Table t = parse_table(read_checked(f, path), sep, path, strings);
+    const Table t = parse_table(read_checked(f, path), sep, decimal[0], path, strings);
     lua_createtable(L, 0, static_cast<int>(t.header.size()));  // stack: [..., columns]
     for (std::size_t j = 0; j < t.header.size(); ++j) {
       if (const auto* num = std::get_if<std::vector<double>>(&t.columns[j])) {

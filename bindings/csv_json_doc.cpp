@@ -15,10 +15,13 @@ Reads a CSV file with a header row. A column whose every cell is a number become
 other column a table of strings. Quoted fields may hold the separator, "" and newlines.
 options:
   sep = ","        -- the separator, one character other than a quote or a newline
+  decimal = "."    -- the decimal mark of the numbers: "." or "," (with sep = ";" or "\t")
   strings = {}     -- names of columns to keep as text even when they look numeric (IDs)
 returns: columns (a table {name = vec or {strings}}) and header (the names in file order)
 errors: the sandbox refuses the path (--allow-read); the file cannot be opened; a ragged row or a
-  bad number, named by file, line and column; an unknown option
+  bad number, named by file, line and column; an unknown option; a file that uses ';' or a tab
+  between fields, or decimal commas, says so ("the file uses ';' between fields: pass sep = ';'
+  or save as CSV")
 example:
   local p = smi.out("doc_read.csv")
   smi.csv.write(p, {id = {"a", "b"}, hz = smi.vec{30.1, 30.4}})
@@ -75,7 +78,8 @@ example:
 Writes value as JSON to a file (with a final newline).
 options:
   indent = 2            -- spaces per level, 0..16
-  nonfinite = "refuse"  -- as smi.json.encode (also root)
+  nonfinite = "refuse"  -- as smi.json.encode
+  root = "$"            -- the name of the value in error paths
 returns: nothing
 errors: the sandbox refuses the path; the value cannot be encoded (as smi.json.encode)
 example:
@@ -84,7 +88,9 @@ example:
   print(smi.json.read(p).seed == smi.seed)
 
 @ smi.json.read(path [, opts]) -> value
-Reads and decodes a JSON file (opts as smi.json.decode).
+Reads and decodes a JSON file.
+options:
+  null = smi.json.null  -- what null reads as (as smi.json.decode)
 returns: the value
 errors: the sandbox refuses the path; the file cannot be opened; invalid JSON (file, line, column)
 example:

@@ -24,6 +24,7 @@ void open_stats(lua_State* L);      // smi.dist, smi.kde, smi.kde_bd, smi.kde_eb
 void open_surrogate(lua_State* L);  // smi.doe, smi.kriging, smi.propagate, smi.screen
 void open_eval(lua_State* L);       // smi.model
 void open_improve(lua_State* L);    // smi.calibrate, smi.refine
+void open_members(lua_State* L);    // last: the suggesting __index of the module tables (members.cpp)
 
 }  // namespace smi::bind
 

@@ -12,5 +12,6 @@ int luaopen_smi(lua_State* L) {
   smi::bind::open_surrogate(L);
   smi::bind::open_eval(L);
   smi::bind::open_improve(L);
+  smi::bind::open_members(L);
   return 1;
 }

@@ -32,6 +32,9 @@ options:
                              -- the program must be allowed with --allow-exec
   parse = (required)         -- function(dir, h) returning {output = number, ...}
   version = ""               -- the solver's version in the store key ("" = the program's SHA-256)
+  version_args = nil         -- e.g. {"--version"}: run the program once with these arguments when
+                             -- the model is made; the first line it prints is recorded in the
+                             -- provenance (results.json, the report) as its version line
   timeout = ${timeout}       -- seconds per run, 0 = none; the process group is killed
   retries = ${retries}       -- extra attempts after a failure
   on_failure = "stop"        -- "stop" (raise after the batch), "skip" (NaN, reported in info),
@@ -39,10 +42,14 @@ options:
   concurrency = ${concurrency}  -- processes at once
   reuse_failed = ${reuse_failed}  -- also reuse stored failures (default: run them again)
   store = nil                -- the store file (default <out>/evaluations.sqlite)
+  executor = nil             -- where the runs execute, overriding --executor: {kind = "slurm",
+                             -- partition =, account =, time =, ...} (the --slurm-opt keys)
 returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
-errors: a missing or mistyped option (named); both or neither template; the sandbox refuses the
-  program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
-  placeholder (file and line)
+errors: a missing or mistyped option (named); both or neither template; a program path that does
+  not exist or is not an executable file (refused here, not at the first run); the sandbox refuses
+  the program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
+  placeholder (file and line); version_args given and the program prints nothing on stdout or
+  takes more than 10 s
 example:
   local m = smi.model.command{
     name = "doc-square", inputs = {"x"}, outputs = {"y"}, version = "doc-1",
@@ -56,7 +63,7 @@ example:
 @ smi.model.batch{...} -> model
 An external solver that takes many points per run: the points are written as CSV (a header of
 input names) to input_file, and parse(dir, h, n) returns n values per output. Options as
-smi.model.command, without template/deck/constants, plus:
+smi.model.command, without template/template_string/deck/constants, plus:
 options:
   input_file = "points.csv"     -- the CSV file of points in the work folder ({deck} in command)
   batch_size = ${batch_size}    -- points per run; 0 = all pending points in one run

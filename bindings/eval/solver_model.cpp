@@ -3,8 +3,11 @@
 // into a CommandConfig (through the sandbox), calls the Lua output parser for each finished
 // run, shows progress, and reports failures.
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <fmt/format.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "bindings/eval/model.hpp"
@@ -71,7 +74,7 @@ int parse_trampoline(lua_State* L) {
 
 // What solver_config reads from Lua before anything is checked against the sandbox policy.
 struct SolverOptions {
-  std::vector<std::string> argv, files;
+  std::vector<std::string> argv, files, version_args;
   std::string on_failure, store, template_file, template_text;
   std::vector<std::pair<std::string, std::string>> exec_opts;
 };
@@ -238,17 +241,75 @@ void place_solver_outputs(Policy& pol, const SolverOptions& so, se::CommandConfi
   }
 }
 
+// version_args = {"--version"}: the program run once with these arguments (no shell, in its runs
+// folder, at most kVersionSeconds); the first non-empty line of its stdout is the version line
+// the provenance records (issue 24). Throws naming the program when it fails or prints nothing.
+constexpr double kVersionSeconds = 10;
+std::string version_line(const se::CommandConfig& c, const std::vector<std::string>& args) {
+  se::SpawnSpec sp;
+  sp.program = c.program;
+  sp.argv.push_back(c.program_name);
+  sp.argv.insert(sp.argv.end(), args.begin(), args.end());
+  sp.workdir = c.runs_dir;
+  sp.stdout_path = (fs::path(c.runs_dir) / "version.out").string();
+  sp.stderr_path = (fs::path(c.runs_dir) / "version.err").string();
+  const pid_t pid = se::spawn_process(sp);
+  const double t0 = se::monotonic_seconds();
+  int st = 0;
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &st, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) break;
+    if (se::monotonic_seconds() - t0 > kVersionSeconds) {
+      se::signal_group(pid, SIGKILL);
+      while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+      }
+      throw Error(fmt::format("version_args: '{}' did not finish within {} s", c.program_name, kVersionSeconds));
+    }
+    ::usleep(5000);
+  }
+  const std::string out = se::file_tail(sp.stdout_path, 4096);
+  std::size_t at = 0;
+  while (at < out.size()) {
+    std::size_t end = out.find('\n', at);
+    if (end == std::string::npos) end = out.size();
+    std::string line = out.substr(at, end - at);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    if (!line.empty()) return line;
+    at = end + 1;
+  }
+  throw Error(fmt::format("version_args: '{}' printed nothing on stdout ({}); give the arguments that make it print its version",
+                          c.program_name, se::describe_wait_status(st)));
+}
+
+// Provenance (issue 24): the program this model runs, its hash, declared version and version line.
+void record_program(const Policy& pol, const se::CommandConfig& c, const SolverOptions& so) {
+  if (!pol.record) return;
+  ProgramRun p;
+  if (!so.version_args.empty())
+    p.version_line = pol.dry_run ? "(not asked: --dry-run launches nothing)" : version_line(c, so.version_args);
+  p.name = c.program_name;
+  p.path = c.program;
+  try {
+    p.digest = digest_path(c.program);
+  } catch (const Error&) {
+    p.digest.hash = "unreadable";  // the run fails when it starts, with the OS's reason
+  }
+  p.version = c.version;
+  pol.record->program(std::move(p));
+}
+
 /// Builds the config common to both forms from the option table at index 1: the options are
 /// read from Lua first (Lua errors), then checked against the sandbox policy under protect().
 se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   lua::Options o(L, 1, fname);
   if (batch)
     o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
-                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor"});
+                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor",
+                   "version_args"});
   else
     o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
                    "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
-                   "executor"});
+                   "executor", "version_args"});
   Policy& pol = lua::policy(L);
   se::CommandConfig c;
   SolverOptions so;
@@ -263,6 +324,8 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   lua_pop(L, 2);
   so.argv = read_command(L, o, batch, fname);
   if (o.push("files") != LUA_TNIL) so.files = lua::to_strings(L, -1, "files");
+  lua_pop(L, 1);
+  if (o.push("version_args") != LUA_TNIL) so.version_args = lua::to_strings(L, -1, "version_args");
   lua_pop(L, 1);
   c.version = o.string("version", "");
   c.timeout = o.number("timeout", c.timeout);
@@ -281,6 +344,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     if (!pol.script_path.empty()) c.script_hash = "sha256:" + sha256_file(pol.script_path);
     open_solver_inputs(pol, so, batch, fname, c);
     place_solver_outputs(pol, so, c);
+    record_program(pol, c, so);
     return 0;
   });
   return c;

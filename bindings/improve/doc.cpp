@@ -17,8 +17,9 @@ Model form: inputs whose mean/std are ranges {lower, upper, start} are calibrate
 model's predicted distributions (Monte Carlo with common random numbers, KDE of each output)
 match the experimental data, by the probability residual (default), the log-likelihood, or your
 metric. Objective form: parameters = {{name, lower, upper, start}, ...} and objective(theta).
-The optimizer works in scaled [0, 1] units (SLSQP with central differences, COBYLA, BOBYQA or
-Nelder-Mead), from the start and multistart - 1 seeded points.
+The optimizer works in scaled [0, 1] units (the gradient-based SLSQP or L-BFGS, with analytic
+gradients where the model gives them and central differences otherwise, or the derivative-free
+COBYLA, BOBYQA or Nelder-Mead), from the start and multistart - 1 seeded points.
 options:
   model = nil                 -- model form: an smi.model, an smi.kriging (or a table of them by
                               -- output), or a function(X) returning {output = vec}
@@ -52,8 +53,9 @@ options:
   objective = nil             -- objective form: function(theta) returning a number; theta[name]
   method = "slsqp"            -- "slsqp", "lbfgs" (gradient-based too), "cobyla", "bobyqa" or "neldermead"
   multistart = ${multistart}  -- starts: the given one plus multistart - 1 seeded points
-  hops = ${hops}              -- basin hopping: each start jumps hops times from its optimum (up to
-  hop_step = ${hop_step}      -- +-hop_step of each range) and keeps a lower optimum; for multimodal fits
+  hops = ${hops}              -- basin hopping: each start jumps hops times from its optimum and keeps
+                              -- a lower optimum it finds (for multimodal fits; 0: no hops)
+  hop_step = ${hop_step}      -- the largest jump of a hop, as a share of each parameter's range
   maxeval = ${maxeval}        -- objective evaluations per start (finite-difference probes included)
   xtol_rel = ${xtol_rel}      -- relative tolerance on the scaled parameters
   ftol_abs = ${ftol_abs}      -- absolute tolerance on the objective
@@ -109,7 +111,8 @@ options:
                            -- {name = value}}, ...}
   tie_tol = 1e-12          -- overall ratings closer than this are ties
 returns: {ratings (criterion x candidate), overall = {...}, weights, best (index), best_name,
-  best_candidate, ranking = {names}, ties}; tostring(r) prints the matrix
+  best_candidate, ranking = {indices into candidates, best first}, ties (indices)}; tostring(r) prints
+  the matrix
 errors: no candidates or criteria; a magnitude count that does not match the candidates (named);
   a magnitude that is not a number, negative or NaN (criterion and candidate named); weights that
   do not sum to 1 ("divide each weight by the sum")

@@ -13,8 +13,8 @@ Gaussian kernel density estimate of data, with the bandwidth rule named by its f
 bandwidth; large evaluations use a binned path with a stated error bound.
 options:
   bandwidth = "silverman"  -- a number, or a rule: silverman, 1.06, robust, scott, mad, lscv, sj
-  method = "auto"          -- "exact" sums, "binned" (linear binning + FFT), or "auto" (binned
-                           -- for large data x points)
+  method = "auto"          -- "exact" sums, "binned" (linear binning, then exact Gaussian weights
+                           -- over the bins; no FFT), or "auto" (binned for large data x points)
   tol = ${tol}             -- the binned path's error bound relative to the kernel peak, in (0, 0.1)
   threads = ${threads}     -- worker threads for large evaluations (results identical for any count)
 returns: a dist (smi.dist:* methods) with k.bandwidth and k.family = "kde"

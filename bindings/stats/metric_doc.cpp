@@ -54,8 +54,9 @@ example:
 
 @ smi.metric.upool{data =, predicted =} -> verdict
 The u-pooling validity check (paper section 5): u_i = F_i(y_i) pooled over every prediction, their
-area metric U against the uniform CDF, and the threshold U_crit(n, confidence) of U under H0 from
-seeded Monte Carlo (cached per n). data and predicted are one sample and one dist, a list of
+area metric U against the uniform CDF, and the threshold U_crit(n, confidence) of U under H0: from
+seeded Monte Carlo (cached per n) for n <= 50, from a fitted table of sqrt(n) U quantiles above
+(n = 1: exact). data and predicted are one sample and one dist, a list of
 groups and one dist per group, or one datum per dist.
 options:
   data = (required)        -- a vec/table, or a list of them (groups)
@@ -80,7 +81,9 @@ example:
   print(v:curve().x)
 
 @ smi.metric.upool_threshold(n, confidence [, opts]) -> U_crit
-The (confidence) quantile of U under H0 for n u-values (seeded Monte Carlo, cached per n).
+The (confidence) quantile of U under H0 for n u-values. For n <= 50 from seeded Monte Carlo
+(cached per n); for n > 50 from a fitted table of the quantiles of sqrt(n) U (replications and
+seed then do not apply); n = 1 exact.
 options:
   replications = ${replications}  -- Monte Carlo sets
   seed = ${seed}           -- the Monte Carlo seed

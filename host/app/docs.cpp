@@ -71,13 +71,23 @@ example:
   print("locked")
 
 @ smi.provenance([opts]) -> table
-What produced this run's numbers: smi-lua version, seed, the script's SHA-256, and every
-library's version, content hash and git commit. smi.study records it in results.json;
-`smi-lua verify results.json` compares it with the libraries at hand.
+What this run's numbers depend on so far: every file it read (Lua modules, dofile/loadfile
+chunks, data, priors, templates, the embedded stdlib modules), each with its SHA-256 taken from
+the bytes read (files over 1 GB: size and mtime, marked large); every program a model runs (path,
+SHA-256, declared version); the command line, the script's arguments and smi-lua's options that
+change results (seed, executor, --slurm-opt, --timeout, --max-memory, --store); the version and
+build of smi-lua (compiler, Lua, Eigen, NLopt, SQLite, RE2, nettle, fmt); every library's version,
+content hash and git commit. smi.study records it in results.json after every step (schema 2,
+docs/provenance.md); `smi-lua verify results.json` hashes it all again.
 options:
   files = true  -- include each library file's SHA-256 (false: only the folder hash)
-returns: {smi_lua =, seed =, script = {path =, hash =}, libraries = {{name =, version =,
-  path =, hash =, commit =, files = {...}}, ...}}
+returns: {smi_lua =, lua =, build = {compiler =, eigen =, ...}, seed =, command = {...}, cwd =,
+  arguments = {...}, options = {seed =, executor =, ...}, script = {path =, hash =},
+  files = {[path] = {kind = "lua" | "data" | "stdlib" | "program" | "script", hash =, size =
+  [, large = true, mtime =]}}, programs = {{name =, path =, hash =, size =, version =}, ...},
+  libraries = {{name =, version =, path =, hash =, commit =, source =, files = {...}}, ...}}
+  (source and commit of a library of the project's tree come from smi-lock.json: where `smi-lua
+  libs add` fetched it and what it resolved)
 errors: a library file that cannot be read
 example:
   local p = smi.provenance{files = false}

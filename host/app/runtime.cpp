@@ -249,12 +249,31 @@ void Runtime::build_policy() {
   policy_.allow_env = cfg_.allow_env;
   policy_.detach = cfg_.detach;
   policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
+
+  // Provenance (issue 24): the options of smi-lua that change results, and where reads are
+  // outputs of the run rather than inputs (the output folder: results.json, the runs' folders).
+  policy_.record = &record_;
+  record_.exclude_roots.push_back(policy_.out_root.string());
+  std::error_code ec;
+  record_.cwd = fs::current_path(ec).string();
+  auto opt = [&](const char* k, std::string v) { record_.options.emplace_back(k, std::move(v)); };
+  opt("seed", std::to_string(cfg_.seed));
+  opt("executor", cfg_.executor.empty() ? "local" : cfg_.executor);
+  for (const auto& s : cfg_.slurm_opts) opt("slurm-opt", s);
+  if (cfg_.timeout_s > 0) opt("timeout", std::to_string(cfg_.timeout_s));
+  if (cfg_.max_memory_mb > 0) opt("max-memory", std::to_string(cfg_.max_memory_mb));
+  if (!cfg_.store_path.empty()) opt("store", resolve_path(cfg_.store_path).string());
+  if (cfg_.dry_run) opt("dry-run", "true");
+  if (!cfg_.stdlib_dir.empty()) opt("stdlib-dir", resolve_path(cfg_.stdlib_dir).string());
 }
 
 Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   build_policy();
   // Two versions of a library or an unmet requirement stop the run before any code runs.
-  libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")));
+  // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too.
+  const ProjectLibraries project = project_libraries(fs::current_path());
+  if (!project.tree.empty()) policy_.read_roots.push_back(resolve_path(project.tree.string()));
+  libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")), &project);
   libs_.check();
   limits_.timeout_s = cfg_.timeout_s;
   limits_.mem_limit = cfg_.max_memory_mb << 20;
@@ -326,6 +345,10 @@ void Runtime::set_arg(int argc, char** argv, int script_index) {
     lua_rawseti(L_, -2, i - script_index);
   }
   lua_setglobal(L_, "arg");
+  record_.command_line.assign(argv, argv + argc);
+  record_.script_args.clear();
+  if (script_index > 0)
+    for (int i = script_index + 1; i < argc; ++i) record_.script_args.emplace_back(argv[i]);
 }
 
 int Runtime::docall(int nargs, int nresults) {
@@ -386,6 +409,12 @@ int Runtime::report(int status) {
 
 int Runtime::run_file(const std::string& path, const std::vector<std::string>& args) {
   const bool stdin_script = path == "-";
+  if (!stdin_script) {
+    try {  // provenance: the script itself (a file that cannot be read fails in the load below)
+      record_.path("script", resolve_path(path).string());
+    } catch (const std::exception&) {
+    }
+  }
   // Read whole, then loaded through the guard against Lua 5.4.4's code-generation bug
   // (luax/load_guard.hpp); a file that cannot be read gets luaL_loadfilex's own message.
   std::string text;

@@ -8,6 +8,7 @@
 #include <lua.hpp>
 
 #include "kernels/core/defaults.hpp"
+#include "kernels/core/run_record.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 #include "vm/libraries.hpp"
@@ -82,9 +83,11 @@ class Runtime {
   ModuleSearch modules_;
   lua_State* L_;
   LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
+  RunRecord record_;  // what the run read and ran: smi.provenance() (issue 24)
 
  public:
   const LibrarySet& libraries() const { return libs_; }
+  const RunRecord& record() const { return record_; }
 };
 
 }  // namespace smi::vm

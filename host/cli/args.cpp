@@ -88,6 +88,8 @@ Args parse(int argc, char** argv) {
       a.warnings = true;
     } else if (s == "-E") {
       a.ignore_env = true;
+    } else if (s == "--version") {
+      a.version_build = true;
     } else if (s == "-h" || s == "--help") {
       a.help = true;
     } else if (s == "--quiet" || s == "-q") {
@@ -157,12 +159,17 @@ const char* help_text() {
 
 Runs a study script (or stdin with '-') in a sandbox; with no script, starts the REPL on a
 terminal and runs stdin otherwise. The script gets its arguments as arg[1..n] and as '...'.
+The options below go before the script: everything after it is the script's own (a study's
+--help lists them), so `smi-lua study.lua --out DIR` is refused by smi.options with
+"smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ...".
 
 Lua options (as the lua program):
   -e chunk            run the string 'chunk' (in order with -l, before the script)
   -l mod              require 'mod' into the global 'mod'; -l g=mod names the global g
   -i                  enter the REPL after running the script
   -v                  print version information
+  --version           print the version and the build (compiler, Lua, Eigen, NLopt, SQLite,
+                      RE2, nettle, fmt versions) and exit
   -W                  turn warnings on
   -E                  ignore the environment variables SMI_PATH and SMI_STDLIB_DIR
   --                  stop handling options (the next argument is the script)
@@ -208,9 +215,20 @@ Cluster (solver runs of smi.model.command / smi.model.batch):
 
 Commands (sharing libraries; options such as --lib go before or after them):
   libs                the libraries a study would see: name, version, git commit, path
+  libs add SRC[@REF]  install a library (git URL, folder or .tar.gz; REF a tag, branch or
+                      commit) and what it requires into ./smi-libs (--into DIR); records
+                      name, version, source, commit and every file's SHA-256 in smi-lock.json
+  libs sync [--check] install exactly what smi-lock.json says, checking every file (--check:
+                      only check)
+  libs tree           what requires what, with versions
+  libs outdated       newer version tags at each locked library's source
+  libs remove NAME[@VERSION]   uninstall (and drop from smi-lock.json)
+  libs pack DIR       DIR's library as NAME-VERSION.tar.gz with a checksum file
   new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
-  test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed"
-  verify RESULTS      do the libraries at hand match those recorded in RESULTS (results.json)?
+  test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
+  verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,
+                      solvers, libraries, build; lists each difference; exit 0 all match, 1 a
+                      difference, 2 not a results file (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on

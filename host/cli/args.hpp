@@ -19,10 +19,13 @@ struct Args {
   std::vector<Action> actions;
   bool interactive = false;   // -i
   bool version = false;       // -v
+  bool version_build = false;  // --version: version and build line, then exit 0
   bool help = false;          // --help / -h
   bool warnings = false;      // -W
   bool quiet_given = false;   // --quiet
   bool ignore_env = false;    // -E
+  std::string libs_into;      // smi-lua libs add/sync --into DIR
+  bool libs_check = false;    // smi-lua libs sync --check
   int script_index = 0;       // index in argv of the script (or "-"); 0 if none
   std::string error;          // a usage error (exit status 2)
 };

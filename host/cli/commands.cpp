@@ -2,13 +2,16 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 namespace smi::cli {
 
 bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify" || w == "doc"; }
 
 vm::LibrarySet current_libraries(const Args& a) {
-  return vm::LibrarySet::discover(vm::library_roots(a.cfg.lib_dirs, a.ignore_env ? nullptr : std::getenv("SMI_PATH")));
+  const vm::ProjectLibraries project = vm::project_libraries(std::filesystem::current_path());
+  return vm::LibrarySet::discover(vm::library_roots(a.cfg.lib_dirs, a.ignore_env ? nullptr : std::getenv("SMI_PATH")),
+                                  &project);
 }
 
 int run_command(const Args& first, int argc, char** argv) {
@@ -26,13 +29,30 @@ int run_command(const Args& first, int argc, char** argv) {
     }
   }
   std::vector<std::string> opts, pos;
+  std::string into;
+  bool check = false;
   for (int i = at + 1; i < argc; ++i) {
     const std::string s = argv[i];
+    if (word == "libs" && s == "--check") {  // options of libs alone (libs_install.cpp)
+      check = true;
+      continue;
+    }
+    if (word == "libs" && (s == "--into" || s.rfind("--into=", 0) == 0)) {
+      if (s != "--into") into = s.substr(7);
+      else if (i + 1 < argc) into = argv[++i];
+      if (into.empty()) {
+        std::fprintf(stderr, "smi-lua libs: --into needs a folder (the library tree, default ./smi-libs)\n");
+        return 2;
+      }
+      continue;
+    }
     if (s == "--") {
       for (++i; i < argc; ++i) pos.push_back(argv[i]);
       break;
     }
-    if (s.size() > 1 && s[0] == '-') {
+    if (word == "verify" && s == "--json") {  // verify's own option
+      pos.push_back(s);
+    } else if (s.size() > 1 && s[0] == '-') {
       char* probe[] = {argv[0], const_cast<char*>(s.c_str()), nullptr};
       const Args t = parse(2, probe);
       opts.push_back(s);
@@ -48,6 +68,8 @@ int run_command(const Args& first, int argc, char** argv) {
   for (auto& w : words) av.push_back(w.data());
   av.push_back(nullptr);
   Args a = parse(static_cast<int>(words.size()), av.data());
+  a.libs_into = into;
+  a.libs_check = check;
   if (!a.error.empty()) {
     std::fprintf(stderr, "smi-lua %s: %s\n", word.c_str(), a.error.c_str());
     return 2;

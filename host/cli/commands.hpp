@@ -2,9 +2,13 @@
 // Subcommands for sharing libraries (the word in the script position selects one; a script
 // file literally named like a command is run as ./libs):
 //   smi-lua libs                 the libraries a study would see: name, version, commit, path
+//   smi-lua libs add SOURCE[@REF] / sync [--check] / tree / outdated / remove NAME / pack DIR
+//                                install, restore and inspect the project's library tree and
+//                                smi-lock.json (libs_install.cpp, libs_pack.cpp)
 //   smi-lua new-lib NAME [DIR]   scaffold a library (manifest, module, a passing test, README)
 //   smi-lua test DIR             run DIR/tests/test_*.lua sandboxed; prints "N passed, N failed"
-//   smi-lua verify RESULTS.json  do the libraries at hand still match those a study recorded?
+//   smi-lua verify RESULTS.json  does everything a study recorded (files, programs, libraries,
+//                                build) still hash the same? (--json for tools)
 //   smi-lua doc [NAME]           the reference (help() text); doc --html DIR writes it as pages
 // Options such as --lib, --allow-read and --seed may come before or after the command word.
 #include <string>
@@ -23,6 +27,11 @@ int run_command(const Args& a, int argc, char** argv);
 
 // The commands, each in its own file. `args` are the positional words after the command.
 int cmd_libs(const Args& a, const std::vector<std::string>& args);
+int libs_add(const Args& a, const std::vector<std::string>& args);
+int libs_sync(const Args& a, const std::vector<std::string>& args);
+int libs_remove(const Args& a, const std::vector<std::string>& args);
+int libs_outdated(const Args& a, const std::vector<std::string>& args);
+int libs_pack(const Args& a, const std::vector<std::string>& args);
 int cmd_new_lib(const Args& a, const std::vector<std::string>& args);
 int cmd_test(const Args& a, const std::vector<std::string>& args, const char* argv0);
 int cmd_verify(const Args& a, const std::vector<std::string>& args);

@@ -31,6 +31,8 @@ version = "0.1.0"          -- MAJOR.MINOR.PATCH: raise MAJOR when a change break
 description = "TODO: one line saying what @NAME@ offers"
 requires = {               -- other libraries, e.g. "kdetools >= 1.2", "smi-lua >= 0.1"
 }
+-- where `smi-lua libs add` fetches each required library (a git URL, a folder or a .tar.gz):
+-- sources = {kdetools = "https://git.example.org/kdetools.git"}
 )LUA";
 
 const char* const kInit = R"LUA(--- @NAME@: require "@NAME@" gives this table; require "@NAME@.x" loads x.lua from this folder.
@@ -75,6 +77,8 @@ A smi-lua library. Use it from a study:
 
 Test it: `smi-lua test path/to/@NAME@`. Release it: raise `version` in smi-lib.lua
 and tag the commit (`git tag v0.1.0`); studies record the version, content hash and commit.
+Other teams install a release with `smi-lua libs add <repository>@v0.1.0` (or from
+`smi-lua libs pack path/to/@NAME@`, a .tar.gz with checksums).
 )LUA";
 
 }  // namespace

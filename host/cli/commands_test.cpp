@@ -1,7 +1,9 @@
 // smi-lua test DIR: runs each DIR/tests/test_*.lua as its own sandboxed smi-lua process (so one
-// test cannot disturb another), with DIR on the library path, and prints "N passed, N failed"
-// counting test files. A file passes when it exits with status 0 (smi.testing's T.finish()
-// raises when a case failed).
+// test cannot disturb another), with DIR on the library path, and prints one summary line,
+// "N passed, N failed", counting cases (each file's own "N passed, N failed" from T.finish()),
+// the form every test file prints too. A file that stops before its summary (a syntax error, a
+// crash) counts as one failed case; a file exiting 0 without a summary as one passed case.
+// A file passes when it exits with status 0 (T.finish() raises when a case failed).
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -24,12 +26,17 @@ std::string read_all(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-/// The last "N passed, N failed" line a test printed, or "".
-std::string case_summary(const std::string& out) {
-  static const RE2 re(R"((\d+ passed, \d+ failed))");
+/// The last "N passed, N failed" line a test printed ("" if none), and its counts.
+std::string case_summary(const std::string& out, long& passed, long& failed) {
+  static const RE2 re(R"(((\d+) passed, (\d+) failed))");
   re2::StringPiece rest(out);
   std::string m, last;
-  while (RE2::FindAndConsume(&rest, re, &m)) last = m;
+  long p = 0, f = 0;
+  while (RE2::FindAndConsume(&rest, re, &m, &p, &f)) {
+    last = m;
+    passed = p;
+    failed = f;
+  }
   return last;
 }
 
@@ -75,7 +82,8 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
 
   std::printf("testing %s %s (%s)\n", m.name.c_str(), m.version.text.c_str(), dir.string().c_str());
   std::fflush(stdout);
-  int passed = 0, failed = 0;
+  int passed = 0, failed = 0;  // files
+  long cases_passed = 0, cases_failed = 0;
   for (const fs::path& t : tests) {
     const std::string stem = t.stem().string();
     std::vector<std::string> av = {self.string(), "--quiet"};
@@ -102,7 +110,12 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
     }
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     const std::string out = read_all(spec.stdout_path), err = read_all(spec.stderr_path);
-    const std::string cases = case_summary(out);
+    long cp = 0, cf = 0;
+    const std::string cases = case_summary(out, cp, cf);
+    if (cases.empty()) (ok ? cp : cf) = 1;  // no count printed: the file is one case
+    if (!ok && cf == 0) cf = 1;              // exited non-zero after a clean summary: still a failure
+    cases_passed += cp;
+    cases_failed += cf;
     const std::string rel = t.lexically_relative(dir).generic_string();
     if (ok) {
       ++passed;
@@ -115,7 +128,8 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
     }
     std::fflush(stdout);
   }
-  std::printf("%d passed, %d failed\n", passed, failed);
+  std::printf("%ld passed, %ld failed (%d test file%s, %d failed)\n", cases_passed, cases_failed, passed + failed,
+              passed + failed == 1 ? "" : "s", failed);
   return failed == 0 ? 0 : 1;
 }
 

@@ -12,6 +12,7 @@
 #include "app/runtime.hpp"
 #include "cli/args.hpp"
 #include "cli/commands.hpp"
+#include "vm/build_info.hpp"
 #include "kernels/eval/process.hpp"
 #include "repl/repl.hpp"
 
@@ -67,6 +68,10 @@ int main(int argc, char** argv) {
   if (!a.error.empty()) {
     std::fprintf(stderr, "smi-lua: %s\n%s\n", a.error.c_str(), smi::cli::usage_line());
     return kUsageError;
+  }
+  if (a.version_build) {  // the build line results.json records as provenance.build
+    std::printf("%s\n", smi::vm::build_line().c_str());
+    return 0;
   }
   if (a.help) {
     std::fputs(smi::cli::help_text(), stdout);

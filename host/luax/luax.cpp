@@ -1,4 +1,8 @@
 #include "luax/luax.hpp"
+#include <map>
+#include <mutex>
+#include <set>
+#include "kernels/core/closest.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -36,16 +40,12 @@ int index_dispatch(lua_State* L) {
   return 0;  // nil, as for a missing table field
 }
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
+// The option names each function reads (check_known, by function name): smi-lua doc --check
+// compares them with the documented option lists (known_options()).
+std::mutex g_known_mutex;
+std::map<std::string, std::set<std::string>>& known_registry() {
+  static std::map<std::string, std::set<std::string>> r;
+  return r;
 }
 
 }  // namespace
@@ -243,7 +243,19 @@ bool Options::boolean(const char* key, bool def) const {
   return out;
 }
 
+std::map<std::string, std::set<std::string>> known_options() {
+  const std::lock_guard<std::mutex> lock(g_known_mutex);
+  return known_registry();
+}
+
+void record_known_options(const std::string& fname, const std::vector<std::string>& keys) {
+  const std::lock_guard<std::mutex> lock(g_known_mutex);
+  auto& into = known_registry()[fname];
+  into.insert(keys.begin(), keys.end());
+}
+
 void Options::check_known(std::initializer_list<const char*> known) const {
+  if (fname_) record_known_options(fname_, std::vector<std::string>(known.begin(), known.end()));
   if (!idx_) return;
   lua_pushnil(L_);
   while (lua_next(L_, idx_)) {
@@ -255,7 +267,7 @@ void Options::check_known(std::initializer_list<const char*> known) const {
     std::size_t best_d = 1000;
     for (const char* k : known) {
       if (std::strcmp(k, key) == 0) ok = true;
-      const std::size_t d = edit_distance(k, key);
+      const std::size_t d = smi::name_distance(k, key);
       if (d < best_d) best_d = d, best = k;
     }
     if (!ok) {

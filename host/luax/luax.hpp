@@ -16,6 +16,8 @@
 #include <cstdio>
 #include <exception>
 #include <initializer_list>
+#include <map>
+#include <set>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -245,6 +247,13 @@ void push_named_vectors(lua_State* L, const std::vector<std::string>& names, con
 
 // ---------------------------------------------------------------------------------------------
 // Options tables: trailing {key = value} arguments.
+
+/// The option names every function has checked with Options::check_known so far in this process,
+/// by the function name given to Options (what smi-lua doc --check compares with the docs).
+std::map<std::string, std::set<std::string>> known_options();
+/// Adds to known_options(): for a function that checks its option names another way than
+/// Options::check_known (a kernel's spec table), so that the doc check still compares them.
+void record_known_options(const std::string& fname, const std::vector<std::string>& keys);
 
 class Options {
  public:

@@ -132,6 +132,12 @@ CheckedFile open_read_within(const std::string& path, const std::vector<fs::path
 }
 
 CheckedFile Policy::open_read(const std::string& path) const {
+  CheckedFile f = open_read_unrecorded(path);
+  if (record) record->file("data", f.path, f.fd.get());
+  return f;
+}
+
+CheckedFile Policy::open_read_unrecorded(const std::string& path) const {
   if (unrestricted) {
     std::vector<fs::path> all{"/"};
     return open_read_within(path, all, "");
@@ -297,6 +303,14 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
   fs::path resolved;
   if (program.find('/') != std::string::npos) {
     resolved = resolve_path(program);
+    // a path that names no program fails now, where the model is declared, not at its first run
+    struct stat st {};
+    if (::stat(resolved.c_str(), &st) != 0)
+      throw Error(fmt::format("program '{}' does not exist ({}): check the path{}", program, resolved.string(),
+                              program[0] == '/' ? "" : " (relative to the current folder)"));
+    if (!S_ISREG(st.st_mode) || ::access(resolved.c_str(), X_OK) != 0)
+      throw Error(fmt::format("program '{}' ({}) is not an executable file{}", program, resolved.string(),
+                              S_ISREG(st.st_mode) ? ": make it executable (chmod +x) or give the program itself" : ""));
   } else if (const char* env = std::getenv("PATH")) {
     std::string dirs = env;
     std::size_t start = 0;

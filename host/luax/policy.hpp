@@ -12,6 +12,7 @@
 #include "kernels/core/defaults.hpp"
 #include "kernels/core/errors.hpp"
 #include "kernels/core/path_walk.hpp"
+#include "kernels/core/run_record.hpp"
 
 namespace smi {
 
@@ -68,6 +69,9 @@ struct Policy {
   std::function<void(int code)> request_exit;
 
   std::filesystem::path out_root;                  // output_root(out_dir) at start (made on demand, no symlinks)
+  /// What the run read and ran (provenance, issue 24); set by the runtime, null in kernel tests.
+  /// open_read records every file it opens here (hashed from the opened descriptor).
+  RunRecord* record = nullptr;
 
   // Files a script names are opened only through these (issue 13 item 1): the path is walked
   // one component at a time through descriptors (core/path_walk.hpp), the canonical path reached
@@ -80,6 +84,9 @@ struct Policy {
 
   /// Opens `path` for reading: it must lie under a read root (write roots are readable too).
   CheckedFile open_read(const std::string& path) const;
+  /// The same check and open without recording the file as an input of the run (provenance's
+  /// own re-hashing of recorded files).
+  CheckedFile open_read_unrecorded(const std::string& path) const;
   /// Opens `path` for writing with open(2) flags `oflags` (O_WRONLY or O_RDWR, O_CREAT, O_APPEND,
   /// O_TRUNC): its folder must lie under a write root. A file with other hard links is refused
   /// (writing it would change a file elsewhere); O_TRUNC is applied after that check. A path

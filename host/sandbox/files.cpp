@@ -199,7 +199,9 @@ int load_checked(lua_State* L, const char* path, const char* fname) {
   std::string text, failure;
   lua::protect(L, fname, [&] {
     try {
-      const CheckedFile f = lua::policy(L).open_read(path);
+      const Policy& pol = lua::policy(L);
+      const CheckedFile f = pol.open_read(path);
+      if (pol.record) pol.record->file("lua", f.path, f.fd.get());  // provenance: code, not data
       text = read_checked(f, path);
     } catch (const FileError& e) {
       failure = std::string("cannot open ") + e.what();

@@ -1,6 +1,7 @@
 #include "vm/libraries.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "kernels/core/errors.hpp"
 #include "luax/policy.hpp"
@@ -40,34 +41,169 @@ std::vector<LibraryRoot> library_roots(const std::vector<std::string>& lib_dirs,
   return out;
 }
 
-LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& roots) {
+ProjectLibraries project_libraries(const fs::path& dir) {
+  ProjectLibraries p;
+  std::error_code ec;
+  if (fs::is_regular_file(dir / kLockfileName, ec)) {
+    p.lockfile = dir / kLockfileName;
+    p.lock = read_lockfile(p.lockfile);
+    p.tree = lock_tree(*p.lock, p.lockfile);
+  } else if (fs::is_directory(dir / kTreeName, ec)) {
+    p.tree = dir / kTreeName;
+  }
+  return p;
+}
+
+namespace {
+
+/// The version folders of <root>/<name>/: folders named by a version and holding a manifest.
+std::vector<fs::path> version_folders(const fs::path& name_dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(name_dir, ec)) {
+    if (!e.is_directory(ec) || !fs::is_regular_file(e.path() / kManifestName, ec)) continue;
+    try {
+      Version::parse(e.path().filename().string());
+      out.push_back(e.path());
+    } catch (const Error&) {
+    }
+  }
+  return out;
+}
+
+/// Chooses one of the side-by-side versions of each library of a tree (appended to `libs`): the
+/// version the lockfile pins (the others stay hidden; a pinned version not installed is a
+/// problem), else the highest that satisfies every requirement on it from the libraries seen.
+void choose_versions(std::map<std::string, std::vector<Library>>& versioned, const ProjectLibraries* project,
+                     std::vector<Library>& libs, std::vector<std::string>& problems,
+                     std::map<std::string, std::vector<std::string>>& versions) {
+  const Lockfile* lock = project && project->lock ? &*project->lock : nullptr;
+  // A lockfile pins one version of each library it names and hides the others.
+  if (lock)
+    for (const LockEntry& e : lock->libs) {
+      auto it = versioned.find(e.name);
+      bool found = false;
+      if (it != versioned.end())
+        for (Library& l : it->second)
+          if (!found && l.manifest.version.text == e.version) {
+            l.source = e.source;
+            l.git = GitInfo{};
+            l.git.commit = e.commit.size() == 40 ? e.commit : "";
+            libs.push_back(l);
+            found = true;
+          }
+      if (!found)
+        problems.push_back(project->lockfile.string() + " pins " + e.name + " " + e.version + ", but " +
+                                     (project->tree / e.name / e.version).string() +
+                                     " is not installed; run smi-lua libs sync");
+    }
+  // Without a lock entry: the highest version that satisfies every requirement on it.
+  std::map<std::string, std::size_t> pick;  // name -> index in versioned[name]
+  for (auto& [name, libs] : versioned) {
+    std::sort(libs.begin(), libs.end(), [](const Library& a, const Library& b) {
+      return compare(a.manifest.version, b.manifest.version) > 0;
+    });
+    for (const Library& l : libs) versions[name].push_back(l.manifest.version.text);
+    if (lock) continue;
+    pick[name] = 0;
+  }
+  const auto chosen = [&](const std::string& name) { return &versioned[name][pick[name]]; };
+  for (int round = 0; round < 20; ++round) {
+    bool changed = false;
+    for (auto& [name, idx] : pick) {
+      std::vector<const Requirement*> on;
+      const auto collect = [&](const Library& l) {
+        for (const Requirement& r : l.manifest.requires_)
+          if (r.name == name) on.push_back(&r);
+      };
+      for (const Library& l : libs) collect(l);
+      for (const auto& [other, j] : pick)
+        if (other != name) collect(versioned[other][j]);
+      std::size_t best = idx;
+      for (std::size_t k = 0; k < versioned[name].size(); ++k) {
+        bool ok = true;
+        for (const Requirement* r : on) ok = ok && r->accepts(versioned[name][k].manifest.version);
+        if (ok) {
+          best = k;
+          break;
+        }
+      }
+      if (best != idx) {
+        idx = best;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  for (const auto& [name, idx] : pick) libs.push_back(*chosen(name));
+}
+
+}  // namespace
+
+LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& given, const ProjectLibraries* project) {
   LibrarySet set;
-  set.roots_ = roots;
-  const auto add = [&](const fs::path& folder, const LibraryRoot& root) {
+  set.roots_ = given;
+  const Lockfile* lock = project && project->lock ? &*project->lock : nullptr;
+  if (project && !project->tree.empty())
+    set.roots_.push_back({project->tree.string(), lock ? "smi-lock.json's tree" : "the project's tree"});
+  const auto make = [&](const fs::path& folder, const LibraryRoot& root) {
     Library lib;
     lib.folder = resolve_path(folder.string());
-    // The same folder reached twice (--lib and SMI_PATH naming it) is one library, not a conflict.
-    for (const Library& l : set.libs_)
-      if (l.folder == lib.folder) return;
     lib.manifest = read_manifest(lib.folder / kManifestName);
     lib.root = root;
-    lib.git = git_info(lib.folder);
-    set.libs_.push_back(std::move(lib));
+    return lib;
   };
-  for (const LibraryRoot& root : roots) {
+  const auto seen = [&](const fs::path& folder) {
+    const fs::path f = resolve_path(folder.string());
+    for (const Library& l : set.libs_)
+      if (l.folder == f) return true;
+    return false;
+  };
+  // Side-by-side versions, by name; chosen among once every root is read.
+  std::map<std::string, std::vector<Library>> versioned;
+  for (const LibraryRoot& root : set.roots_) {
     std::error_code ec;
     const fs::path dir(root.dir);
     if (fs::is_regular_file(dir / kManifestName, ec)) {
-      add(dir, root);
+      // The same folder reached twice (--lib and SMI_PATH naming it) is one library, not a conflict.
+      if (!seen(dir)) {
+        Library lib = make(dir, root);
+        lib.git = git_info(lib.folder);
+        set.libs_.push_back(std::move(lib));
+      }
       continue;
     }
     if (!fs::is_directory(dir, ec)) continue;  // a missing folder finds nothing (as for plain modules)
-    std::vector<fs::path> subs;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.is_directory(ec) && fs::is_regular_file(e.path() / kManifestName, ec)) subs.push_back(e.path());
+    std::vector<fs::path> subs, trees;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      if (!e.is_directory(ec)) continue;
+      if (fs::is_regular_file(e.path() / kManifestName, ec)) subs.push_back(e.path());
+      else if (!version_folders(e.path()).empty()) trees.push_back(e.path());
+    }
     std::sort(subs.begin(), subs.end());  // a stable order, whatever the file system's
-    for (const auto& s : subs) add(s, root);
+    std::sort(trees.begin(), trees.end());
+    for (const auto& s : subs)
+      if (!seen(s)) {
+        Library lib = make(s, root);
+        lib.git = git_info(lib.folder);
+        set.libs_.push_back(std::move(lib));
+      }
+    for (const auto& t : trees) {
+      std::vector<fs::path> vs = version_folders(t);
+      std::sort(vs.begin(), vs.end());
+      for (const auto& v : vs) {
+        Library lib = make(v, root);
+        if (lib.name() != t.filename().string() || lib.manifest.version.text != v.filename().string())
+          throw Error("library tree folder '" + v.string() + "' holds " + lib.name() + " " + lib.manifest.version.text +
+                      " in its " + kManifestName + ", not " + t.filename().string() + " " + v.filename().string() +
+                      ": the folder was changed by hand; remove it and run smi-lua libs sync (or libs add)");
+        bool dup = false;
+        for (const Library& o : versioned[lib.name()]) dup = dup || o.folder == lib.folder;
+        if (!dup) versioned[lib.name()].push_back(std::move(lib));
+      }
+    }
   }
+  choose_versions(versioned, project, set.libs_, set.tree_problems_, set.versions_);
   return set;
 }
 
@@ -77,8 +213,16 @@ const Library* LibrarySet::find(const std::string& name) const {
   return nullptr;
 }
 
+std::string LibrarySet::seen_versions(const std::string& name) const {
+  const auto it = versions_.find(name);
+  if (it == versions_.end()) return "";
+  std::string s;
+  for (const auto& v : it->second) s += (s.empty() ? "" : ", ") + v;
+  return " (versions of " + name + " in the library tree: " + s + ")";
+}
+
 std::vector<std::string> LibrarySet::problems() const {
-  std::vector<std::string> out;
+  std::vector<std::string> out = tree_problems_;
   std::string searched;
   for (const auto& r : roots_) searched += (searched.empty() ? "" : ", ") + r.origin + " " + r.dir;
   for (std::size_t i = 0; i < libs_.size(); ++i) {
@@ -114,7 +258,7 @@ std::vector<std::string> LibrarySet::problems() const {
         out.push_back(who + ", but " + dep->describe() + " does not satisfy " + r.constraint() + "; put a version of " +
                       r.name + " with " + r.constraint() + " on the library path (e.g. check out a matching tag in " +
                       dep->folder.string() + "), or use a release of " + a.name() + " that accepts " + r.name + " " +
-                      dep->manifest.version.text);
+                      dep->manifest.version.text + seen_versions(r.name));
       }
     }
   }

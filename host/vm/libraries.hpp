@@ -4,15 +4,23 @@
 // libraries (each subfolder holding smi-lib.lua is one). Entries without any manifest stay plain
 // module folders for the path searcher.
 //
+// A library tree (what `smi-lua libs add` fills: <tree>/<name>/<version>/smi-lib.lua) may hold
+// several versions of a library side by side; a study sees one of them: the version the
+// project's smi-lock.json pins when there is one, else the highest version that satisfies every
+// requirement of the other libraries it sees. The project folder is the current folder: its
+// smi-libs/ (or the tree its smi-lock.json names) is searched after --lib and SMI_PATH.
+//
 // Before a study starts the set is checked: one version per library name, and every `requires`
 // met. Each problem is reported with which library, where, and how to fix it.
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "vm/folder_hash.hpp"
 #include "vm/git_commit.hpp"
+#include "vm/lockfile.hpp"
 #include "vm/manifest.hpp"
 
 namespace smi::vm {
@@ -27,7 +35,8 @@ struct Library {
   Manifest manifest;
   std::filesystem::path folder;  // resolved, absolute
   LibraryRoot root;              // the entry it was found through
-  GitInfo git;
+  GitInfo git;                   // for a library of a tree: commit from smi-lock.json, no branch
+  std::string source;            // where `libs add` fetched it (smi-lock.json), "" otherwise
   mutable bool used = false;                     // a module of it was loaded in this run
   mutable std::optional<FolderHash> hash_cache;  // computed on first use
 
@@ -37,11 +46,21 @@ struct Library {
   std::string describe() const;
 };
 
+/// The library tree and lockfile of a project folder.
+struct ProjectLibraries {
+  std::filesystem::path lockfile;  // <dir>/smi-lock.json when it exists, else empty
+  std::optional<Lockfile> lock;
+  std::filesystem::path tree;      // the lockfile's tree, or <dir>/smi-libs; empty when neither exists
+};
+/// Reads <dir>/smi-lock.json (throws smi::Error for a malformed or hand-edited one).
+ProjectLibraries project_libraries(const std::filesystem::path& dir);
+
 class LibrarySet {
  public:
   /// Reads the manifests under `roots` (in order). Throws smi::Error for a manifest that does
   /// not load or is malformed (naming the file); conflicts are left for problems()/check().
-  static LibrarySet discover(const std::vector<LibraryRoot>& roots);
+  /// With `project`, its tree is searched last and its lockfile chooses among side-by-side versions.
+  static LibrarySet discover(const std::vector<LibraryRoot>& roots, const ProjectLibraries* project = nullptr);
 
   const std::vector<Library>& all() const { return libs_; }
   const std::vector<LibraryRoot>& roots() const { return roots_; }
@@ -54,8 +73,11 @@ class LibrarySet {
   void check() const;
 
  private:
+  std::string seen_versions(const std::string& name) const;
   std::vector<LibraryRoot> roots_;
   std::vector<Library> libs_;
+  std::vector<std::string> tree_problems_;                     // a locked version not installed
+  std::map<std::string, std::vector<std::string>> versions_;  // name -> versions seen in trees
 };
 
 /// The library-path entries of a run: the --lib folders, then SMI_PATH (':'-separated).

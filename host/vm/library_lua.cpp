@@ -5,6 +5,7 @@
 #include "kernels/core/sha256.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "vm/provenance_lua.hpp"
 #include "vm/searchers.hpp"
 
 namespace smi::vm {
@@ -46,6 +47,7 @@ int library_searcher(lua_State* L) {
         // opened through the policy like io.open: a module reached through a symlink out of
         // the library folders is refused, and the file read is the file checked
         const CheckedFile f = pol.open_read(c.string());
+        if (pol.record) pol.record->file("lua", f.path, f.fd.get());  // provenance: every module loaded
         text = read_checked(f, c.string());
         found = c.string();
         return 0;
@@ -68,6 +70,8 @@ int library_searcher(lua_State* L) {
   return 2;
 }
 
+}  // namespace
+
 /// The common fields of one library; stack: [..., t].
 void push_library_fields(lua_State* L, const Library& l) {
   set_string(L, "name", l.name());
@@ -75,9 +79,12 @@ void push_library_fields(lua_State* L, const Library& l) {
   set_string(L, "path", l.folder.string());
   if (!l.git.commit.empty()) set_string(L, "commit", l.git.commit);
   if (!l.git.branch.empty()) set_string(L, "branch", l.git.branch);
+  if (!l.source.empty()) set_string(L, "source", l.source);  // smi-lock.json: where libs add fetched it
   lua_pushboolean(L, l.used);
   lua_setfield(L, -2, "used");
 }
+
+namespace {
 
 int smi_libraries(lua_State* L) {
   const LibrarySet& set = libs_of(L);
@@ -96,52 +103,6 @@ int smi_libraries(lua_State* L) {
     lua_setfield(L, -2, "requires");
     lua_rawseti(L, -2, ++i);
   }
-  return 1;
-}
-
-int smi_provenance(lua_State* L) {
-  bool files = true;
-  if (lua_istable(L, 1)) {
-    lua_getfield(L, 1, "files");
-    if (!lua_isnil(L, -1)) files = lua_toboolean(L, -1);
-    lua_pop(L, 1);
-  } else if (!lua_isnoneornil(L, 1)) {
-    return luaL_argerror(L, 1, "expected an options table like {files = false}");
-  }
-  const LibrarySet& set = libs_of(L);
-  const Policy& pol = lua::policy(L);
-  // Hash everything first (C++ work that may throw), then build the table.
-  std::string script_hash;
-  lua::protect(L, "smi.provenance", [&] {
-    for (const Library& l : set.all()) l.hash();
-    if (!pol.script_path.empty()) script_hash = "sha256:" + sha256_file(pol.script_path);
-    return 0;
-  });
-  lua_newtable(L);
-  set_string(L, "smi_lua", host_version());
-  set_string(L, "lua", LUA_RELEASE);
-  lua_pushinteger(L, static_cast<lua_Integer>(pol.seed));
-  lua_setfield(L, -2, "seed");
-  if (!pol.script_path.empty()) {
-    lua_newtable(L);
-    set_string(L, "path", resolve_path(pol.script_path).string());  // absolute: verify runs from anywhere
-    set_string(L, "hash", script_hash);
-    lua_setfield(L, -2, "script");
-  }
-  lua_createtable(L, static_cast<int>(set.all().size()), 0);
-  int i = 0;
-  for (const Library& l : set.all()) {
-    lua_newtable(L);
-    push_library_fields(L, l);
-    set_string(L, "hash", l.hash().digest);
-    if (files) {
-      lua_newtable(L);
-      for (const auto& [rel, digest] : l.hash().files) set_string(L, rel.c_str(), digest);
-      lua_setfield(L, -2, "files");
-    }
-    lua_rawseti(L, -2, ++i);
-  }
-  lua_setfield(L, -2, "libraries");
   return 1;
 }
 
@@ -165,10 +126,8 @@ void install_libraries(lua_State* L, const LibrarySet* libs) {
   lua_pushlightuserdata(L, ud);
   lua_pushcclosure(L, smi_libraries, 1);
   lua_setfield(L, -2, "libraries");
-  lua_pushlightuserdata(L, ud);
-  lua_pushcclosure(L, smi_provenance, 1);
-  lua_setfield(L, -2, "provenance");
   lua_pop(L, 1);
+  install_provenance(L, libs);  // smi.provenance (vm/provenance_lua.cpp)
 }
 
 }  // namespace smi::vm

@@ -74,6 +74,46 @@ std::string string_field(lua_State* L, const std::filesystem::path& file, const 
   return v;
 }
 
+/// The list fields of a manifest (requires, sources) into `m`; stack: [..., manifest table].
+void read_lists(lua_State* L, const std::filesystem::path& file, Manifest& m) {
+  lua_getfield(L, -1, "requires");
+  if (lua_istable(L, -1)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+    for (lua_Integer i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -1, i);
+      if (lua_type(L, -1) != LUA_TSTRING)
+        throw Error(where(file) + ": requires[" + std::to_string(i) + "] must be a string like \"other >= 1.2\", got a " +
+                    luaL_typename(L, -1));
+      try {
+        m.requires_.push_back(Requirement::parse(lua_tostring(L, -1)));
+      } catch (const Error& e) {
+        throw Error(where(file) + ": requires[" + std::to_string(i) + "]: " + e.what());
+      }
+      lua_pop(L, 1);
+    }
+  } else if (!lua_isnil(L, -1)) {
+    throw Error(where(file) + ": field 'requires' must be a list of strings like {\"other >= 1.2\"}, got a " +
+                luaL_typename(L, -1));
+  }
+  lua_pop(L, 1);
+  lua_getfield(L, -1, "sources");
+  if (lua_istable(L, -1)) {
+    lua_pushnil(L);
+    while (lua_next(L, -2)) {
+      if (lua_type(L, -2) != LUA_TSTRING || lua_type(L, -1) != LUA_TSTRING)
+        throw Error(where(file) + ": field 'sources' must map library names to where they are fetched, like "
+                    "{kdetools = \"https://git.example.org/kdetools.git\"}; found a " + luaL_typename(L, -2) +
+                    " key with a " + luaL_typename(L, -1) + " value");
+      m.sources[lua_tostring(L, -2)] = lua_tostring(L, -1);
+      lua_pop(L, 1);
+    }
+  } else if (!lua_isnil(L, -1)) {
+    throw Error(where(file) + ": field 'sources' must be a table like {kdetools = \"https://...\"}, got a " +
+                luaL_typename(L, -1));
+  }
+  lua_pop(L, 1);
+}
+
 }  // namespace
 
 bool valid_library_name(const std::string& n) {
@@ -105,7 +145,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
   if (!lua_istable(L, -1)) lua_pop(L, 1);  // [env]
   else lua_remove(L, -2);                  // [returned]
 
-  static const char* const kKnown[] = {"name", "version", "description", "requires", "license", "authors", "homepage"};
+  static const char* const kKnown[] = {"name", "version", "description", "requires", "sources", "license", "authors", "homepage"};
   lua_pushnil(L);
   while (lua_next(L, -2)) {
     lua_pop(L, 1);
@@ -117,7 +157,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
                              ? " (did you mean 'requires'?)"
                              : "";
       throw Error(where(file) + ": unknown field '" + key + "'" + hint +
-                  "; known fields: name, version, description, requires, license, authors, homepage");
+                  "; known fields: name, version, description, requires, sources, license, authors, homepage");
     }
   }
 
@@ -135,25 +175,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
     throw Error(where(file) + ": field 'version': " + e.what());
   }
   m.description = string_field(L, file, "description", false);
-  lua_getfield(L, -1, "requires");
-  if (lua_istable(L, -1)) {
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
-    for (lua_Integer i = 1; i <= n; ++i) {
-      lua_rawgeti(L, -1, i);
-      if (lua_type(L, -1) != LUA_TSTRING)
-        throw Error(where(file) + ": requires[" + std::to_string(i) + "] must be a string like \"other >= 1.2\", got a " +
-                    luaL_typename(L, -1));
-      try {
-        m.requires_.push_back(Requirement::parse(lua_tostring(L, -1)));
-      } catch (const Error& e) {
-        throw Error(where(file) + ": requires[" + std::to_string(i) + "]: " + e.what());
-      }
-      lua_pop(L, 1);
-    }
-  } else if (!lua_isnil(L, -1)) {
-    throw Error(where(file) + ": field 'requires' must be a list of strings like {\"other >= 1.2\"}, got a " +
-                luaL_typename(L, -1));
-  }
+  read_lists(L, file, m);
   return m;
 }
 

@@ -5,11 +5,13 @@
 //   version = "1.2.0"                      -- semver MAJOR.MINOR.PATCH
 //   description = "Refinement criteria shared by the chassis team"
 //   requires = {"kdetools >= 1.2", "smi-lua >= 0.1"}
+//   sources = {kdetools = "https://git.example.org/kdetools.git"}  -- where `libs add` finds them
 //
 // (or the same fields in a returned table). A manifest is data, not code: it is loaded as text
 // in a fresh Lua state with no libraries, an empty environment, an instruction budget and a
 // memory ceiling, so a manifest can neither reach the study nor hang or exhaust the host.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,9 @@ struct Manifest {
   Version version;
   std::string description;
   std::vector<Requirement> requires_;
+  /// Where `smi-lua libs add` fetches each required library (a git URL, a folder or a .tar.gz),
+  /// by library name. Only read by `libs add`; a study never fetches anything.
+  std::map<std::string, std::string> sources;
   std::filesystem::path file;  // the smi-lib.lua read
 };
 

@@ -41,12 +41,14 @@ struct Found {
 /// Tries dir/rel.lua and dir/rel/init.lua, each opened by `open` (a checked open: a denial
 /// raises, a missing file adds "\n\tno file 'x'" to `tried`). Returns the first that opens.
 template <class Open>
-std::optional<Found> find_in(const fs::path& dir, const fs::path& rel, std::string& tried, Open&& open) {
+std::optional<Found> find_in(const fs::path& dir, const fs::path& rel, std::string& tried, RunRecord* record,
+                             Open&& open) {
   fs::path rel_lua = rel;
   rel_lua += ".lua";
   for (const fs::path& cand : {dir / rel_lua, dir / rel / "init.lua"}) {
     try {
       const CheckedFile f = open(cand.string());
+      if (RunRecord* r = record) r->file("lua", f.path, f.fd.get());  // provenance: every module loaded
       return Found{cand.string(), read_checked(f, cand.string())};
     } catch (const FileError&) {
       tried += (tried.empty() ? "" : "\n\t") + ("no file '" + cand.string() + "'");
@@ -76,7 +78,7 @@ int stdlib_searcher(lua_State* L) {
     lua::protect(L, "require", [&] {
       const fs::path rel = module_relpath(name);
       const std::vector<fs::path> roots{resolve_path(ms.stdlib_dir.string())};
-      found = find_in(ms.stdlib_dir, rel, tried, [&](const std::string& p) {
+      found = find_in(ms.stdlib_dir, rel, tried, lua::policy(L).record, [&](const std::string& p) {
         return open_read_within(p, roots, "the stdlib is loaded only from inside --stdlib-dir " + roots[0].string());
       });
       return 0;
@@ -86,6 +88,12 @@ int stdlib_searcher(lua_State* L) {
   for (const EmbeddedModule* m = kEmbeddedModules; m->name; ++m) {
     if (std::strcmp(m->name, name) != 0) continue;
     const std::string chunk = std::string("@") + m->path;
+    if (RunRecord* r = lua::policy(L).record) {  // provenance: the embedded module's own bytes
+      lua::protect(L, "require", [&] {
+        r->text("stdlib", std::string("embedded:") + m->path, std::string_view(m->data, m->size));
+        return 0;
+      });
+    }
     if (luaL_loadbufferx(L, m->data, m->size, chunk.c_str(), "t") != LUA_OK) return lua_error(L);
     lua_pushstring(L, m->path);
     return 2;
@@ -106,7 +114,7 @@ int path_searcher(lua_State* L) {
     const fs::path rel = module_relpath(name);
     const Policy& pol = lua::policy(L);
     for (const fs::path& root : ms.candidate_roots(name)) {
-      found = find_in(root, rel, tried, [&](const std::string& p) { return pol.open_read(p); });
+      found = find_in(root, rel, tried, pol.record, [&](const std::string& p) { return pol.open_read(p); });
       if (found) break;
     }
     return 0;

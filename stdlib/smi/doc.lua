@@ -31,7 +31,7 @@ function M.add(text)
 end
 
 -- The public stdlib modules (the rest are their parts). Walked like the smi table.
-M.stdlib = { "smi.options", "smi.study", "smi.report", "smi.testing", "smi.refine.criteria" }
+M.stdlib = { "smi.options", "smi.study", "smi.report", "smi.testing", "smi.refine.criteria", "smi.improve" }
 
 -- Lua classes have no registry metatable: their methods are found on an instance.
 local classes = {
@@ -179,7 +179,8 @@ function M.walk()
       if k:sub(1, 1) ~= "_" then
         local n = prefix .. "." .. k
         if type(v) == "function" then add(n, "function", v)
-        elseif type(v) == "table" and (getmetatable(v) == nil or rawget(getmetatable(v), "__call")) then walk(v, n, depth + 1) end
+        elseif type(v) == "table" and (getmetatable(v) == nil or rawget(getmetatable(v), "__call")
+                                       or rawget(getmetatable(v), "__smi_members")) then walk(v, n, depth + 1) end
       end
     end
   end
@@ -264,26 +265,47 @@ function M.list()
   return out
 end
 
---- Entries whose name, summary, options or text mention `word` (case-insensitive), best first.
-function M.search(word)
-  local w = tostring(word):lower()
+-- How well entry e matches one lowercase word (0: not at all).
+local function word_score(e, w)
+  local score = 0
+  if e.name:lower() == w or e.name:lower():match("[%.:]" .. w:gsub("%p", "%%%0") .. "$") then score = 100
+  elseif e.name:lower():find(w, 1, true) then score = 50 end
+  for _, o in ipairs(e.options) do
+    if o.name:lower():find(w, 1, true) then score = score + 20 end
+    if o.meaning:lower():find(w, 1, true) then score = score + 5 end
+  end
+  if (e.summary or ""):lower():find(w, 1, true) then score = score + 10 end
+  if (e.description or ""):lower():find(w, 1, true) or (e.returns or ""):lower():find(w, 1, true) then score = score + 3 end
+  return score
+end
+
+--- Entries whose name, summary, options or text mention every word of `query` (case-insensitive,
+-- in any order: "prior weight" finds smi.calibrate, whose text has "weight" and "prior"), best first.
+function M.search(query)
+  local words = {}
+  for w in tostring(query):lower():gmatch("%S+") do words[#words + 1] = w end
   local hits = {}
+  if #words == 0 then return hits end
   for _, e in ipairs(M.list()) do
     local score = 0
-    if e.name:lower() == w or e.name:lower():match("[%.:]" .. w:gsub("%p", "%%%0") .. "$") then score = 100
-    elseif e.name:lower():find(w, 1, true) then score = 50 end
-    for _, o in ipairs(e.options) do
-      if o.name:lower():find(w, 1, true) then score = score + 20 end
-      if o.meaning:lower():find(w, 1, true) then score = score + 5 end
+    for _, w in ipairs(words) do
+      local s = word_score(e, w)
+      if s == 0 then score = 0 break end
+      score = score + s
     end
-    if (e.summary or ""):lower():find(w, 1, true) then score = score + 10 end
-    if (e.description or ""):lower():find(w, 1, true) or (e.returns or ""):lower():find(w, 1, true) then score = score + 3 end
     if score > 0 then hits[#hits + 1] = { e = e, score = score } end
   end
   table.sort(hits, function(a, b) if a.score ~= b.score then return a.score > b.score end return a.e.name < b.e.name end)
   local out = {}
   for i, h in ipairs(hits) do out[i] = h.e end
   return out
+end
+
+--- The documented names closest to a misspelt one ("smi.kdee" -> {"smi.kde", ...}), nearest first.
+function M.suggest(name)
+  load_all()
+  if type(smi) ~= "table" or type(smi._closest) ~= "function" then return {} end
+  return smi._closest(tostring(name), order, 5)
 end
 
 local function wrap(s, width, indent)
@@ -421,8 +443,12 @@ function M.help_text(x)
   if why == "overview" then return M.overview() end
   if why ~= "search" then return why end
   local hits = M.search(x)
-  if #hits == 0 then return ("nothing documented mentions '%s' (help() lists the modules)"):format(tostring(x)) end
-  local out = { ("%d entr%s mention '%s' (help(\"name\") shows one):"):format(#hits, #hits == 1 and "y" or "ies", x) }
+  if #hits == 0 then
+    local near = M.suggest(x)
+    return ("nothing documented mentions '%s'%s (help() lists the modules)"):format(tostring(x),
+      #near > 0 and ("; did you mean " .. table.concat(near, ", ") .. "?") or ""), "none"
+  end
+  local out = { ("%d entr%s '%s' (help(\"name\") shows one):"):format(#hits, #hits == 1 and "y mentions" or "ies mention", x) }
   for i, h in ipairs(hits) do
     if i > 40 then out[#out + 1] = ("  ... and %d more"):format(#hits - 40) break end
     out[#out + 1] = ("  %-30s %s"):format(h.name, h.summary or "")
@@ -443,6 +469,43 @@ function M.names(prefix)
   local out = {}
   for _, n in ipairs(order) do if n:sub(1, #prefix) == prefix then out[#out + 1] = n end end
   return out
+end
+
+--- The documented option lists against the option names the code reads: for every function that
+-- checked its options (Options::check_known in the bindings, recorded by smi._known_options)
+-- and has a doc entry, the names only one side has. Run after check_examples, which calls them.
+-- Returns a list of problems ("smi.kde: documented but not read: x"). `known` ({fname = {names}})
+-- replaces the recorded lists (tests).
+function M.check_options(known)
+  local all = load_all()
+  known = known or (type(smi) == "table" and type(smi._known_options) == "function" and smi._known_options()) or {}
+  local problems = {}
+  local fnames = {}
+  for f in pairs(known) do fnames[#fnames + 1] = f end
+  table.sort(fnames)
+  for _, f in ipairs(fnames) do
+    local e = all[f]
+    if e then
+      local documented, read = {}, {}
+      for _, o in ipairs(e.options) do documented[o.name] = true end
+      -- "Options as smi.model.command, without template/deck/constants, plus:" inherits that
+      -- entry's list (less the names after "without")
+      local base, rest = (e.description or ""):match("[Oo]ptions as (smi[%w_%.:]+)(.-)plus")
+      if base and all[base] then
+        local without = {}
+        for n in (rest:match("without ([%w_/ ]+)") or ""):gmatch("[%w_]+") do without[n] = true end
+        for _, o in ipairs(all[base].options) do if not without[o.name] then documented[o.name] = true end end
+      end
+      for _, k in ipairs(known[f]) do read[k] = true end
+      local only_doc, only_code = {}, {}
+      for k in pairs(documented) do if not read[k] then only_doc[#only_doc + 1] = k end end
+      for k in pairs(read) do if not documented[k] then only_code[#only_code + 1] = k end end
+      table.sort(only_doc); table.sort(only_code)
+      if #only_doc > 0 then problems[#problems + 1] = ("%s: documented but not read by the code: %s"):format(f, table.concat(only_doc, ", ")) end
+      if #only_code > 0 then problems[#problems + 1] = ("%s: read by the code but not documented: %s"):format(f, table.concat(only_code, ", ")) end
+    end
+  end
+  return problems
 end
 
 --- Runs one entry's example in a fresh environment; returns ok, output (print lines) or error.

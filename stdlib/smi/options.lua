@@ -16,9 +16,12 @@
 -- Values: --name VALUE or --name=VALUE; a flag takes no value (--quick) and is true when given,
 -- else its default (nil unless declared). Types: flag, string,
 -- path, number, integer, list (comma-separated, repeatable: --only a,b --only c -> {"a","b","c"}).
--- Checks: allowed = {...} (every element for a list), min, max, and check = function(v) that
+-- Checks: allowed = {...} (every element for a list), min, max, input = true (a path that must
+-- name a readable file, opened at parse), and check = function(v) that
 -- returns true, or false/nil and why. Arguments not starting with "--" are refused unless the
--- spec says args = "<meaning>" (then they are kept in opt.args).
+-- spec says args = "<meaning>" (then they are kept in opt.args). smi-lua's own options (--out,
+-- --seed, ...) go before the script; given after it, one the study did not declare is refused
+-- with "smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ...".
 local doc = require "smi.doc"
 doc.add[==[
 @ module smi.options
@@ -28,6 +31,25 @@ do: `smi-lua study.lua --help` lists them, and a wrong value names the option an
 local M = {}
 
 local TYPES = { flag = true, string = true, path = true, number = true, integer = true, list = true }
+
+-- smi-lua's own options (host/cli/args.cpp; tests/cli checks this list against `smi-lua --help`)
+-- with the placeholder of their value (nil: a flag). They act before the script starts (the
+-- sandbox, the output folder, the seed), so they go before the script's name; after it, an
+-- option the study did not declare itself is refused with the command line that works. A study
+-- may declare an option of the same name (--dry-run, --quiet): after the script, it is the study's.
+M.host_options = {
+  ["allow-read"] = "PATH", ["allow-write"] = "PATH", ["allow-exec"] = "PROG", ["allow-env"] = "NAME",
+  lib = "DIR", ["stdlib-dir"] = "DIR", out = "DIR", seed = "N", ["max-memory"] = "MB", timeout = "SECONDS",
+  store = "PATH", executor = "KIND", ["slurm-opt"] = "K=V", quiet = false, ["dry-run"] = false, detach = false,
+}
+
+-- The refusal of smi-lua's own option given after the script.
+local function host_option_message(name, argv)
+  local value = M.host_options[name]
+  local script = argv and argv[0] or "study.lua"
+  return ("smi-lua's own option --%s goes before the script: smi-lua --%s%s %s ..."):format(
+    name, name, value and (" " .. value) or "", tostring(script))
+end
 
 --- --only, --from and --quiet as smi.study's s:run(opt) reads them (splice into a spec's list).
 M.study_steps = {
@@ -62,6 +84,17 @@ local function declarations(spec)
   end
   for i, d in ipairs(spec) do add(d, "spec[" .. i .. "]") end
   return out, by
+end
+
+--- Why a file cannot be read (nil when it can): missing, a folder, or refused by the sandbox.
+local function unreadable(path)
+  local ok, f, err = pcall(io.open, path, "rb")
+  if not ok then return (tostring(f):gsub("^[^:]*: ", "")) end
+  if not f then return (tostring(err):gsub("^" .. path:gsub("%p", "%%%0") .. ": ", "")) end
+  local okr, chunk, rerr = pcall(f.read, f, 0)
+  f:close()
+  if not okr or (chunk == nil and rerr) then return "it is not a readable file (a folder?)" end
+  return nil
 end
 
 local function show(v)
@@ -135,6 +168,10 @@ function M.help(spec)
   end
   lines[#lines + 1] = "  --help" .. (" "):rep(math.max(2, width - 8 + 2)) .. "this list"
   if spec.args then lines[#lines + 1] = "arguments: " .. spec.args end
+  lines[#lines + 1] = ""
+  lines[#lines + 1] = "smi-lua's own options (--out DIR, --seed N, --quiet, --timeout SECONDS, --allow-exec PROG, ...;"
+  local script = type(arg) == "table" and type(arg[0]) == "string" and arg[0] or (name .. ".lua")
+  lines[#lines + 1] = "smi-lua --help lists them) go before the script: smi-lua --out DIR " .. script .. " [options]"
   if spec.epilog then lines[#lines + 1] = ""; lines[#lines + 1] = spec.epilog end
   return table.concat(lines, "\n") .. "\n"
 end
@@ -207,8 +244,12 @@ options:
   min = nil             -- the smallest number allowed
   max = nil             -- the largest number allowed
   check = nil           -- function(v) returning true, or false and why
+  input = nil           -- (path) true: the file must exist and be readable; checked at parse,
+                        -- so a missing one is named by its option before anything runs
 returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
-  positional arguments), or nil and a message naming the option and the allowed values
+  positional arguments), or nil and a message naming the option and the allowed values; one of
+  smi-lua's own options (--out, --seed, --quiet, --timeout, ...) that the spec does not declare is
+  refused with "smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ..."
 errors: a bad declaration: a missing meaning, an unknown type, an option declared twice
 example:
   local options = require "smi.options"
@@ -234,6 +275,7 @@ function M.check(argv, spec)
       local name, value = a:match("^%-%-([^=]+)=(.*)$")
       name = name or a:sub(3)
       local d = by[name]
+      if not d and M.host_options[name] ~= nil then return nil, host_option_message(name, argv) end
       if not d then
         local names = {}
         for _, e in ipairs(decl) do names[#names + 1] = "--" .. e.name end
@@ -281,6 +323,19 @@ function M.check(argv, spec)
       -- a flag not given keeps its declared default (nil when none: smi.study's --quiet must
       -- stay unset so that smi-lua's own --quiet still applies)
       if d.default ~= nil then opt[key] = d.default end
+    end
+  end
+  -- input files are opened now, before the study spends anything: a missing one names the option
+  if not opt.help then
+    for _, d in ipairs(decl) do
+      local key = d.name:gsub("%-", "_")
+      if d.input and d.type == "path" and type(opt[key]) == "string" then
+        local why = unreadable(opt[key])
+        if why then
+          return nil, ("--%s%s: cannot read '%s': %s (give the %s with --%s PATH)"):format(d.name,
+            given[key] and "" or " (its default)", opt[key], why, d.meaning, d.name)
+        end
+      end
     end
   end
   return opt

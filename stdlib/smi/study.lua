@@ -14,19 +14,33 @@
 --   s:run{only = "fit"}                      -- "data" comes from the saved results.json
 --   s:run(study.parse_args(arg))             -- --only NAME[,NAME] --from NAME --quiet
 --
--- results.json: {study=, seed=, order={...}, steps={name={status=, seconds=, result={...}}},
--- provenance=smi.provenance()} (libraries with version, content hash and commit; smi-lua version;
--- seed; the study script's hash), so that `smi-lua verify results.json` can check a rerun.
+-- results.json: {schema=2, study=, seed=, order={...}, steps={name={status=, seconds=, result={...},
+-- result_hash=, inputs={options=, files=, results=}, stale=}}, provenance=smi.provenance()} (every
+-- file read, program, option, library and the build; docs/provenance.md), so that `smi-lua verify
+-- results.json` can check a rerun, and a partial run knows which saved steps are still current
+-- (smi.study_inputs): it refuses to read a saved step whose inputs changed, naming what changed
+-- and the command to run, and marks later steps stale when it recomputes what they read.
 -- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
 -- same run, are left out of the file, and are listed under the step's "not_saved".
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
+local inputs = require "smi.study_inputs"
 
 local doc = require "smi.doc"
 doc.add[==[
 @ module smi.study
 A study as named steps that run in order, are timed, report progress, and save their results to
 results.json, so that any step can run again alone later (s:run{only = "fit"}).
+
+results.json, schema 2 (smi.study.SCHEMA; docs/provenance.md lists every field): "schema" (the
+layout's version; a file without it is schema 1, from an older smi-lua; a newer one is refused);
+"study", "seed", "order"; "steps" by name, each {status = "ok" | "failed", seconds, result,
+result_hash, inputs = {options = {seed, arguments}, files = {[path] = {kind, hash, size}},
+results = {[earlier step] = hash}}, stale = {reason, command} when a partial run changed what it
+read, not_saved}; "provenance" (smi.provenance(): every file read, program, option, library and
+the build). A partial run (only, from) refuses to read a saved step whose inputs changed, naming
+the change and the command to run, and marks later steps stale when it recomputes what they
+read; a stale step's results are never returned as current.
 ]==]
 local M = {}
 
@@ -54,6 +68,9 @@ options:
   results = nil        -- the path of results.json (default <out>/results.json)
   quiet = nil          -- no progress lines (default: smi.quiet)
   seed = smi.seed      -- recorded in results.json
+  volatile = nil       -- result keys that differ between identical runs (timings, counts of reused
+                       -- solver runs), e.g. {"wall_seconds"}: left out of the result hash that
+                       -- decides whether later steps are stale (every step; steps add their own)
   report = nil         -- {title =, subtitle =, ...}: creates ctx.report (smi.report), written at the end
 returns: a study with the methods smi.study:step, :run, :load
 errors: no name ("expects {name = \"...\", out = folder}")
@@ -77,8 +94,10 @@ function M.new(opts)
     name = opts.name, out = out, steps = {}, by_name = {},
     results_path = opts.results or (out .. "/results.json"),
     quiet = opts.quiet, seed = opts.seed or (type(smi) == "table" and smi.seed) or nil,
-    report_opts = opts.report,
+    report_opts = opts.report, volatile = opts.volatile or {},
   }, Study)
+  -- the results file is this study's output: reading it back is not an input of the run
+  if type(smi) == "table" and type(smi._not_input) == "function" then smi._not_input(s.results_path) end
   return s
 end
 
@@ -86,9 +105,12 @@ doc.add[==[
 @ smi.study:step(name [, opts], fn) -> study
 Adds a step. fn(ctx) returns a table of results (or sets them with ctx:set(key, value)); ctx.results
 holds the earlier steps' results (from this run or results.json), ctx:log(fmt, ...) writes a
-progress line, ctx.report is the study's report when it has one.
+progress line, ctx.report is the study's report when it has one. A step with nothing to do now
+returns ctx:skip("why") (or {skipped = true, reason = "why"}): it is recorded and reported as
+"not run" with that reason, never as passed.
 options:
   description = nil   -- a sentence on what the step does
+  volatile = nil      -- result keys left out of its result hash (as in smi.study.new)
 returns: the study (calls chain)
 errors: a name already used; fn not a function
 example:
@@ -142,6 +164,11 @@ function Study:load()
   if type(data) ~= "table" or type(data.steps) ~= "table" then
     error(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path), 0)
   end
+  local schema = M.SCHEMA
+  if data.schema ~= nil and (math.type(data.schema) ~= "integer" or data.schema > schema) then
+    error(("study '%s': %s has schema %s, newer than this smi-lua reads (%d); run it with the smi-lua that wrote it, or run the whole study again"):format(
+      self.name, self.results_path, tostring(data.schema), schema), 0)
+  end
   return data
 end
 
@@ -149,7 +176,7 @@ doc.add[==[
 @ smi.study:annotate(key, value)
 Adds a top-level entry to the saved results.json beside the steps (a study's conclusion, say, where
 outside checks read it), after s:run. The file is rewritten whole (as the steps' results are).
-key: a name other than the file's own fields (study, seed, order, steps, provenance)
+key: a name other than the file's own fields (schema, study, seed, order, steps, provenance)
 returns: nothing
 errors: no results.json yet (run the study first); a reserved key
 example:
@@ -159,11 +186,11 @@ example:
   s:annotate("conclusion", {verdict = "valid"})
   print(s:load().conclusion.verdict)
 ]==]
-local RESERVED = { study = true, seed = true, order = true, steps = true, provenance = true }
+local RESERVED = { study = true, seed = true, order = true, steps = true, provenance = true, schema = true }
 --- Adds a top-level entry to the saved results.json (see the doc above).
 function Study:annotate(key, value)
   if type(key) ~= "string" or RESERVED[key] then
-    error(("study '%s': annotate: '%s' is not a free top-level key of results.json (reserved: study, seed, order, steps, provenance)"):format(self.name, tostring(key)), 2)
+    error(("study '%s': annotate: '%s' is not a free top-level key of results.json (reserved: schema, study, seed, order, steps, provenance)"):format(self.name, tostring(key)), 2)
   end
   if type(smi) == "table" and smi.dry_run then return end -- a dry run writes no results (as _save)
   local saved, why = self:load()
@@ -176,6 +203,8 @@ end
 -- rename): a full disk or a kill mid-write leaves the previous file, and the error says so.
 function Study:_save(saved)
   if type(smi) == "table" and smi.dry_run then return end -- a dry run's numbers are not results
+  saved.schema = M.SCHEMA
+  saved.provenance = self:_provenance(saved) -- what was read so far: asked again at every save
   local text = json.encode(saved, { indent = "  ", root = "results" })
   require("smi.file").write(self.results_path, text .. "\n", ("study '%s'"):format(self.name))
 end
@@ -209,7 +238,7 @@ end
 -- stopped) keeps its saved result, so results.json never shrinks. A file that does not parse is
 -- an error for a partial run (its steps are needed) and is replaced by a full run.
 function Study:_saved_results(partial)
-  local saved = { study = self.name, seed = self.seed, order = {}, steps = {}, provenance = provenance() }
+  local saved = { schema = M.SCHEMA, study = self.name, seed = self.seed, order = {}, steps = {} }
   local old, why
   if partial then
     old, why = self:load()
@@ -217,20 +246,84 @@ function Study:_saved_results(partial)
     local okl, o, w = pcall(self.load, self)
     if okl then old, why = o, w else why = tostring(o) end
   end
-  if old then saved.steps = old.steps else self.load_problem = why end
+  if old then
+    saved.steps = old.steps
+    if old.schema == nil and partial then
+      self.load_problem = self.results_path .. " was written before results files had a schema (schema 1): its steps' inputs were not recorded, so whether they are current is unknown; run the whole study once"
+      self.old_schema = true
+    end
+  else
+    self.load_problem = why
+  end
   for i, st in ipairs(self.steps) do saved.order[i] = st.name end
   return saved
 end
 
+-- Whether saved step `name` is still current for this run: nil, or why not (a sentence). A saved
+-- step is current when it succeeded, ran with this run's options, its data files hash the same
+-- now, and every step it read is current with the result it read (this run's when recomputed).
+-- Memoized per run in self.currency.
+function Study:_why_not_current(name, saved, live_hash)
+  local memo = self.currency
+  if memo[name] ~= nil then return memo[name] or nil end
+  memo[name] = false -- a cycle cannot happen (steps read earlier steps), but never loop
+  local s = saved.steps[name]
+  local why
+  if not s or s.status ~= "ok" then
+    why = ("step '%s' has no successful saved result"):format(name)
+  elseif s.stale then
+    why = ("step '%s' is stale: %s"):format(name, tostring(s.stale.reason))
+  elseif inputs.available() and not s.inputs then
+    why = ("step '%s' was saved without its inputs (%s)"):format(name, self.old_schema and "results.json of schema 1, from an older smi-lua" or "by an older smi.study")
+    self.old_schema = true -- the command to give is then the whole study: no step before it is known current
+  elseif s.inputs then
+    local change = inputs.options_change(s.inputs.options, self.options)
+    if change ~= "" then why = ("step '%s' ran with other options: %s"):format(name, change) end
+    why = why or (function()
+      local f = inputs.files_change(s.inputs.files)
+      return f and ("step '%s' read %s"):format(name, f)
+    end)()
+    if not why then
+      for dep, h in pairs(s.inputs.results or {}) do
+        local now = live_hash[dep] or (saved.steps[dep] and saved.steps[dep].result_hash)
+        if live_hash[dep] == nil then
+          local w = self:_why_not_current(dep, saved, live_hash)
+          if w then why = ("step '%s' read step '%s', and %s"):format(name, dep, w) break end
+        end
+        if now ~= h then
+          why = ("step '%s' read the results of step '%s', which %s"):format(name, dep,
+            live_hash[dep] and "this run recomputed with a different result" or "changed since")
+          break
+        end
+      end
+    end
+  end
+  memo[name] = why or false
+  return why
+end
+
 -- ctx.results: read-only; this run's results first (`live`, with values JSON cannot hold), then
--- the saved results of steps not selected now; a missing one is an error saying why.
+-- the saved results of steps not selected now, if they are still current (else an error naming
+-- what changed and the command to run); a missing one is an error saying why. Every read is
+-- noted in study.reading (the running step's inputs).
 local function results_view(study, selected, saved, live)
   return setmetatable({}, {
     __index = function(_, name)
-      if live[name] ~= nil then return live[name] end
+      if live[name] ~= nil then
+        if study.reading then study.reading[name] = study.live_hash[name] end
+        return live[name]
+      end
       -- a step selected in this run is read from this run only, never from an older file
       local s = not selected[name] and saved.steps[name] or nil
-      if s and s.status == "ok" and s.result ~= nil then return s.result end
+      if s and s.status == "ok" and s.result ~= nil then
+        local why = study:_why_not_current(name, saved, study.live_hash)
+        if why then
+          error(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
+            inputs.rerun_command(not study.old_schema and name or nil)), 2)
+        end
+        if study.reading then study.reading[name] = s.result_hash or study:_result_hash(name, s.result) end
+        return s.result
+      end
       local why = not study.by_name[name] and "there is no such step"
         or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
         or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
@@ -249,6 +342,8 @@ function Study:_fresh_report()
   ro.title = ro.title or self.name
   ro.out = ro.out or self.out
   self.report = report.new(ro)
+  -- the first section says what produced the numbers; its rows are written at the end
+  self.prov_section = require("smi.report.provenance").begin(self.report)
 end
 
 -- The ctx a step function receives.
@@ -265,6 +360,12 @@ local function step_context(study, st, results)
     end
   end
   function ctx.set(c, key, value) c.result[key] = value end
+  -- a step that has nothing to do now: return ctx:skip("why") (the record {skipped = true,
+  -- reason = ...}, which a step may also return itself)
+  function ctx.skip(c, reason)
+    if c ~= ctx then reason = c end
+    return { skipped = true, reason = tostring(reason or "no reason given") }
+  end
   return ctx
 end
 
@@ -300,12 +401,31 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   error(("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also), 0)
 end
 
+-- The hash of a step's saved result that later steps record when they read it: every key but the
+-- volatile ones (timings and the like, which differ between identical runs and would make every
+-- later step stale after any rerun).
+function Study:_result_hash(name, result)
+  local skip = {}
+  for _, k in ipairs(self.volatile) do skip[k] = true end
+  local st = self.by_name[name]
+  for _, k in ipairs(st and st.opts.volatile or {}) do skip[k] = true end
+  if type(result) ~= "table" or next(skip) == nil then return inputs.hash(result) end
+  local kept = {}
+  for k, v in pairs(result) do if not skip[k] then kept[k] = v end end
+  return inputs.hash(kept)
+end
+
 -- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what
 -- JSON can hold in results.json.
 function Study:_run_step(st, k, nsel, results, saved, live)
   self:_say("step %d/%d %s ...", k, nsel, st.name)
   local ctx = step_context(self, st, results)
+  local seq0 = inputs.mark()
+  self.reading = {} -- the earlier steps' results this step reads (results_view notes them)
   local ok, ret, trace, dt, clock = call_step(st, ctx)
+  local reads = self.reading
+  self.reading = nil
+  self.currency = {} -- what is current may change with this step's result
   if not ok then self:_step_failed(st, k, nsel, saved, ret, trace, dt, clock) end
   local result = ctx.result
   for key, v in pairs(ret or {}) do result[key] = v end
@@ -313,12 +433,27 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   -- keep only what JSON can hold in the file
   local skipped = {}
   local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
-  saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = json.decode(text),
-                           not_saved = #skipped > 0 and skipped or nil }
-  self.timings[#self.timings + 1] = { st.name, "ok", dt }
+  -- a step that returned {skipped = true, reason = ...} did not run: its record (status "ok", so
+  -- that later steps can read why) says not_run, and the report and the console say "not run"
+  local not_run = result.skipped == true and tostring(result.reason or "no reason given") or nil
+  -- its inputs: the options, the data files read before the steps and while it ran, the results read
+  local files = {}
+  for path, d in pairs(self.preamble_files) do files[path] = d end
+  for path, d in pairs(inputs.files_since(seq0)) do files[path] = d end
+  local decoded = json.decode(text)
+  local result_hash = self:_result_hash(st.name, decoded)
+  self.live_hash[st.name] = result_hash
+  saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = decoded, result_hash = result_hash,
+                           inputs = { options = self.options, files = files, results = reads },
+                           not_saved = #skipped > 0 and skipped or nil, not_run = not_run }
+  self.timings[#self.timings + 1] = { st.name, not_run and "not run" or "ok", dt, not_run }
   self:_save(saved)
-  self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
-    #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+  if not_run then
+    self:_say("step %d/%d %s not run: %s", k, nsel, st.name, not_run)
+  else
+    self:_say("step %d/%d %s done in %s%s", k, nsel, st.name, fmt.seconds(dt),
+      #skipped > 0 and (" (not saved: " .. table.concat(skipped, ", ") .. ")") or "")
+  end
 end
 
 doc.add[==[
@@ -355,7 +490,11 @@ function Study:run(opts)
   for _, st in ipairs(self.steps) do if not selected[st.name] then partial = true end end
   local saved = self:_saved_results(partial)
   local live = {} -- results of this run, with values JSON cannot hold
+  self.options = inputs.options(self.seed) -- what every step's saved inputs are compared with
+  self.preamble_files = inputs.preamble() -- data read before the steps: an input of every step
+  self.live_hash, self.currency = {}, {}
   local results = results_view(self, selected, saved, live)
+  if partial then self:_check_kept(selected, saved) end
   self:_fresh_report()
 
   local nsel, k = 0, 0
@@ -369,22 +508,100 @@ function Study:run(opts)
     end
   end
   local total = now() - t_start
+  if partial then self:_mark_stale(selected, saved) end
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
   for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
-  if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total) end
+  if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total, saved) end
 
   local out = {}
   for _, st in ipairs(self.steps) do
-    local ok, v = pcall(function() return results[st.name] end)
-    if ok then out[st.name] = v end
+    local s = saved.steps[st.name]
+    if live[st.name] ~= nil or not (s and s.stale) then
+      local ok, v = pcall(function() return results[st.name] end)
+      if ok then out[st.name] = v end
+    end
   end
-  return out
+  -- a stale step's saved result is never handed out as if current: reading it says why
+  return setmetatable(out, { __index = function(_, name)
+    local s = saved.steps[name]
+    if s and s.stale then
+      error(("study '%s': step '%s' is stale (%s); its saved results are not used. Run: %s"):format(self.name, name,
+        tostring(s.stale.reason), s.stale.command or inputs.rerun_command(name)), 2)
+    end
+    return nil
+  end })
+end
+
+-- Before a partial run: every saved step that a selected step read last time must still be
+-- current, else the run stops before it starts, naming what changed and the command to run
+-- (reads not known in advance are checked when they happen, in results_view).
+function Study:_check_kept(selected, saved)
+  for _, st in ipairs(self.steps) do
+    local rec = selected[st.name] and saved.steps[st.name]
+    for dep in pairs(rec and rec.inputs and rec.inputs.results or {}) do
+      if not selected[dep] and saved.steps[dep] then
+        local why = self:_why_not_current(dep, saved, self.live_hash)
+        if why then
+          error(("study '%s': step '%s' reads the saved results of step '%s', which cannot be used: %s. Run: %s"):format(
+            self.name, st.name, dep, why, inputs.rerun_command(not self.old_schema and dep or nil)), 0)
+        end
+      end
+    end
+  end
+end
+
+-- After a partial run: a saved step that read what this run recomputed (or whose own inputs
+-- changed) is marked stale in results.json, with the reason and the command that brings it up to
+-- date; a step found current again loses its mark.
+function Study:_mark_stale(selected, saved)
+  self.currency = {}
+  local first
+  local groups, order = {}, {} -- steps by reason (an option change makes them all stale alike)
+  for _, st in ipairs(self.steps) do
+    local s = saved.steps[st.name]
+    if not selected[st.name] and s and s.status == "ok" then
+      s.stale = nil
+      local why = self:_why_not_current(st.name, saved, self.live_hash)
+      if why then
+        first = first or st.name
+        s.stale = { reason = why, command = inputs.rerun_command(first) }
+        local short = why:gsub("^step '[^']*' ", "")
+        if not groups[short] then groups[short] = {}; order[#order + 1] = short end
+        table.insert(groups[short], st.name)
+      end
+    end
+  end
+  if first then -- said even when quiet: the saved results of these steps are no longer the study's answer
+    local names = {}
+    for _, r in ipairs(order) do for _, n in ipairs(groups[r]) do names[#names + 1] = n end end
+    io.stderr:write(("[%s] now stale, their saved results will not be used: %s\n"):format(self.name, table.concat(names, ", ")))
+    for _, r in ipairs(order) do
+      io.stderr:write(("[%s]   %s: %s\n"):format(self.name, table.concat(groups[r], ", "), r))
+    end
+    io.stderr:write(("[%s] to bring them up to date, run: %s\n"):format(self.name, inputs.rerun_command(first)))
+  end
+  self:_save(saved) -- the marks (set or cleared) go into results.json
+end
+
+-- The provenance saved with the results: this run's (every file read, program, option, library,
+-- the build) plus the data files of saved steps that did not run now (their results depend on them).
+function Study:_provenance(saved)
+  local p = provenance()
+  if not p then return nil end
+  p.files = p.files or {}
+  for _, s in pairs(saved.steps or {}) do
+    for path, d in pairs(s.inputs and s.inputs.files or {}) do
+      if p.files[path] == nil then p.files[path] = d end
+    end
+  end
+  return p
 end
 
 -- Appends the step timings and the provenance, then writes report.html next to results.json
 -- (report-partial.html after a run of only some steps).
-function Study:_finish_report(partial, selected, total)
+function Study:_finish_report(partial, selected, total, saved)
   local r = self.report
+  self.prov_section:fill(self:_provenance(saved), { study = self.name, results = self.results_path })
   if partial then
     local names = {}
     for _, st in ipairs(self.steps) do if selected[st.name] then names[#names + 1] = st.name end end
@@ -392,8 +609,13 @@ function Study:_finish_report(partial, selected, total)
   end
   r:section("Study steps")
   local rows = {}
-  for _, t in ipairs(self.timings) do rows[#rows + 1] = { t[1], { status = t[2] == "ok" and "pass" or "fail" }, t[3] } end
-  r:table{ caption = ("Steps run, %s in total."):format(fmt.seconds(total)), columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
+  for _, t in ipairs(self.timings) do
+    local badge = ({ ok = { status = "pass", text = "ran" }, failed = { status = "fail", text = "failed" } })[t[2]]
+      or { status = "skip", text = t[4] }
+    rows[#rows + 1] = { t[1], badge, t[2] == "not run" and "" or t[3] }
+  end
+  r:table{ caption = ("Steps of this run, %s in total; a step not run says why."):format(fmt.seconds(total)),
+           columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
   r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
   local p = provenance{ files = false }
   if p then
@@ -407,11 +629,18 @@ function Study:_finish_report(partial, selected, total)
   self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
   self:_say("report: %s", self.report_path)
   -- the verdicts are the study's answer, not progress: printed on stdout even when quiet
+  local words = require("smi.report.html").STATUS_TEXT
   for _, it in ipairs(r.items) do
     if it.kind == "verdict" then
-      io.stdout:write(("%-7s %s%s\n"):format(it.status:upper(), it.name, it.detail and (": " .. it.detail) or ""))
+      io.stdout:write(("%-7s %s%s\n"):format(words[it.status], it.name, it.detail and (": " .. it.detail) or ""))
+      for _, c in ipairs(it.checks or {}) do
+        io.stdout:write(("        %s: %s%s\n"):format(c.name, words[c.status]:lower(), c.detail and (" (" .. c.detail .. ")") or ""))
+      end
+      if it.governs then io.stdout:write("        ", it.governs, "\n") end
     end
   end
+  local n, counted = r:tally()
+  if n.pass + n.fail + n.warn + n.inconclusive + n.skip > 0 then io.stdout:write(counted, "\n") end
 end
 
 doc.add[==[
@@ -453,6 +682,9 @@ function M.parse_args(argv)
   o.rest = rest
   return o
 end
+
+--- The version of results.json's layout this smi.study writes and reads (docs/provenance.md).
+M.SCHEMA = type(smi) == "table" and smi.results_schema or 2
 
 if type(smi) == "table" and smi.study == nil then smi.study = M end
 return M

@@ -36,6 +36,9 @@ chrome --dump-dom "file://$REF/index.html?q=bandwidth" > "$WORK/search.dom" 2> "
 if console_lines "$WORK/search.log"; then fail "console messages while loading index.html (above)"; fi
 grep -q 'entries mention' "$WORK/search.dom" || fail "the search produced no results list (see $WORK/search.dom)"
 grep -q 'href="smi.kde_ebd.html#smi.kde_ebd"' "$WORK/search.dom" || fail "searching 'bandwidth' did not find smi.kde_ebd"
+# Several words: entries holding all of them, in any order (issue 28: "prior weight" found nothing).
+chrome --dump-dom "file://$REF/index.html?q=weight%20prior" > "$WORK/search2.dom" 2> "$WORK/search2.log" || fail "chromium --dump-dom failed"
+grep -q 'href="smi.calibrate.html#smi.calibrate"' "$WORK/search2.dom" || fail "searching 'weight prior' did not find smi.calibrate"
 
 # Pages load without a console message. All pages share one template and script; a Chromium
 # start costs about 2.5 s, so the largest pages stand for the rest (every page: 90 s).

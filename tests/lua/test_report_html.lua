@@ -92,7 +92,7 @@ end)
 T.case("verdicts: badges and summary", function()
   local root = X.parse(sample():html())
   local summary = by_class(root, "section", "summary")[1]
-  local items = X.find_all(summary, "li")
+  local items = X.find_all(X.find_all(summary, "ul")[1], "li")
   T.eq(#items, 3, "three verdicts listed")
   T.eq(X.text(by_class(items[1], "span", "badge")[1]), "PASS", "first passes")
   T.eq(X.text(by_class(items[2], "span", "badge")[1]), "FAIL", "second fails")

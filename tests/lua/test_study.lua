@@ -164,4 +164,44 @@ T.case("annotate adds a top-level entry beside the steps, and refuses the file's
   T.eq(read_json(results_path("study_annotate")).steps.data.result.n, 3, "the file untouched by the refused call")
 end)
 
+T.case("a partial run that changes a step's result marks the steps that read it stale", function()
+  local calls = {}
+  make("study_stale", calls):run()
+  -- the same study, but "mean" now computes something else (an edited module, say)
+  local s = study.new{ name = "study_stale", out = dir, results = results_path("study_stale"), quiet = true }
+  local d0 = read_json(results_path("study_stale"))
+  T.truthy(d0.steps.scaled.inputs.results.mean == d0.steps.mean.result_hash, "scaled recorded the result it read")
+  T.eq(d0.schema, study.SCHEMA, "schema")
+  s:step("data", function() return { x = { 1.5, 2.5, 3.5 }, n = 3 } end)
+  s:step("mean", function() return { mean = 99 } end)
+  s:step("scaled", function(ctx) return { value = 10 * ctx.results.mean.mean } end)
+  local r = s:run{ only = "mean" }
+  T.eq(r.mean.mean, 99, "the recomputed step")
+  T.raises(function() return r.scaled.value end, "step 'scaled' is stale")
+  local d = read_json(results_path("study_stale"))
+  T.truthy(d.steps.scaled.stale and d.steps.scaled.stale.reason:find("step 'mean'", 1, true), "marked in results.json")
+  T.eq(d.steps.data.stale, nil, "an earlier step it did not touch stays current")
+  -- a step reading the stale one is refused, with the command to run
+  s:step("report", function(ctx) return { v = ctx.results.scaled.value } end)
+  T.raises(function() s:run{ only = "report" } end, "step 'scaled' is stale")
+  -- running from the recomputed step on brings everything up to date
+  r = s:run{ from = "scaled" }
+  T.eq(r.report.v, 990, "up to date")
+  T.eq(read_json(results_path("study_stale")).steps.scaled.stale, nil, "mark cleared")
+end)
+
+T.case("volatile keys (timings) do not make later steps stale", function()
+  local function mk(t)
+    local s = study.new{ name = "study_volatile", out = dir, results = results_path("study_volatile"), quiet = true,
+                         volatile = { "wall_seconds" } }
+    s:step("a", function() return { x = 1, wall_seconds = t } end)
+    s:step("b", function(ctx) return { y = ctx.results.a.x + 1 } end)
+    return s
+  end
+  mk(1):run()
+  local r = mk(2):run{ only = "a" } -- the same numbers, another timing
+  T.eq(r.b.y, 2, "b still current")
+  T.eq(read_json(results_path("study_volatile")).steps.b.stale, nil, "not marked")
+end)
+
 T.finish()

@@ -1,5 +1,6 @@
 #include "kernels/core/csv.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -76,6 +77,61 @@ std::vector<Record> read(std::string_view text, const std::string& source, const
     if (any) out.push_back(std::move(rec));  // blank lines are skipped
   }
   return out;
+}
+
+bool decimal_comma(std::string_view cell) {
+  const std::string t = trim(cell);
+  std::size_t i = (!t.empty() && (t[0] == '-' || t[0] == '+')) ? 1 : 0;
+  const std::size_t comma = t.find(',');
+  if (comma == std::string::npos || comma == i || comma + 1 >= t.size() || t.find('.') != std::string::npos) return false;
+  for (std::size_t k = i; k < t.size(); ++k)
+    if (k != comma && (t[k] < '0' || t[k] > '9')) return false;
+  return true;
+}
+
+namespace {
+std::string sep_name(char c) { return c == '\t' ? "a tab" : fmt::format("'{}'", c); }
+std::string sep_lua(char c) { return c == '\t' ? "'\\t'" : fmt::format("'{}'", c); }
+}  // namespace
+
+std::string sniff(std::string_view text, char sep) {
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  if (text.substr(0, bom.size()) == bom) text.remove_prefix(bom.size());
+  // the first few non-blank lines, as written
+  std::vector<std::string_view> lines;
+  for (std::size_t i = 0; i < text.size() && lines.size() < 6;) {
+    std::size_t e = text.find('\n', i);
+    if (e == std::string_view::npos) e = text.size();
+    std::string_view l = text.substr(i, e - i);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (!trim(l).empty()) lines.push_back(l);
+    i = e + 1;
+  }
+  if (lines.empty()) return "";
+  const auto count = [](std::string_view l, char c) { return static_cast<long>(std::count(l.begin(), l.end(), c)); };
+  if (count(lines[0], sep) > 0) return "";  // the header splits on sep: it is the separator
+  char found = 0;
+  for (const char c : {';', '\t'})
+    if (c != sep && count(lines[0], c) > 0) {
+      found = c;
+      break;
+    }
+  if (!found) return "";
+  bool comma_decimals = false;
+  for (std::size_t r = 1; r < lines.size() && !comma_decimals; ++r) {
+    std::string_view l = lines[r];
+    for (std::size_t b = 0; b <= l.size();) {
+      std::size_t e = l.find(found, b);
+      if (e == std::string_view::npos) e = l.size();
+      comma_decimals = comma_decimals || decimal_comma(l.substr(b, e - b));
+      b = e + 1;
+    }
+  }
+  if (comma_decimals)
+    return fmt::format("the file uses {} between fields and ',' as the decimal mark: pass sep = {}, decimal = ',' "
+                       "or save as CSV with '.' decimals",
+                       sep_name(found), sep_lua(found));
+  return fmt::format("the file uses {} between fields: pass sep = {} or save as CSV", sep_name(found), sep_lua(found));
 }
 
 std::string trim(std::string_view s) {

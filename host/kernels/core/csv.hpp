@@ -26,6 +26,15 @@ struct ReadOptions {
 /// quoted field.
 std::vector<Record> read(std::string_view text, const std::string& source, const ReadOptions& opts = {});
 
+/// What a file read with separator `sep` really uses, from its first lines: "the file uses ';'
+/// between fields: pass sep = ';' or save as CSV" (a tab likewise), with "and ',' as the decimal
+/// mark" and decimal = ',' when its numbers are written 31,84. "" when nothing else fits better
+/// (the header already splits on `sep` into several columns, or no other separator shows).
+std::string sniff(std::string_view text, char sep);
+
+/// True when the cell is a number written with a decimal comma (31,84 or -0,5; no '.').
+bool decimal_comma(std::string_view cell);
+
 /// s without leading and trailing blanks (spaces, tabs, CR).
 std::string trim(std::string_view s);
 

@@ -1,6 +1,6 @@
 #pragma once
 // Descriptive statistics over Eigen vectors, with the conventions pinned in
-// shared/spec/algorithms.md §0: sd divides by n-1; quantiles are type 7 (linear interpolation).
+// docs/spec/algorithms.md §0: sd divides by n-1; quantiles are type 7 (linear interpolation).
 #include <Eigen/Core>
 #include <string_view>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Reading the results of a normal-modes run in Nastran's .f06 layout, as written by the
-// steering-column solver (shared/spec/steering-column.md §10): the REAL EIGENVALUES table, the
+// steering-column solver (docs/spec/steering-column.md §10): the REAL EIGENVALUES table, the
 // MODE LABELS table and the "PAPER MODE n" lines that map the paper's modes to solver modes.
 // Page headers (lines starting with '1') and spacer lines ('0') between blocks are skipped,
 // and a table continued on a later page (its title repeated) is appended.

@@ -1,5 +1,5 @@
 #pragma once
-// Bound-constrained minimisation for calibration (shared/spec/algorithms.md §7).
+// Bound-constrained minimisation for calibration (docs/spec/algorithms.md §7).
 // Parameters are scaled to [0, 1] by their bounds; NLopt's LD_SLSQP gets a central
 // finite-difference gradient in scaled units; LN_COBYLA, LN_BOBYQA and LN_NELDERMEAD are the
 // derivative-free alternatives. Several seeded starts are supported, every evaluation is

@@ -1,5 +1,5 @@
 #pragma once
-// Common random numbers (CRN) for calibration objectives (shared/spec/algorithms.md §7).
+// Common random numbers (CRN) for calibration objectives (docs/spec/algorithms.md §7).
 // A fixed matrix Z of standard normals is drawn once and reused for every parameter vector;
 // each input is mapped from its column of Z by the mean and standard deviation being tried, so
 // the Monte-Carlo objective is a smooth function of θ and finite-difference gradients work.

@@ -1,6 +1,6 @@
 #pragma once
 // Weighted decision matrix for model refinement (Oh et al. 2016; Son et al. 2020 eq. 13-14;
-// shared/spec/algorithms.md §6). Magnitudes are "smaller is better"; each criterion is
+// docs/spec/algorithms.md §6). Magnitudes are "smaller is better"; each criterion is
 // standardised by its worst candidate, S = 1 − M / max M (S = 1 for all when max M = 0),
 // rated r = w·S, and the candidate with the largest overall O = Σ r is revised.
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// The statistical calibration objective of Son et al. eq. (9) (shared/spec/algorithms.md §2, §7):
+// The statistical calibration objective of Son et al. eq. (9) (docs/spec/algorithms.md §2, §7):
 // θ holds the means and standard deviations of the unknown inputs; every input is mapped from
 // a fixed CRN column (crn_mapping.hpp), the model runs once on the whole N×k input matrix, and
 // the predicted outputs are compared with the experimental data response by response:

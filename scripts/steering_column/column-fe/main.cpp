@@ -1,4 +1,4 @@
-// column-fe DECK -o RESULTS: the open steering-column model (shared/spec/steering-column.md).
+// column-fe DECK -o RESULTS: the open steering-column model (docs/spec/steering-column.md).
 // column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]: many points in one process
 // (batch.hpp), for screening and other large samples.
 // Exit 0 on success; 1 with the message on stderr for a bad deck or a failed solution (no
@@ -32,7 +32,7 @@ const char* kUsage =
     "--batch  POINTS.csv: a header of input names, one row of values per point; inputs a row\n"
     "         does not name (and airbag_model, mesh_refinement) come from the --base deck.\n"
     "         OUT.csv: point,mode1_hz,mode2_hz,mode3_hz,mode4_hz (paper modes, nan if absent).\n"
-    "Units: N, mm, tonne, s. Specification: shared/spec/steering-column.md.\n";
+    "Units: N, mm, tonne, s. Specification: docs/spec/steering-column.md.\n";
 
 int usage_error(const std::string& what) {
   std::cerr << "column-fe: " << what << "\n" << kUsage;

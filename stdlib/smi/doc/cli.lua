@@ -20,10 +20,20 @@ function M.main(words)
       return bad > 0 and 1 or 0
     end
     local failed, n = doc.check_examples(false)
-    print(("%d public names documented (%d missing, %d stale); %d examples run, %d failed"):format(#doc.walk() - #missing, #missing, #stale, n, failed))
-    return (bad + failed) > 0 and 1 or 0
+    -- the examples called the functions: compare the options they read with the documented ones
+    local drift = doc.check_options()
+    for _, p in ipairs(drift) do io.stderr:write("option list: ", p, "\n") end
+    print(("%d public names documented (%d missing, %d stale); %d examples run, %d failed; %d option lists differ from the code"):format(
+      #doc.walk() - #missing, #missing, #stale, n, failed, #drift))
+    return (bad + failed + #drift) > 0 and 1 or 0
   end
-  print(doc.help_text(words[1] and table.concat(words, " ") or nil))
+  local text, none = doc.help_text(words[1] and table.concat(words, " ") or nil)
+  if none then
+    -- nothing named so and nothing mentions it: the closest names, and a usage status
+    io.stderr:write(text, "\n")
+    return 2
+  end
+  print(text)
   return 0
 end
 

@@ -56,11 +56,15 @@ local JS = [[
   function show(q){
     q=q.trim().toLowerCase();list.innerHTML="";
     if(!q){list.style.display="none";return;}
-    var hits=[];
-    for(var i=0;i<SMI_INDEX.length;i++){var e=SMI_INDEX[i],s=0,n=e.n.toLowerCase();
-      if(n===q||n.endsWith("."+q)||n.endsWith(":"+q))s=100;else if(n.indexOf(q)>=0)s=50;
-      if(e.o.toLowerCase().indexOf(q)>=0)s+=20;if(e.s.toLowerCase().indexOf(q)>=0)s+=10;
-      if(e.t.toLowerCase().indexOf(q)>=0)s+=3;if(s>0)hits.push([s,e]);}
+    var hits=[],words=q.split(/\s+/);
+    function score(e,w){var s=0,n=e.n.toLowerCase();
+      if(n===w||n.endsWith("."+w)||n.endsWith(":"+w))s=100;else if(n.indexOf(w)>=0)s=50;
+      if(e.o.toLowerCase().indexOf(w)>=0)s+=20;if(e.s.toLowerCase().indexOf(w)>=0)s+=10;
+      if(e.t.toLowerCase().indexOf(w)>=0)s+=3;return s;}
+    /* every word must appear (in any order, in any field); the entry's score adds theirs up */
+    for(var i=0;i<SMI_INDEX.length;i++){var e=SMI_INDEX[i],s=0;
+      for(var k=0;k<words.length;k++){var sk=score(e,words[k]);if(sk===0){s=0;break;}s+=sk;}
+      if(s>0)hits.push([s,e]);}
     hits.sort(function(a,b){return b[0]-a[0]||(a[1].n<b[1].n?-1:1);});
     var h=document.createElement("p");h.className="muted";h.textContent=hits.length+" entries mention \u201c"+q+"\u201d";list.appendChild(h);
     for(var j=0;j<hits.length&&j<60;j++){var e2=hits[j][1],li=document.createElement("li"),a=document.createElement("a");

@@ -53,9 +53,20 @@ function M.open(W, H, title)
     .. xml.el("rect", { x = 0, y = 0, width = W, height = H, fill = "#ffffff" })
 end
 
---- A centred bold chart title.
+--- A centred bold chart title that fits the chart: a long one gets smaller type (down to 9 px),
+-- and past that is squeezed to the width (textLength) rather than clipped at the edges.
 function M.title(W, s)
-  return M.text(W / 2, 22, s, { ["text-anchor"] = "middle", ["font-size"] = 14, ["font-weight"] = "bold", fill = M.INK, class = "title" })
+  local room, size = W - 16, 14
+  local w = M.text_width(s, size) * 1.05 -- bold runs ~5 % wider
+  local attrs = { ["text-anchor"] = "middle", ["font-size"] = size, ["font-weight"] = "bold", fill = M.INK, class = "title" }
+  if w > room then
+    size = math.max(9, math.floor(size * room / w * 10) / 10)
+    attrs["font-size"] = size
+    if M.text_width(s, size) * 1.05 > room then
+      attrs.textLength, attrs.lengthAdjust = n2(room), "spacingAndGlyphs"
+    end
+  end
+  return M.text(W / 2, 22, s, attrs)
 end
 
 function M.marker(kind, x, y, r, color)

@@ -9,19 +9,21 @@ local M = {}
 local floor, abs = math.floor, math.abs
 
 doc.add[==[
-@ smi.report.format.num(x [, digits]) -> string
+@ smi.report.format.num(x [, digits [, unit]]) -> string
 x with digits significant digits (default 4), trailing zeros dropped; whole numbers as integers;
-scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf".
+scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf"; with
+a unit, the unit follows after a space ("246.3 Hz").
 returns: a string
 errors: none
 example:
   local f = require("smi.report").format
-  print(f.num(246312.7), f.num(0.000123456), f.num(3.14159, 3), f.num(12))
+  print(f.num(246312.7), f.num(0.000123456), f.num(3.14159, 3), f.num(12), f.num(31.84, 4, "Hz"))
 ]==]
 --- `x` with `digits` significant digits (default 4), trailing zeros dropped; integers
 -- (Lua integers, or floats that are whole and below 1e15 when `digits` covers them) as integers;
 -- scientific notation below 1e-3 and from 1e6 on; NaN as "NaN", infinities as "inf"/"-inf".
-function M.num(x, digits)
+function M.num(x, digits, unit)
+  if unit ~= nil and unit ~= "" then return M.num(x, digits) .. " " .. unit end
   digits = digits or 4
   if type(x) ~= "number" then return tostring(x) end
   if x ~= x then return "NaN" end
@@ -85,6 +87,73 @@ function M.column(values, digits)
     if s:match("^%-0%.?0*$") then s = s:sub(2) end
     return s
   end
+end
+
+doc.add[==[
+@ smi.report.format.exact(x) -> string
+x with the digits it carries and no binary noise: at most 10 significant digits, trailing zeros
+dropped (1.4999999999999998e-09 -> "1.5e-09", 7790.000000000005 -> "7790"); integers whole.
+For values recorded as they are (provenance, settings) rather than measured.
+returns: a string
+errors: none
+example:
+  local f = require("smi.report").format
+  print(f.exact(1.4999999999999998e-09), f.exact(7790.000000000005), f.exact(20200214))
+]==]
+--- At most 10 significant digits: enough for any value typed by a person or a setting, and
+-- short of the 15-17 digits where a float's binary rounding shows.
+function M.exact(x)
+  if type(x) ~= "number" then return tostring(x) end
+  if math.type(x) == "integer" then return ("%d"):format(x) end
+  if x ~= x then return "NaN" end
+  if x == math.huge then return "inf" end
+  if x == -math.huge then return "-inf" end
+  local s = ("%.10g"):format(x)
+  local mant, exp = s:match("^(.-)(e.*)$")
+  mant = mant or s
+  if mant:find("%.") then mant = mant:gsub("0+$", ""):gsub("%.$", "") end
+  return mant .. (exp or "")
+end
+
+doc.add[==[
+@ smi.report.format.tidy(text) -> string
+The text with every decimal number that carries more than 10 significant digits (binary noise
+such as 1.4999999999999998e-09 or 7790.000000000005 from a string.format("%s", x)) rewritten
+as smi.report.format.exact would write it; other text, integers and short numbers are kept.
+The report passes its text, details, captions and text cells through it.
+returns: a string
+errors: none
+example:
+  local f = require("smi.report").format
+  print(f.tidy("E = 7790.000000000005 kg/m3, t = 1.4999999999999998e-09 s, n = 12"))
+]==]
+--- Rewrites decimal numbers with more than 10 significant digits (see the doc above).
+function M.tidy(text)
+  text = tostring(text)
+  if not text:find("%d%.%d") then return text end
+  -- a number: digits with a decimal point (and an optional exponent), not part of a word or a
+  -- dotted version/address (a.b.c)
+  local out, pos = {}, 1
+  while true do
+    local i, j = text:find("%d+%.%d+", pos)
+    if not i then break end
+    local k = j
+    local e = text:match("^[eE][-+]?%d+", j + 1)
+    if e then k = j + #e end
+    local num = text:sub(i, k)
+    local before, after = text:sub(i - 1, i - 1), text:sub(k + 1, k + 1)
+    local sig = num:match("^[%d.]+"):gsub("%.", ""):gsub("^0+", "")
+    -- not part of a word, a hash or a dotted version/address (a.b.c)
+    if #sig > 10 and not before:match("[%w_.]") and not after:match("[%w_]")
+       and not (after == "." and text:sub(k + 2, k + 2):match("%d")) then
+      out[#out + 1] = text:sub(pos, i - 1) .. M.exact(tonumber(num))
+    else
+      out[#out + 1] = text:sub(pos, k)
+    end
+    pos = k + 1
+  end
+  out[#out + 1] = text:sub(pos)
+  return table.concat(out)
 end
 
 doc.add[==[

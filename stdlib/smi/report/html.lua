@@ -8,7 +8,12 @@ local style = require "smi.report.style"
 local M = {}
 local esc = xml.escape
 
-local STATUS_TEXT = { pass = "PASS", fail = "FAIL", warn = "WARNING", info = "INFO" }
+local STATUS_TEXT = { pass = "PASS", fail = "FAIL", warn = "WARNING", info = "INFO", inconclusive = "INCONCLUSIVE",
+                      skip = "NOT RUN" }
+M.STATUS_TEXT = STATUS_TEXT
+-- Text callers wrote (paragraphs, details, captions): escaped, and numbers carrying binary noise
+-- (1.4999999999999998e-09 from a "%s") shown with the digits they carry.
+local function tesc(s) return esc(fmt.tidy(s)) end
 
 function M.badge(status)
   return ('<span class="badge %s">%s</span>'):format(status, STATUS_TEXT[status])
@@ -19,14 +24,14 @@ local function paragraphs(s)
   local out = {}
   s = tostring(s):gsub("\r\n", "\n")
   for para in (s .. "\n\n"):gmatch("(.-)\n%s*\n") do
-    if para:match("%S") then out[#out + 1] = "<p>" .. esc(para) .. "</p>" end
+    if para:match("%S") then out[#out + 1] = "<p>" .. tesc(para) .. "</p>" end
   end
   return table.concat(out, "\n")
 end
 
 local function cell_html(v, col, default_digits)
   if type(v) == "table" and v.status then
-    return ('<td>%s%s</td>'):format(M.badge(v.status), esc(v.text or ""))
+    return ('<td>%s%s</td>'):format(M.badge(v.status), tesc(v.text or ""))
   end
   if type(v) == "number" then
     local s
@@ -38,12 +43,17 @@ local function cell_html(v, col, default_digits)
   end
   if type(v) == "boolean" then return ("<td>%s</td>"):format(v and "yes" or "no") end
   if v == nil then return "<td></td>" end
-  return ("<td>%s</td>"):format(esc(v))
+  -- a long unbroken name (column_frame_E_of_the_steering_column) may break anywhere; shorter
+  -- words never do, so a squeezed column does not read "nor ma l"
+  local long = tostring(v):find("[^%s]" .. ("[^%s]"):rep(15)) and ' class="long"' or ""
+  return ("<td%s>%s</td>"):format(long, tesc(v))
 end
 
 local function table_html(t)
-  local out = { '<table class="data" id="' .. esc(t.id) .. '">' }
-  out[#out + 1] = ("<caption><b>Table %d.</b> %s</caption>"):format(t.number, esc(t.caption or ""))
+  -- a table of many columns is printed in smaller type (style.lua's table.wide)
+  local wide = #t.columns >= 9 and " wide" or ""
+  local out = { '<div class="table-wrap"><table class="data' .. wide .. '" id="' .. esc(t.id) .. '">' }
+  out[#out + 1] = ("<caption><b>Table %d.</b> %s</caption>"):format(t.number, tesc(t.caption or ""))
   local head = {}
   for j, col in ipairs(t.columns) do
     local numeric = false
@@ -61,7 +71,8 @@ local function table_html(t)
       end
       col.formatter = fmt.column(values, col.digits or t.digits)
     end
-    head[#head + 1] = ("<th%s>%s</th>"):format(numeric and ' class="num"' or "", esc(col.title))
+    local title = col.unit and (col.title .. " (" .. col.unit .. ")") or col.title
+    head[#head + 1] = ("<th%s>%s</th>"):format(numeric and ' class="num"' or "", esc(title))
   end
   out[#out + 1] = "<thead><tr>" .. table.concat(head) .. "</tr></thead><tbody>"
   for _, row in ipairs(t.rows) do
@@ -73,21 +84,31 @@ local function table_html(t)
     end
     out[#out + 1] = "<tr>" .. table.concat(cells) .. "</tr>"
   end
-  out[#out + 1] = "</tbody></table>"
+  out[#out + 1] = "</tbody></table></div>"
   return table.concat(out, "\n")
 end
 
+-- A verdict, its secondary checks (a solver check of a surrogate's verdict, say) and, when they
+-- disagree, the sentence saying which one governs (smi.report:verdict fills in a default).
 local function verdict_html(v)
   local out = { ('<div class="verdict %s" id="%s">'):format(v.status, esc(v.id)) }
-  out[#out + 1] = M.badge(v.status) .. '<span class="name">' .. esc(v.name) .. "</span>"
-  if v.detail then out[#out + 1] = '<div class="detail">' .. esc(v.detail) .. "</div>" end
+  out[#out + 1] = M.badge(v.status) .. '<span class="name">' .. tesc(v.name) .. "</span>"
+  if v.detail then out[#out + 1] = '<div class="detail">' .. tesc(v.detail) .. "</div>" end
+  if v.checks and #v.checks > 0 then
+    local li = {}
+    for i, c in ipairs(v.checks) do
+      li[i] = "<li>" .. esc(c.name) .. ": " .. STATUS_TEXT[c.status]:lower() .. (c.detail and (" (" .. tesc(c.detail) .. ")") or "") .. "</li>"
+    end
+    out[#out + 1] = '<ul class="checks">' .. table.concat(li) .. "</ul>"
+  end
+  if v.governs then out[#out + 1] = '<div class="governs">' .. tesc(v.governs) .. "</div>" end
   out[#out + 1] = "</div>"
   return table.concat(out)
 end
 
 local function figure_html(f)
   return ('<figure id="%s"><div class="chart">%s</div><figcaption><b>Figure %d.</b> %s</figcaption></figure>')
-    :format(esc(f.id), f.svg, f.number, esc(f.caption or ""))
+    :format(esc(f.id), f.svg, f.number, tesc(f.caption or ""))
 end
 
 local function item_html(it)
@@ -103,7 +124,8 @@ local function item_html(it)
     return '<div class="figrow">' .. table.concat(parts) .. "</div>"
   elseif it.kind == "verdict" then return verdict_html(it)
   elseif it.kind == "callout" then
-    return ('<div class="callout %s">%s<span>%s</span></div>'):format(it.status, M.badge(it.status), esc(it.text))
+    return ('<div class="callout %s"%s>%s<span>%s</span></div>'):format(it.status,
+      it.id and (' id="' .. esc(it.id) .. '"') or "", M.badge(it.status), tesc(it.text))
   end
   error("smi.report.html: unknown item kind " .. tostring(it.kind))
 end
@@ -132,15 +154,33 @@ local function toc_html(items)
   return table.concat(out, "\n")
 end
 
-local function summary_html(items)
-  local out = {}
+-- The one verdict list: every verdict once, with its one status (its checks and the sentence on
+-- which governs beside it), the counts by status, then the warnings raised along the way.
+local function summary_html(items, counts)
+  local out, warns = {}, {}
   for _, it in ipairs(items) do
     if it.kind == "verdict" then
-      out[#out + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge(it.status), esc(it.id), esc(it.name))
+      local sub = ""
+      if it.checks and #it.checks > 0 then
+        local c = {}
+        for i, ch in ipairs(it.checks) do c[i] = esc(ch.name) .. ": " .. STATUS_TEXT[ch.status]:lower() end
+        sub = ' <span class="sub">(' .. table.concat(c, "; ") .. (it.disagrees and "; see which governs" or "") .. ")</span>"
+      end
+      out[#out + 1] = ('<li>%s<a href="#%s">%s</a>%s</li>'):format(M.badge(it.status), esc(it.id), tesc(it.name), sub)
+    elseif it.kind == "callout" and it.status == "warn" then
+      -- the list names each warning in a line; the whole text stays where it was raised
+      local text = fmt.tidy(it.text)
+      if #text > 110 then text = text:sub(1, 100):gsub("[%s,;:]+%S*$", "") .. " ..." end
+      warns[#warns + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge("warn"), esc(it.id), esc(text))
     end
   end
-  if #out == 0 then return "" end
-  return '<section class="summary"><h2>Verdicts</h2><ul>' .. table.concat(out) .. "</ul></section>"
+  if #out == 0 and #warns == 0 then return "" end
+  local html = { '<section class="summary"><h2>Verdicts</h2>' }
+  if counts then html[#html + 1] = '<p class="counts">' .. esc(counts) .. "</p>" end
+  if #out > 0 then html[#html + 1] = "<ul>" .. table.concat(out) .. "</ul>" end
+  if #warns > 0 then html[#html + 1] = '<h2>Warnings</h2><ul>' .. table.concat(warns) .. "</ul>" end
+  html[#html + 1] = "</section>"
+  return table.concat(html)
 end
 
 -- Provenance: ordered groups of key/value pairs; nested tables are flattened "a.b".
@@ -153,7 +193,7 @@ local function prov_html(groups)
   out[#out + 1] = '<dl class="prov">'
   for _, kv in ipairs(groups) do
     local v = kv[2]
-    if type(v) == "number" then v = fmt.num(v, 17) end
+    if type(v) == "number" then v = fmt.exact(v) else v = fmt.tidy(v) end
     out[#out + 1] = ("<dt>%s</dt><dd>%s</dd>"):format(esc(kv[1]), esc(v))
   end
   out[#out + 1] = "</dl>"
@@ -178,7 +218,7 @@ function M.render(doc)
     out[#out + 1] = '<p class="meta">' .. table.concat(m, " · ") .. "</p>"
   end
   out[#out + 1] = "</header>"
-  out[#out + 1] = summary_html(doc.items)
+  out[#out + 1] = summary_html(doc.items, doc.counts)
   out[#out + 1] = toc_html(doc.items)
   out[#out + 1] = "<main>"
   for _, it in ipairs(doc.items) do out[#out + 1] = item_html(it) end

@@ -123,10 +123,13 @@ end
 
 doc.add[==[
 @ smi.report:table(t) -> report
-A numbered table. Cells are numbers (formatted with the column's digits or format), strings,
-booleans, or {status = "pass" | "fail" | "warn" | "info", text = ...} badges.
+A numbered table. Cells are numbers (formatted with the column's digits, 4 significant by
+default, or its format), strings, booleans, or {status = "pass" | "fail" | "warn" | "info" |
+"inconclusive" | "skip", text = ...} badges. The table wraps its cells and, when still wider than
+the page, scrolls in its own box on screen; printed, it takes the page width.
 options:
-  columns = (required)  -- {"Name" | {title =, key =, digits =, format = "%.3f" | function(v)}, ...}
+  columns = (required)  -- {"Name" | {title =, key =, digits =, unit =, format = "%.3f" | function(v)}, ...};
+                        -- unit ("Hz") is shown beside the title: "Mode 1 (Hz)"
   rows = (required)     -- {{...} by position | {key = value} by column key, ...}
   caption = nil         -- the caption under "Table N."
   digits = 4            -- significant digits (default: the report's)
@@ -222,43 +225,118 @@ function Report:figures(list)
   return self
 end
 
+-- Statuses: pass, fail, warn, info; inconclusive (the check ran and could not decide) and skip
+-- (the check did not run; shown "NOT RUN", with its reason as the detail).
+local STATUSES = { pass = true, fail = true, warn = true, info = true, inconclusive = true, skip = true }
+M.STATUSES = STATUSES
 local function status_of(v, where)
   if v.status ~= nil then
-    if v.status ~= "pass" and v.status ~= "fail" and v.status ~= "warn" and v.status ~= "info" then
-      error(where .. ": status must be \"pass\", \"fail\", \"warn\" or \"info\", got " .. tostring(v.status), 3)
+    if v.status == "not run" or v.status == "not_run" then return "skip" end
+    if not STATUSES[v.status] then
+      error(where .. ": status must be \"pass\", \"fail\", \"warn\", \"info\", \"inconclusive\" or \"skip\" (not run), got "
+        .. tostring(v.status), 3)
     end
     return v.status
   end
-  if type(v.pass) ~= "boolean" then error(where .. ": give pass = true/false (or status = \"warn\"/\"info\")", 3) end
+  if type(v.pass) ~= "boolean" then error(where .. ": give pass = true/false (or status = \"warn\"/\"inconclusive\"/...)", 3) end
   return v.pass and "pass" or "fail"
+end
+
+-- Two statuses that give opposite answers to the same question (info and not-run answer nothing).
+local function disagree(a, b)
+  local silent = { info = true, skip = true }
+  return a ~= b and not silent[a] and not silent[b]
 end
 
 doc.add[==[
 @ smi.report:verdict(v) -> report
-A verdict with a pass/fail badge, also listed in the summary at the top of the page and printed
-by smi.study at the end of a run.
+A verdict with its status badge, also listed once in the verdict list at the top of the page (whose
+header counts passes, failures, warnings, inconclusives and checks not run) and printed by
+smi.study at the end of a run. A second verdict with the same name replaces the first (in its
+place): every check appears once, with one status.
+A verdict may carry secondary checks of the same question (a solver check of a surrogate's
+verdict): when a check's status disagrees with the verdict's, `governs` says which one governs
+and why; without it the report says that nobody did, so the contradiction is never silent.
 options:
   name = (required)   -- what was checked
   pass = nil          -- true or false (or give status)
-  status = nil        -- "pass", "fail", "warn" or "info"
-  detail = nil        -- a sentence with the numbers
+  status = nil        -- "pass", "fail", "warn", "info", "inconclusive" or "skip" (not run)
+  detail = nil        -- a sentence with the numbers (for "skip": why it did not run)
+  checks = nil        -- {{name =, status = | pass =, detail =}, ...}: secondary checks
+  governs = nil       -- the sentence saying which of verdict and checks governs, and why
 returns: the report (any other numeric fields go to the JSON)
-errors: neither pass nor a known status
+errors: neither pass nor a known status (of the verdict or of a check); a check without a name
 example:
   local r = require("smi.report").new{title = "t"}
   r:verdict{name = "Mode 1 validation", pass = true, detail = "U = 0.057 <= 0.193", value = 0.057}
-  print(r:data().verdicts[1].status)
+  r:verdict{name = "Mode 2 validation", status = "inconclusive", detail = "U in [0.1, 0.3]",
+            checks = {{name = "solver check", pass = false, detail = "U = 0.31"}},
+            governs = "The surrogate's verdict governs: the solver check has 40 points, too few to decide."}
+  print(r:data().verdicts[1].status, r:data().verdicts[2].disagrees)
 ]==]
---- A verdict with a badge, also listed in the summary at the top of the page.
--- v: name, pass (boolean) or status ("pass"|"fail"|"warn"|"info"), detail, and any numbers
--- (value, threshold, ...) which go to the JSON.
+--- A verdict with a badge, also listed once in the verdict list at the top of the page (see above).
 function Report:verdict(v)
   if type(v) ~= "table" or type(v.name) ~= "string" then error("report:verdict: expects {name = \"...\", pass = true/false, detail = ...}", 2) end
   local item = {}
   for k, x in pairs(v) do item[k] = x end
-  item.kind, item.status, item.id = "verdict", status_of(v, "report:verdict"), self:_id("verdict", v.name)
+  item.kind, item.status = "verdict", status_of(v, "report:verdict")
+  if v.checks ~= nil then
+    if type(v.checks) ~= "table" then error("report:verdict '" .. v.name .. "': checks must be a list {{name =, status =}, ...}", 2) end
+    local checks = {}
+    for i, c in ipairs(v.checks) do
+      if type(c) ~= "table" or type(c.name) ~= "string" then
+        error(("report:verdict '%s': checks[%d] needs a name, e.g. {name = \"solver check\", pass = false}"):format(v.name, i), 2)
+      end
+      checks[i] = { name = c.name, status = status_of(c, ("report:verdict '%s': checks[%d]"):format(v.name, i)),
+                    detail = c.detail, value = c.value }
+      if disagree(item.status, checks[i].status) then item.disagrees = true end
+    end
+    item.checks = checks
+  end
+  if item.disagrees and (type(v.governs) ~= "string" or v.governs == "") then
+    local names = {}
+    for _, c in ipairs(item.checks) do
+      if disagree(item.status, c.status) then names[#names + 1] = ("%s (%s)"):format(c.name, c.status) end
+    end
+    item.governs = ("The verdict (%s) and its %s disagree, and the study does not say which governs:"
+      .. " neither settles the question alone."):format(item.status, table.concat(names, ", "))
+  end
+  -- one entry per check: a verdict given again replaces the earlier one where it stood
+  for _, old in ipairs(self.items) do
+    if old.kind == "verdict" and old.name == v.name then
+      item.id = old.id
+      for k in pairs(old) do old[k] = nil end
+      for k, x in pairs(item) do old[k] = x end
+      return self
+    end
+  end
+  item.id = self:_id("verdict", v.name)
   self.items[#self.items + 1] = item
   return self
+end
+
+doc.add[==[
+@ smi.report:tally() -> table, string
+The verdicts counted by status, and the header's sentence ("4 passed, 1 failed, 2 warnings,
+1 inconclusive, 2 not run"). Warnings are the verdicts with status "warn" plus the warning callouts.
+returns: {pass =, fail =, warn =, inconclusive =, skip =, info =}, a string
+errors: none
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:verdict{name = "a", pass = true}:verdict{name = "b", status = "inconclusive"}:callout("low data", "warn")
+  print(select(2, r:tally()))
+]==]
+function Report:tally()
+  local n = { pass = 0, fail = 0, warn = 0, inconclusive = 0, skip = 0, info = 0 }
+  for _, it in ipairs(self.items) do
+    if it.kind == "verdict" then n[it.status] = n[it.status] + 1
+    elseif it.kind == "callout" and it.status == "warn" then n.warn = n.warn + 1 end
+  end
+  local function plural(k, one, many) return ("%d %s"):format(n[k], n[k] == 1 and one or many) end
+  local parts = { ("%d passed"):format(n.pass), ("%d failed"):format(n.fail), plural("warn", "warning", "warnings"),
+                  ("%d inconclusive"):format(n.inconclusive) }
+  if n.skip > 0 then parts[#parts + 1] = ("%d not run"):format(n.skip) end
+  return n, table.concat(parts, ", ")
 end
 
 doc.add[==[
@@ -275,7 +353,7 @@ example:
 function Report:callout(text, status)
   status = status or "info"
   status_of({ status = status }, "report:callout")
-  self.items[#self.items + 1] = { kind = "callout", text = tostring(text), status = status }
+  self.items[#self.items + 1] = { kind = "callout", text = tostring(text), status = status, id = self:_id("note", #self.items) }
   return self
 end
 
@@ -357,12 +435,14 @@ function Report:html()
   local meta = {}
   if o.author then meta[#meta + 1] = o.author end
   meta[#meta + 1] = "Generated " .. (o.date or os.date("!%Y-%m-%d %H:%M UTC"))
-  local verdicts = { pass = 0, fail = 0 }
-  for _, it in ipairs(self.items) do if verdicts[it.status] then verdicts[it.status] = verdicts[it.status] + 1 end end
-  if verdicts.pass + verdicts.fail > 0 then meta[#meta + 1] = ("%d passed, %d failed"):format(verdicts.pass, verdicts.fail) end
+  local n, counted = self:tally()
+  local any = false
+  for _, c in pairs(n) do any = any or c > 0 end
+  if any then meta[#meta + 1] = counted end
   local prov = {}
   flatten("", self.prov, prov)
-  return html.render{ title = o.title, subtitle = o.subtitle, meta = meta, items = self.items, provenance = prov, footer = o.footer }
+  return html.render{ title = o.title, subtitle = o.subtitle, meta = meta, items = self.items, provenance = prov,
+                      footer = o.footer, counts = any and counted or nil }
 end
 
 -- Where to write: an explicit path, else <out>/<name> with out from the options or the host.
@@ -404,7 +484,8 @@ example:
 ]==]
 --- Everything the report holds as numbers: tables, verdicts, provenance, recorded results.
 function Report:data()
-  local d = { title = self.opts.title, tables = {}, verdicts = {}, figures = {}, provenance = self.prov, results = self.results }
+  local d = { title = self.opts.title, tables = {}, verdicts = {}, figures = {}, provenance = self.prov, results = self.results,
+              counts = (self:tally()) }
   local section = nil
   for _, it in ipairs(self.items) do
     if it.kind == "section" then section = it.number .. " " .. it.title

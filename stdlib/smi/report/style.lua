@@ -40,20 +40,35 @@ nav.toc ol ol { padding-left: 18px; }
 .verdict.info { border-left-color: var(--info); }
 .verdict .name { font-weight: 700; }
 .verdict .detail { color: var(--muted); font-size: 14px; margin-top: 2px; }
+.verdict .checks { margin: 4px 0 0; padding-left: 18px; font-size: 13.5px; }
+.verdict .governs { margin-top: 4px; font-size: 13.5px; }
+.summary .counts { margin: 0 0 8px; font-size: 13.5px; color: var(--muted); }
+.summary .sub { color: var(--muted); font-size: 13px; }
+.badge.inconclusive { background: var(--warn-bg); color: var(--warn); border: 1px dashed var(--warn); }
+.badge.skip { background: #ffffff; color: var(--muted); border: 1px dashed var(--muted); }
+.verdict.inconclusive { border-left-color: var(--warn); border-left-style: dashed; }
+.verdict.skip { border-left-color: var(--muted); border-left-style: dashed; }
 .callout { border-radius: 4px; padding: 8px 12px; margin: 12px 0; font-size: 14px; }
 .callout.warn { background: var(--warn-bg); color: var(--warn); }
 .callout.info { background: var(--info-bg); color: var(--info); }
 .callout.fail { background: var(--fail-bg); color: var(--fail); }
-table.data { border-collapse: collapse; margin: 12px 0 18px; font-size: 13.5px; min-width: 50%; }
+/* A table never runs off the page: its cells wrap, and a table still wider than the column scrolls
+   inside its own box on screen (the page itself never scrolls sideways). */
+.table-wrap { max-width: 100%; overflow-x: auto; margin: 12px 0 18px; }
+table.data { border-collapse: collapse; margin: 0; font-size: 13px; min-width: 50%; max-width: 100%; }
+table.data td, table.data th { overflow-wrap: break-word; }
+table.data td.long { overflow-wrap: anywhere; }
 table.data caption { caption-side: top; text-align: left; color: var(--muted); font-size: 13px; padding-bottom: 6px; }
-table.data th { text-align: left; background: #eef2f6; border-bottom: 2px solid #c5ced8; padding: 5px 10px; font-weight: 600; }
-table.data td { border-bottom: 1px solid #e6eaee; padding: 4px 10px; }
+table.data th { text-align: left; background: #eef2f6; border-bottom: 2px solid #c5ced8; padding: 5px 7px; font-weight: 600; }
+table.data td { border-bottom: 1px solid #e6eaee; padding: 4px 7px; }
 table.data tr:nth-child(even) td { background: #fafbfc; }
-table.data .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+table.data .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; overflow-wrap: normal; }
+table.data th.num { white-space: normal; }
 table.data th.num { text-align: right; }
 figure { margin: 16px 0 22px; }
 figure .chart { border: 1px solid var(--line); border-radius: 4px; padding: 6px; display: inline-block; max-width: 100%; background: #ffffff; }
 figure svg { display: block; max-width: 100%; height: auto; }
+main, section, p, li, dd, figcaption, .callout, .verdict { overflow-wrap: break-word; }
 figcaption { color: var(--muted); font-size: 13.5px; margin-top: 6px; max-width: 700px; }
 .figrow { display: flex; flex-wrap: wrap; gap: 12px; }
 .figrow figure { flex: 1 1 440px; margin: 8px 0; }
@@ -61,11 +76,28 @@ dl.prov { display: grid; grid-template-columns: max-content 1fr; gap: 4px 18px; 
 dl.prov dt { color: var(--muted); font-weight: 600; }
 dl.prov dd { margin: 0; font-family: "DejaVu Sans Mono", monospace; font-size: 12.5px; word-break: break-all; }
 footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line); color: var(--muted); font-size: 12px; }
+/* Printed: A4 or letter with 14 mm margins. Tables fit the page width (smaller type, cells wrap,
+   numbers too if they must), a figure or a verdict is never cut by a page break, headings stay
+   with what follows, and long tables repeat their header on each page. */
+@page { margin: 14mm; }
 @media print {
   html { background: #ffffff; }
-  body { box-shadow: none; max-width: none; }
-  header.title-block { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
-  figure, table.data, .verdict { break-inside: avoid; }
-  h2, h3 { break-after: avoid; }
+  body { box-shadow: none; max-width: none; padding: 0; font-size: 11pt; min-height: 0; }
+  header.title-block { margin: 0 0 16px; -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  .badge, .verdict, .callout { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  nav.toc { display: none; }
+  .table-wrap { overflow: visible; }
+  table.data { width: 100%; font-size: 8pt; }
+  table.data.wide { font-size: 7pt; }
+  table.data th, table.data td { padding: 2px 3px; }
+  /* the printed page cannot scroll: a header word may break too ("Calibrat-ed" beats a cut column) */
+  table.data th { overflow-wrap: anywhere; }
+  thead { display: table-header-group; }
+  tr, figure, .figrow figure, .verdict, .callout { break-inside: avoid; }
+  .figrow figure { flex: 1 1 300px; margin: 6px 0; }  /* two charts a row on the page */
+  figure .chart { display: block; border: 0; padding: 0; }
+  figure svg { max-width: 100%; max-height: 120mm; width: auto; }
+  h2, h3, caption { break-after: avoid; }
+  a { color: inherit; }
 }
 ]]

@@ -40,3 +40,18 @@ TEST_CASE("csv writes cells that read back, numbers whole") {
   CHECK_FALSE(csv::parse_number("2.5x", v));
   CHECK_FALSE(csv::parse_number("  ", v));
 }
+
+TEST_CASE("csv sniffs another separator and decimal commas") {
+  CHECK(csv::sniff("a;b;c\n1;2;3\n", ',') == "the file uses ';' between fields: pass sep = ';' or save as CSV");
+  CHECK(csv::sniff("a\tb\n1\t2\n", ',') == "the file uses a tab between fields: pass sep = '\\t' or save as CSV");
+  CHECK(csv::sniff("\xEF\xBB\xBFspecimen;hz\r\n1;31,84\r\n", ',') ==
+        "the file uses ';' between fields and ',' as the decimal mark: pass sep = ';', decimal = ',' or save as CSV "
+        "with '.' decimals");
+  CHECK(csv::sniff("a,b\n1;2,3\n", ',').empty());  // the header splits on ',': it is the separator
+  CHECK(csv::sniff("a\n1\n", ',').empty());        // one column, nothing else shows
+  CHECK(csv::decimal_comma("-0,5"));
+  CHECK(csv::decimal_comma(" 31,84 "));
+  CHECK_FALSE(csv::decimal_comma("1,2.5"));
+  CHECK_FALSE(csv::decimal_comma("a,b"));
+  CHECK_FALSE(csv::decimal_comma(",5"));
+}

@@ -1,4 +1,4 @@
-// The .f06 parser on the results-file example of shared/spec/steering-column.md §10.
+// The .f06 parser on the results-file example of docs/spec/steering-column.md §10.
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -1,0 +1,92 @@
+-- smi.report, issue 28: one verdict list (every check once, one status), "not run" and
+-- "inconclusive" statuses, the header's counts, a verdict contradicting its solver check says
+-- which governs, numbers in text without binary noise, units beside numbers, tables that wrap.
+local T = require "smi.testing"
+local report = require "smi.report"
+local X = require "smi.report.xmlcheck"
+local fmt = require "smi.report.format"
+local by_class = X.find_by_class
+
+local function page()
+  local r = report.new{ title = "Verdicts", date = "2026-01-01 00:00 UTC" }
+  r:section("Validation")
+  r:verdict{ name = "Mode 1", pass = true, detail = "U = 0.05 <= 0.19" }
+  r:verdict{ name = "Mode 2", status = "inconclusive", detail = "U in [0.1, 0.3]",
+             checks = { { name = "Solver check", pass = false, detail = "U = 0.31" } } }
+  r:verdict{ name = "Mode 4", status = "fail", detail = "U = 0.4",
+             checks = { { name = "Solver check", pass = true } },
+             governs = "The solver check governs: it runs the model itself." }
+  r:verdict{ name = "Trial 3", status = "skip", detail = "trial 2 is valid" }
+  r:verdict{ name = "Mode 1", pass = true, detail = "U = 0.051 <= 0.19 (rerun)" } -- replaces the first
+  r:callout("Data: a spread of 1.4999999999999998e-09 s", "warn")
+  r:table{ caption = "Frequencies with 7790.000000000005 in the caption", columns = { "Mode", { title = "Mean", unit = "Hz" } },
+           rows = { { "mode 1", 31.840000000000003 }, { "mode 2", 7790.000000000005 } } }
+  r:provenance{ step = 1.4999999999999998e-09, density = 7790.000000000005, seed = 20200214 }
+  return r
+end
+
+T.case("every verdict once, with one status; the header counts all statuses", function()
+  local r = page()
+  local root = X.parse(r:html())
+  local summary = by_class(root, "section", "summary")[1]
+  local items = X.find_all(X.find_all(summary, "ul")[1], "li")
+  T.eq(#items, 4, "Mode 1 given twice is listed once")
+  local badges = {}
+  for i, li in ipairs(items) do badges[i] = X.text(by_class(li, "span", "badge")[1]) end
+  T.eq(table.concat(badges, ","), "PASS,INCONCLUSIVE,FAIL,NOT RUN", "one status each")
+  T.eq(#by_class(root, "div", "verdict"), 4, "four verdict blocks in the body")
+  local header = X.text(X.find_all(root, "header")[1])
+  T.truthy(header:find("1 passed, 1 failed, 1 warning, 1 inconclusive, 1 not run", 1, true), "counts: " .. header)
+  local n = r:tally()
+  T.eq(n.pass + n.fail + n.warn + n.inconclusive + n.skip, 5, "counts")
+  T.eq(r:data().verdicts[1].detail, "U = 0.051 <= 0.19 (rerun)", "the later verdict replaced the earlier")
+end)
+
+T.case("a verdict that contradicts its check says which governs", function()
+  local d = page():data()
+  T.truthy(d.verdicts[2].disagrees, "inconclusive vs solver FAIL disagree")
+  T.truthy(d.verdicts[2].governs:find("does not say which governs", 1, true), "default sentence: " .. tostring(d.verdicts[2].governs))
+  T.eq(d.verdicts[3].governs, "The solver check governs: it runs the model itself.", "the study's sentence kept")
+  T.eq(d.verdicts[1].governs, nil, "no contradiction, no sentence")
+  local root = X.parse(page():html())
+  T.eq(#by_class(root, "div", "governs"), 2, "both sentences on the page")
+  T.raises(function() report.new{ title = "x" }:verdict{ name = "a", pass = true, checks = { { pass = true } } } end, "needs a name")
+  T.raises(function() report.new{ title = "x" }:verdict{ name = "a", status = "maybe" } end, "inconclusive")
+end)
+
+T.case("numbers: no binary noise in text, units beside them", function()
+  T.eq(fmt.exact(1.4999999999999998e-09), "1.5e-09", "exact")
+  T.eq(fmt.exact(7790.000000000005), "7790", "exact whole")
+  T.eq(fmt.tidy("a 7790.000000000005 b 0.30000000000000004, v1.2.3 sha 12345678901.5x 3.25"),
+       "a 7790 b 0.3, v1.2.3 sha 12345678901.5x 3.25", "tidy keeps words, versions and short numbers")
+  T.eq(fmt.num(31.84, 4, "Hz"), "31.84 Hz", "unit")
+  local html = page():html()
+  for num in html:gmatch("%d[%d.]*%d") do
+    local sig = num:gsub("%.", ""):gsub("^0+", "")
+    if num:find("%.") and not num:find("%..*%.") then T.truthy(#sig <= 10, "a number with more than 10 digits: " .. num) end
+  end
+  T.truthy(html:find("<th class=\"num\">Mean (Hz)</th>", 1, true), "unit in the header")
+  T.truthy(html:find('<div class="table-wrap"><table', 1, true), "tables sit in a wrapping box")
+end)
+
+T.case("a step that did not run says 'not run' and why", function()
+  local study = require "smi.study"
+  local s = study.new{ name = "notrun", out = smi.out(), results = smi.out("notrun.json"), quiet = true,
+                       report = { title = "not run" } }
+  s:step("a", function() return { x = 1 } end)
+  s:step("b", function(ctx) return ctx:skip("trial 2 is valid") end)
+  s:step("c", function() return { skipped = true, reason = "nothing to refine" } end)
+  s:run()
+  local saved = s:load()
+  T.eq(saved.steps.b.not_run, "trial 2 is valid", "recorded")
+  T.eq(saved.steps.c.not_run, "nothing to refine", "the plain record too")
+  T.eq(saved.steps.a.not_run, nil, "a ran")
+  local root = X.parse(s.report:html())
+  local tables = X.find_all(root, "table")
+  local rows = X.find_all(X.find_all(tables[#tables], "tbody")[1], "tr")
+  local function status(tr) return X.text(X.find_all(tr, "td")[2]) end
+  T.eq(status(rows[1]), "PASSran", "a")
+  T.eq(status(rows[2]), "NOT RUNtrial 2 is valid", "b")
+  T.eq(status(rows[3]), "NOT RUNnothing to refine", "c")
+end)
+T.finish()
