@@ -86,12 +86,17 @@ int vec_range(lua_State* L) {
   const double a = luaL_checknumber(L, 1), b = luaL_checknumber(L, 2), step = luaL_optnumber(L, 3, 1.0);
   luaL_argcheck(L, step != 0 && std::isfinite(step), 3, "step must be finite and non-zero");
   const double count = std::floor((b - a) / step + 1e-9) + 1;
-  luaL_argcheck(L, count <= 1e9, 2, "range too long");
-  const auto n = static_cast<Eigen::Index>(std::max(0.0, count));
-  Vec v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = a + step * static_cast<double>(i);
-  push_vec(L, std::move(v));
-  return 1;
+  if (!std::isfinite(a) || !std::isfinite(b)) return luaL_error(L, "smi.vec.range: a and b must be finite");
+  // Checked before the vec exists (pushing it would count it only once allocated), inside
+  // protect: an allocation failure is a message, not a C++ exception crossing Lua.
+  return lua::protect(L, "smi.vec.range", [&] {
+    lua::require_room(L, std::max(0.0, count), sizeof(double), "the range");
+    const auto n = static_cast<Eigen::Index>(std::max(0.0, count));
+    Vec v(n);
+    for (Eigen::Index i = 0; i < n; ++i) v[i] = a + step * static_cast<double>(i);
+    push_vec(L, std::move(v));
+    return 1;
+  });
 }
 
 // ---- reductions

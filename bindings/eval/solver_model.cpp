@@ -2,6 +2,7 @@
 // through the evaluator (host/kernels/eval/evaluator.hpp). This file turns the option table
 // into a CommandConfig (through the sandbox), calls the Lua output parser for each finished
 // run, shows progress, and reports failures.
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "bindings/eval/model.hpp"
+#include "kernels/core/sha256.hpp"
 #include "kernels/eval/folder_lock.hpp"
 #include "kernels/eval/process.hpp"
 #include "kernels/eval/progress_line.hpp"
@@ -92,7 +94,7 @@ std::vector<std::string> read_command(lua_State* L, lua::Options& o, bool batch,
   return argv;
 }
 
-// executor = {kind = "slurm", partition = "short", ...} overrides --executor/--slurm-opt key by key.
+// executor = {kind = "local", throttle = 4, ...}: may only narrow --executor/--slurm-opt (apply_executor).
 std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State* L, lua::Options& o, const char* fname) {
   std::vector<std::pair<std::string, std::string>> exec_opts;
   if (const int t = o.push("executor"); t != LUA_TNIL) {
@@ -151,15 +153,57 @@ void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se:
   }
 }
 
-// The executor: the command line's choice (--executor, --slurm-opt, --detach), then the study's
-// executor = {...} key by key.
+// The executor: the command line's choice (--executor, --slurm-opt, --detach). A study's
+// executor = {...} may only narrow it: "local" instead of slurm, fewer tasks at once, smaller
+// arrays, fewer requeues, slower polling, no --detach. Where runs go and what they ask of a
+// cluster (partition, account, qos, time, mem, cpus, sbatch arguments) is the user's: the study
+// may repeat a command-line value (to document it) but not add or change one.
 void apply_executor(const Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
   if (!pol.executor.empty()) c.executor.kind = pol.executor;
   for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
   c.executor.detach = pol.detach;
+  const se::ExecutorConfig cli = c.executor;
+  const auto refuse = [](const std::string& k, const std::string& v, const std::string& why) {
+    throw SandboxDenied(fmt::format("executor option {} = '{}' comes from the study, but {}. A study's executor table "
+                                    "may only narrow what the command line allows",
+                                    k, v, why));
+  };
+  se::ExecutorConfig wish = cli;  // parses and range-checks the study's values
+  for (const auto& [k, v] : so.exec_opts)  // the kind first, whatever the table's order
+    if (k == "kind") {
+      if (v != "local" && v != cli.kind)
+        refuse(k, v, "where solver runs go is the user's choice: run with --executor " + v + " to allow it");
+      if (v == "local") c.executor.kind = "local";
+    }
   for (const auto& [k, v] : so.exec_opts) {
-    if (k == "detach") c.executor.detach = v == "1";
-    else c.executor.set(k, v);
+    if (k == "kind") {
+      continue;
+    } else if (k == "detach") {
+      if (v == "1" && !cli.detach) refuse(k, "true", "leaving jobs running after a stop needs --detach");
+      c.executor.detach = cli.detach && v == "1";
+    } else if (k == "sbatch") {
+      if (std::find(cli.sbatch_args.begin(), cli.sbatch_args.end(), v) == cli.sbatch_args.end())
+        refuse(k, v, "sbatch arguments are the user's choice: give --slurm-opt sbatch=" + v);
+    } else if (k == "partition" || k == "account" || k == "qos" || k == "time" || k == "mem" || k == "cpus") {
+      wish.set(k, v);
+      const bool same = k == "partition" ? wish.partition == cli.partition
+                        : k == "account" ? wish.account == cli.account
+                        : k == "qos"     ? wish.qos == cli.qos
+                        : k == "time"    ? wish.time == cli.time
+                        : k == "mem"     ? wish.mem == cli.mem
+                                         : wish.cpus == cli.cpus;
+      if (!same) refuse(k, v, "cluster resources are the user's choice: give --slurm-opt " + k + "=" + v);
+    } else {
+      wish.set(k, v);
+      bool ok = true;  // the study's value asks for less than the command line's
+      if (k == "throttle") ok = wish.throttle <= cli.throttle;
+      else if (k == "max_array") ok = cli.max_array == 0 || (wish.max_array > 0 && wish.max_array <= cli.max_array);
+      else if (k == "max_requeues") ok = wish.max_requeues <= cli.max_requeues;
+      else if (k == "poll") ok = wish.poll_min >= cli.poll_min;
+      else if (k == "poll_max") ok = wish.poll_max >= cli.poll_max;
+      c.executor.set(k, v);  // cmd_timeout, down_after, exit_wait: how long smi-lua waits, nothing more
+      if (!ok) refuse(k, v, fmt::format("it asks for more than the command line allows; give --slurm-opt {}={}", k, v));
+    }
   }
   c.executor.validate();
 }
@@ -296,6 +340,8 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   lua::protect(L, fname, [&] {
     c.on_failure = se::parse_on_failure(so.on_failure);
     apply_executor(pol, so, c);
+    c.env_names = pol.allow_env;
+    if (!pol.script_path.empty()) c.script_hash = "sha256:" + sha256_file(pol.script_path);
     open_solver_inputs(pol, so, batch, fname, c);
     place_solver_outputs(pol, so, c);
     record_program(pol, c, so);

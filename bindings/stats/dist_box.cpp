@@ -6,6 +6,7 @@
 #include "kernels/stats/ecdf.hpp"
 #include "kernels/stats/kde.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 
 namespace smi::bind {
 namespace {
@@ -72,6 +73,7 @@ int dist_sample(lua_State* L) {
     rng = &local;
   }
   return lua::protect(L, "dist:sample", [&] {
+    lua::require_room(L, static_cast<double>(n), sizeof(double), "the sample");  // before drawing, not after
     lua::push_vec(L, d.sample(*rng, static_cast<Eigen::Index>(n)));
     return 1;
   });

@@ -13,6 +13,7 @@
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 #include "luax/policy.hpp"
 
 namespace smi::bind::surrogate {
@@ -94,6 +95,10 @@ int doe_lhs(lua_State* L) {
   lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
   lo.centered = o.boolean("centered", lo.centered);
   return lua::protect(L, "smi.doe.lhs", [&] {
+    // The design, its copies while optimised, and the n x n distances the criterion keeps.
+    const double nd = static_cast<double>(n) * static_cast<double>(space.size());
+    lua::require_room(L, 3 * nd + (lo.criterion == "none" ? 0.0 : static_cast<double>(n) * static_cast<double>(n)),
+                      sizeof(double), "the design");
     lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
     return 1;
   });
@@ -106,6 +111,7 @@ int doe_sobol(lua_State* L) {
   o.check_known({"skip"});
   const auto skip = static_cast<Eigen::Index>(o.integer("skip", 0));
   return lua::protect(L, "smi.doe.sobol", [&] {
+    lua::require_room(L, 2.0 * static_cast<double>(n) * static_cast<double>(space.size()), sizeof(double), "the design");
     lua::push_mat(L, map_space(smi::surrogate::doe::sobol(n, static_cast<Eigen::Index>(space.size()), skip), space));
     return 1;
   });
@@ -131,6 +137,11 @@ int doe_full_factorial(lua_State* L) {
     }
   }
   return lua::protect(L, "smi.doe.full_factorial", [&] {
+    // rows = the product of the level counts (k^d with a space): checked before any of it exists.
+    double rows = 1;
+    for (const auto& l : levels) rows *= static_cast<double>(l.size());
+    for (std::size_t i = 0; i < space.size(); ++i) rows *= static_cast<double>(k);
+    lua::require_room(L, rows * static_cast<double>(levels.size() + space.size()), sizeof(double), "the design");
     for (const Dim& d : space) {
       Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(k, 0.0, 1.0);
       if (d.dist)  // cell midpoints: quantiles at 0 and 1 may be infinite

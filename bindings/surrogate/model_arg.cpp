@@ -75,9 +75,46 @@ std::vector<std::string> string_field(lua_State* L, int idx, const char* key) {
   return out;
 }
 
+/// {name = kriging, ...}: one model predicting each named output with its Kriging.
+ModelArg kriging_table(lua_State* L, int idx, const char* fname, ModelArg m) {
+  // The pointers below are used until the bound function returns, while Lua code runs in
+  // between (option reads through __index, the other inputs, a Lua model): the script can
+  // empty its table and collect a Kriging then. So the boxes are copied into a table of our
+  // own that takes the table's stack slot: reachable, hence alive (a __close meanwhile only
+  // marks them closed, luax.hpp), until the slot goes.
+  std::vector<std::pair<std::string, KrigingBox*>> parts;
+  lua_newtable(L);
+  const int held = lua_gettop(L);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    KrigingBox* k = test_kriging(L, -1);
+    if (lua_type(L, -2) != LUA_TSTRING || !k)
+      luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname,
+                 lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string");
+    parts.emplace_back(lua_tostring(L, -2), k);
+    lua_pushvalue(L, -2);
+    lua_pushvalue(L, -2);
+    lua_rawset(L, held);
+    lua_pop(L, 1);
+  }
+  lua_replace(L, idx);
+  if (parts.empty()) luaL_error(L, "%s: model table is empty", fname);
+  std::sort(parts.begin(), parts.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  for (auto& p : parts) m.outputs->push_back(p.first);
+  m.input_names = parts[0].second->inputs;
+  m.fn = [parts](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
+    Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(parts.size()));
+    for (std::size_t j = 0; j < parts.size(); ++j)
+      Y.col(static_cast<Eigen::Index>(j)) = smi::surrogate::kriging::predict_mean(parts[j].second->model, X);
+    return Y;
+  };
+  return m;
+}
+
 }  // namespace
 
 ModelArg to_model(lua_State* L, int idx, const char* fname) {
+  idx = lua_absindex(L, idx);
   ModelArg m;
   m.outputs = std::make_shared<std::vector<std::string>>();
   if (KrigingBox* k = test_kriging(L, idx)) {
@@ -122,29 +159,7 @@ ModelArg to_model(lua_State* L, int idx, const char* fname) {
       };
       return m;
     }
-    if (lua_type(L, idx) == LUA_TTABLE) {  // {name = kriging, ...}
-      std::vector<std::pair<std::string, KrigingBox*>> parts;
-      lua_pushnil(L);
-      while (lua_next(L, idx)) {
-        KrigingBox* k = test_kriging(L, -1);
-        if (lua_type(L, -2) != LUA_TSTRING || !k)
-          luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname,
-                     lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string");
-        parts.emplace_back(lua_tostring(L, -2), k);
-        lua_pop(L, 1);
-      }
-      if (parts.empty()) luaL_error(L, "%s: model table is empty", fname);
-      std::sort(parts.begin(), parts.end(), [](auto& a, auto& b) { return a.first < b.first; });
-      for (auto& p : parts) m.outputs->push_back(p.first);
-      m.input_names = parts[0].second->inputs;
-      m.fn = [parts](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
-        Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(parts.size()));
-        for (std::size_t j = 0; j < parts.size(); ++j)
-          Y.col(static_cast<Eigen::Index>(j)) = smi::surrogate::kriging::predict_mean(parts[j].second->model, X);
-        return Y;
-      };
-      return m;
-    }
+    if (lua_type(L, idx) == LUA_TTABLE) return kriging_table(L, idx, fname, std::move(m));  // {name = kriging, ...}
   }
   luaL_error(L, "%s: model must be an smi.kriging, a table of them by output name, a function(X) or an object "
              "with :evaluate(X); got %s", fname, luaL_typename(L, idx));

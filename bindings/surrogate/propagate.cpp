@@ -4,6 +4,7 @@
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "luax/luax.hpp"
+#include "luax/memory.hpp"
 #include "luax/policy.hpp"
 
 #include <cmath>
@@ -22,6 +23,9 @@ int propagate_call(lua_State* L) {
   if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   return lua::protect(L, fname, [&] {
+    // The sample (and its uniforms while drawn) and the outputs, before any of it exists.
+    lua::require_room(L, static_cast<double>(n) * (2.0 * static_cast<double>(inputs.size()) + 1), sizeof(double),
+                      "the sample");
     Eigen::MatrixXd X = smi::surrogate::propagate::crn_sample(inputs, n, seed);
     const Eigen::MatrixXd Y = model.fn(X);
     if (Y.rows() != X.rows()) throw DimensionMismatch("the model returned " + std::to_string(Y.rows()) + " rows for " + std::to_string(X.rows()) + " points");

@@ -10,8 +10,11 @@
 #include "bindings/modules.hpp"
 #include "kernels/core/atomic_file.hpp"
 #include "kernels/core/cancel.hpp"
+#include "kernels/core/printable.hpp"
 #include "kernels/eval/folder_lock.hpp"
+#include "luax/load_guard.hpp"
 #include "luax/luax.hpp"
+#include "luax/policy.hpp"
 #include "sandbox/sandbox.hpp"
 #include "vm/library_lua.hpp"
 
@@ -228,7 +231,7 @@ void Runtime::build_policy() {
   for (const auto& d : cfg_.allow_read) policy_.read_roots.push_back(resolve_path(d));
 
   policy_.out_dir = cfg_.out_dir.empty() ? default_out_dir(cfg_.script) : cfg_.out_dir;
-  policy_.out_root = resolve_path(policy_.out_dir.string());
+  policy_.out_root = output_root(policy_.out_dir.string());
   policy_.write_roots.push_back(policy_.out_root);
   for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(resolve_path(d));
   // --store is read-only: the evaluator opens it read-only and immutable, and a script may read
@@ -243,6 +246,7 @@ void Runtime::build_policy() {
   policy_.dry_run = cfg_.dry_run;
   policy_.executor = cfg_.executor;
   policy_.slurm_opts = cfg_.slurm_opts;
+  policy_.allow_env = cfg_.allow_env;
   policy_.detach = cfg_.detach;
   policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
 
@@ -383,9 +387,10 @@ int Runtime::report(int status) {
   if (limits_.abort == Abort::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
     // "not enough memory" comes from the allocator refusing: say which limit and how to raise it
     std::fprintf(stderr, "smi-lua: %s\n", abort_message(limits_, buf, sizeof buf));
-    if (msg && std::strcmp(msg, "not enough memory") != 0) std::fprintf(stderr, "%s\n", msg);
+    if (msg && std::strcmp(msg, "not enough memory") != 0) std::fprintf(stderr, "%s\n", printable(msg).c_str());
   } else {
-    std::fprintf(stderr, "smi-lua: %s\n", msg ? msg : "(error object is not a string)");
+    // Messages carry data (file contents, a solver's log, names from a results file): escaped.
+    std::fprintf(stderr, "smi-lua: %s\n", msg ? printable(msg).c_str() : "(error object is not a string)");
   }
   lua_pop(L_, 1);
   if (limits_.interrupted > 0) {
@@ -410,7 +415,18 @@ int Runtime::run_file(const std::string& path, const std::vector<std::string>& a
     } catch (const std::exception&) {
     }
   }
-  int status = luaL_loadfilex(L_, stdin_script ? nullptr : path.c_str(), "t");
+  // Read whole, then loaded through the guard against Lua 5.4.4's code-generation bug
+  // (luax/load_guard.hpp); a file that cannot be read gets luaL_loadfilex's own message.
+  std::string text;
+  bool read_ok = false;
+  if (std::FILE* f = stdin_script ? stdin : std::fopen(path.c_str(), "rb")) {
+    char buf[65536];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+    read_ok = !std::ferror(f);
+    if (!stdin_script) std::fclose(f);
+  }
+  int status = read_ok ? lua::load_text(L_, text, stdin_script ? "=stdin" : "@" + path)
+                       : luaL_loadfilex(L_, stdin_script ? nullptr : path.c_str(), "t");
   if (status == LUA_OK) {
     for (const auto& a : args) lua_pushstring(L_, a.c_str());
     status = docall(static_cast<int>(args.size()), 0);
@@ -419,7 +435,7 @@ int Runtime::run_file(const std::string& path, const std::vector<std::string>& a
 }
 
 int Runtime::run_string(const std::string& code, const std::string& chunkname) {
-  int status = luaL_loadbufferx(L_, code.data(), code.size(), chunkname.c_str(), "t");
+  int status = lua::load_buffer(L_, code.data(), code.size(), chunkname.c_str());
   if (status == LUA_OK) status = docall(0, 0);
   return report(status);
 }

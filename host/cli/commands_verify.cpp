@@ -20,6 +20,7 @@
 #include "kernels/core/errors.hpp"
 #include "kernels/core/json.hpp"
 #include "kernels/core/path_walk.hpp"
+#include "kernels/core/printable.hpp"
 #include "kernels/core/run_record.hpp"
 #include "kernels/core/sha256.hpp"
 #include "vm/build_info.hpp"
@@ -377,8 +378,19 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
   try {
     rec = read_recorded(args[0]);
   } catch (const NotResults& e) {
-    std::fprintf(stderr, "smi-lua verify: %s\n", e.what());
+    std::fprintf(stderr, "smi-lua verify: %s\n", printable(e.what()).c_str());
     return 2;
+  }
+  // Everything shown comes from the results file: escaped, so a study cannot print its own
+  // "ok" lines over the real ones with terminal escapes (issue 23).
+  for (std::string* f : {&rec.smi_lua, &rec.script_path, &rec.script_hash, &rec.cwd}) *f = printable(*f);
+  for (std::string& c : rec.command) c = printable(c);
+  for (auto& [path, info] : rec.files) path = printable(path);
+  for (RecordedLib& l : rec.libs) {
+    for (std::string* f : {&l.name, &l.version, &l.path, &l.hash, &l.commit}) *f = printable(*f);
+    std::map<std::string, std::string> files;
+    for (const auto& [rel, digest] : l.files) files[printable(rel)] = printable(digest);
+    l.files = std::move(files);
   }
   const bool text = !as_json;
   const vm::LibrarySet here = current_libraries(a);

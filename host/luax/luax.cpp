@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 #include <string_view>
 
@@ -303,5 +304,34 @@ void set_vec(lua_State* L, const char* key, Eigen::VectorXd v) {
   lua_setfield(L, -2, key);
 }
 void set_funcs(lua_State* L, const luaL_Reg* funcs) { luaL_setfuncs(L, funcs, 0); }
+
+void error_message(char* buf, std::size_t size, const char* fname, const char* what) {
+  const std::string mark = std::string(fname) + ": ";
+  const std::string w = what;
+  int nested = 0;
+  std::size_t last = std::string::npos;
+  for (std::size_t at = w.find(mark); at != std::string::npos; at = w.find(mark, at + mark.size())) {
+    ++nested;
+    last = at;
+  }
+  if (nested == 0) {
+    std::snprintf(buf, size, "%s: %s", fname, what);
+    return;
+  }
+  // The cause, without the inner traceback (the outer one, added by the runtime, shows the path).
+  std::string cause = w.substr(last + mark.size());
+  if (const auto tb = cause.find("\nstack traceback:"); tb != std::string::npos) cause.resize(tb);
+  // A level below said how deep it was already: count on from there.
+  int depth = nested + 1;
+  const std::string tail = std::string(" nested ") + fname + " calls deep)";
+  if (cause.size() > tail.size() && cause.compare(cause.size() - tail.size(), tail.size(), tail) == 0) {
+    const auto open = cause.rfind(" (raised ");
+    if (open != std::string::npos) {
+      depth = std::atoi(cause.c_str() + open + 9) + nested;
+      cause.resize(open);
+    }
+  }
+  std::snprintf(buf, size, "%s: %s (raised %d nested %s calls deep)", fname, cause.c_str(), depth, fname);
+}
 
 }  // namespace smi::lua

@@ -32,6 +32,12 @@ namespace smi::lua {
 // ---------------------------------------------------------------------------------------------
 // The boundary
 
+/// "<fname>: <what>" into buf; when `what` already holds "<fname>: " (a recursive propagate or
+/// calibrate whose model calls it again), the cause comes first whatever the depth:
+/// "<fname>: <innermost message> (raised N nested <fname> calls deep)", never a message of
+/// prefixes cut off before the cause.
+void error_message(char* buf, std::size_t size, const char* fname, const char* what);
+
 /// Runs body() (returns the number of Lua results). A std::exception thrown by it becomes the
 /// Lua error "<fname>: <what>" carrying the caller's file:line.
 template <class F>
@@ -40,7 +46,7 @@ int protect(lua_State* L, const char* fname, F&& body) {
   try {
     return body();
   } catch (const std::exception& e) {
-    std::snprintf(msg, sizeof msg, "%s: %s", fname, e.what());
+    error_message(msg, sizeof msg, fname, e.what());
   }
   return luaL_error(L, "%s", msg);
 }

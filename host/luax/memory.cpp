@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <unistd.h>
 
+#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 
 namespace smi::lua {
@@ -35,17 +37,20 @@ void set_memory_budget(lua_State* L, MemoryBudget* b) {
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kBudgetKey);
 }
 
-void check_alloc(lua_State* L, double count, std::size_t elem_bytes, const char* what) {
+namespace {
+
+/// "" when `count` values of `elem_bytes` fit, else why not (the message both checks raise).
+std::string alloc_refusal(lua_State* L, double count, std::size_t elem_bytes, const char* what) {
   const double bytes = count * static_cast<double>(elem_bytes);
   const double phys = physical_bytes();
   char msg[512];  // lua_pushfstring has no precision: format here
-  if (phys > 0 && bytes > phys) {
+  if (!(bytes >= 0) || (phys > 0 && bytes > phys)) {  // NaN counts too
     std::snprintf(msg, sizeof msg, "%s: %.0f values need %.0f MB, more than this machine's memory (%.0f MB)", what,
                   count, mb(bytes), mb(phys));
-    luaL_error(L, "%s", msg);
+    return msg;
   }
   MemoryBudget* b = budget(L);
-  if (!b || !b->limit) return;
+  if (!b || !b->limit) return "";
   if (static_cast<double>(in_use(*b)) + bytes > static_cast<double>(b->limit)) {
     lua_gc(L, LUA_GCCOLLECT);  // garbage vecs may hold the room
     if (static_cast<double>(in_use(*b)) + bytes > static_cast<double>(b->limit)) {
@@ -54,9 +59,27 @@ void check_alloc(lua_State* L, double count, std::size_t elem_bytes, const char*
                  "of --max-memory %.0f MB; raise --max-memory or drop references to large objects",
                  what, mb(bytes), mb(static_cast<double>(in_use(*b))), mb(b->lua_used ? static_cast<double>(*b->lua_used) : 0),
                  mb(static_cast<double>(b->external)), mb(static_cast<double>(b->limit)));
-      luaL_error(L, "%s", msg);
+      return msg;
     }
   }
+  return "";
+}
+
+}  // namespace
+
+void check_alloc(lua_State* L, double count, std::size_t elem_bytes, const char* what) {
+  char msg[600];
+  {
+    const std::string why = alloc_refusal(L, count, elem_bytes, what);
+    if (why.empty()) return;
+    std::snprintf(msg, sizeof msg, "%s", why.c_str());
+  }
+  luaL_error(L, "%s", msg);
+}
+
+void require_room(lua_State* L, double count, std::size_t elem_bytes, const char* what) {
+  const std::string why = alloc_refusal(L, count, elem_bytes, what);
+  if (!why.empty()) throw Error(why);
 }
 
 void account_bytes(lua_State* L, std::size_t bytes, const char* what) {

@@ -23,4 +23,9 @@ void set_memory_budget(lua_State* L, MemoryBudget* b);
 /// Call it before allocating a size a script chose (smi.vec(n), smi.mat(r, c)).
 void check_alloc(lua_State* L, double count, std::size_t elem_bytes, const char* what);
 
+/// The same check for code inside protect(): throws smi::Error with the same message. Every
+/// binding that allocates a size a script chose calls one of them before allocating (pushing
+/// the result counts it only once it exists, too late for a 1 GB sample).
+void require_room(lua_State* L, double count, std::size_t elem_bytes, const char* what);
+
 }  // namespace smi::lua

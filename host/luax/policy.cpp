@@ -1,5 +1,7 @@
 #include "luax/policy.hpp"
 
+#include "luax/load_guard.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <climits>
@@ -23,6 +25,17 @@ fs::path resolve_path(const std::string& path) {
   return r;
 }
 
+fs::path output_root(const std::string& path) {
+  fs::path p = fs::path(path).lexically_normal();
+  if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();  // "smi-out/x/"
+  std::error_code ec;
+  if (p.is_relative()) {
+    const fs::path cwd = fs::canonical(fs::current_path(ec), ec);
+    return (cwd / p).lexically_normal();
+  }
+  return resolve_path(p.parent_path().string()) / p.filename();
+}
+
 bool path_within(const fs::path& path, const fs::path& root) { return pathwalk::within(path.string(), root.string()); }
 
 namespace {
@@ -37,6 +50,29 @@ bool under_any(const std::string& canonical, const std::vector<fs::path>& roots)
   for (const auto& r : roots)
     if (pathwalk::within(canonical, r.string())) return true;
   return false;
+}
+
+/// The path made absolute as text (the working folder resolved, nothing of the path followed).
+std::string lexical_absolute(const std::string& path) {
+  fs::path p(path);
+  std::error_code ec;
+  if (p.is_relative()) p = fs::canonical(fs::current_path(ec), ec) / p;
+  std::string s = p.lexically_normal().string();
+  while (s.size() > 1 && s.back() == '/') s.pop_back();
+  return s;
+}
+
+/// How a denial shows where `path` led (`where`, canonical). A denial names the path the script
+/// gave; where a link on the way led elsewhere (/proc/self/fd/N, /proc/self/cwd, a planted link)
+/// the target is not shown: it may name files of the host outside every root.
+bool led_elsewhere(const std::string& path, const std::string& where) {
+  const std::string lex = lexical_absolute(path);
+  return lex != where && !pathwalk::within(lex, where);  // (a walk that stopped early names a prefix)
+}
+
+std::string resolved_note(const std::string& path, const std::string& where) {
+  return led_elsewhere(path, where) ? " (a link on the way leads outside the folders allowed)"
+                                    : fmt::format(" (resolved to '{}')", where);
 }
 
 std::string parent_of(const std::string& canonical) {
@@ -86,7 +122,7 @@ CheckedFile open_read_within(const std::string& path, const std::vector<fs::path
     pathwalk::Walk w = pathwalk::walk(path, true);
     const std::string where = w.error ? w.where : w.canonical();
     if (!under_any(where, roots))
-      throw SandboxDenied(fmt::format("reading '{}' (resolved to '{}') is not allowed: {}", path, where, denial_hint));
+      throw SandboxDenied(fmt::format("reading '{}'{} is not allowed: {}", path, resolved_note(path, where), denial_hint));
     if (w.error) os_error(path, w.error);
     if (!w.exists) os_error(path, ENOENT);
     pathwalk::Fd fd;
@@ -111,33 +147,48 @@ CheckedFile Policy::open_read_unrecorded(const std::string& path) const {
   const std::string resolved = resolve_path(path).string();
   return open_read_within(
       path, roots,
-      fmt::format("scripts read only under their own folder, the library folders and --allow-read paths ({}); "
-                  "run with --allow-read {} to allow it",
-                  list_roots(read_roots), parent_of(resolved)));
+      fmt::format("scripts read only under their own folder, the library folders and --allow-read paths ({}); {}",
+                  list_roots(read_roots),
+                  led_elsewhere(path, resolved)
+                      ? std::string("if the place the link leads to is meant to be read, allow its folder with --allow-read")
+                      : fmt::format("run with --allow-read {} to allow it", parent_of(resolved))));
 }
 
 fs::path Policy::ensure_out_dir() const {
-  const std::string root = out_root.empty() ? resolve_path(out_dir.string()).string() : out_root.string();
+  const std::string root = out_root.empty() ? output_root(out_dir.string()).string() : out_root.string();
   pathwalk::Fd fd = pathwalk::make_dirs_nofollow(root);
-  if (!fd)
-    throw Error(fmt::format("cannot create the output folder '{}' ({}): {}{}", out_dir.string(), root,
-                            std::strerror(errno),
-                            errno == ENOTDIR ? " (a component is a symlink or a file; the output folder is made "
-                                               "without following symlinks)"
-                                             : ""));
+  if (!fd) {
+    const int e = errno;
+    // Name the link: it sits where smi-lua makes its folders (a study bundle unpacked here can
+    // bring one). Its target is not shown: it may lie outside every root.
+    fs::path at;
+    for (const auto& part : fs::path(root)) {
+      at /= part;
+      struct stat st;
+      if (::lstat(at.c_str(), &st) != 0) break;
+      if (S_ISLNK(st.st_mode))
+        throw SandboxDenied(fmt::format("the output folder '{}' cannot be used: '{}' is a symbolic link, and smi-lua "
+                                        "makes its output folders itself without following links. Remove the link, "
+                                        "or give --out a real folder",
+                                        out_dir.string(), at.string()));
+      if (!S_ISDIR(st.st_mode)) break;
+    }
+    throw Error(fmt::format("cannot create the output folder '{}' ({}): {}", out_dir.string(), root, std::strerror(e)));
+  }
   return root;
 }
 
 pathwalk::Walk Policy::walk_write(const std::string& path, const std::string& named) const {
   // The output folder is created on demand: on the first write under it. Deciding that on the
   // text of the path only creates a folder the policy allows anyway.
+  // Whether the path lies in it is judged on the text (made absolute, links not followed): a
+  // link planted on the way must meet ensure_out_dir, which refuses it by name.
   const std::string root = !out_root.empty() ? out_root.string()
                            : out_dir.empty() ? std::string()
-                                             : resolve_path(out_dir.string()).string();
-  if (!root.empty() && pathwalk::within(resolve_path(path).string(), root)) {
-    struct stat st;
-    if (::lstat(root.c_str(), &st) != 0) ensure_out_dir();
-  }
+                                             : output_root(out_dir.string()).string();
+  if (!root.empty() && (pathwalk::within(output_root(path).string(), root) ||
+                        pathwalk::within(resolve_path(path).string(), root)))
+    ensure_out_dir();
   pathwalk::Walk w = pathwalk::walk(path, false);
   if (!unrestricted) {
     // The entry's folder must lie under a write root (so a root itself cannot be removed or
@@ -151,11 +202,13 @@ pathwalk::Walk Policy::walk_write(const std::string& path, const std::string& na
             std::any_of(write_roots.begin(), write_roots.end(), [&](const fs::path& r) { return r == w.canonical(); }));
     if (!ok) {
       const std::string shown = w.error ? w.where : w.canonical();
+      const bool linked = led_elsewhere(named, shown);
       throw SandboxDenied(fmt::format(
-          "writing '{}' (resolved to '{}') is not allowed: scripts write only under the output folder "
-          "(--out, now {}; smi.out(\"name\") gives a path there) and --allow-write paths ({}); run with "
-          "--allow-write {} to allow it",
-          named, shown, out_dir.string(), list_roots(write_roots), parent_of(shown)));
+          "writing '{}'{} is not allowed: scripts write only under the output folder "
+          "(--out, now {}; smi.out(\"name\") gives a path there) and --allow-write paths ({}); {}",
+          named, resolved_note(named, shown), out_dir.string(), list_roots(write_roots),
+          linked ? std::string("if the place the link leads to is meant to be written, allow its folder with --allow-write")
+                 : fmt::format("run with --allow-write {} to allow it", parent_of(shown))));
     }
   }
   if (w.error) os_error(named, w.error);
@@ -232,7 +285,11 @@ std::string Policy::checked_write_file(const std::string& path) const {
   pathwalk::Walk w = walk_write(path);
   if (w.exists && !S_ISREG(w.st.st_mode))
     throw SandboxDenied(fmt::format("writing '{}' (resolved to '{}') is not allowed: it is not a regular file{}", path,
-                                    w.canonical(), S_ISLNK(w.st.st_mode) ? " but a symlink" : ""));
+                                    w.canonical(), S_ISLNK(w.st.st_mode) ? " but a symbolic link" : ""));
+  if (w.exists && w.st.st_nlink > 1 && !unrestricted)
+    throw SandboxDenied(fmt::format("writing '{}' is not allowed: the file has {} hard links, so writing it would "
+                                    "change a file elsewhere; remove it first",
+                                    path, w.st.st_nlink));
   return w.canonical();
 }
 
@@ -274,8 +331,18 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
   if (unrestricted) return resolved;
   for (const auto& allowed : exec_allowed) {
     // By name: "--allow-exec column-fe" allows that program wherever PATH finds it.
-    if (allowed.find('/') == std::string::npos && allowed == program) return resolved;
-    if (allowed.find('/') != std::string::npos && resolve_path(allowed) == resolved) return resolved;
+    const bool named = (allowed.find('/') == std::string::npos && allowed == program) ||
+                       (allowed.find('/') != std::string::npos && resolve_path(allowed) == resolved);
+    if (!named) continue;
+    // Write or execute, not both: a program the script may rewrite would run the script's code
+    // with none of the sandbox's limits.
+    for (const auto& root : write_roots)
+      if (path_within(resolved, root))
+        throw SandboxDenied(fmt::format(
+            "running '{}' is not allowed: the program lies under '{}', a folder the script may write, so the script "
+            "could replace it before it runs. Install it outside the output folder and the --allow-write folders",
+            program, root.string()));
+    return resolved;
   }
   throw SandboxDenied(fmt::format(
       "running '{}' ({}) is not allowed: scripts run only programs named by --allow-exec; "
@@ -309,7 +376,7 @@ int load_text(lua_State* L, const std::string& text, const std::string& chunknam
     const std::size_t nl = text.find('\n', start);
     start = nl == std::string::npos ? text.size() : nl;  // keep the newline: line numbers stay right
   }
-  return luaL_loadbufferx(L, text.data() + start, text.size() - start, chunkname.c_str(), "t");
+  return load_buffer(L, text.data() + start, text.size() - start, chunkname.c_str());
 }
 
 void set_policy(lua_State* L, Policy* p) {

@@ -57,6 +57,7 @@ struct Policy {
   std::string executor;                            // --executor: where solver runs go ("" = local)
   std::vector<std::string> slurm_opts;             // --slurm-opt KEY=VALUE
   bool detach = false;                             // --detach: leave Slurm jobs running when stopped
+  std::vector<std::string> allow_env;              // --allow-env: variables scripts and solvers may see
   /// Set by the runtime: "" while the run may go on, else why it must stop ("timeout: ...",
   /// "interrupted"). C++ code that waits without running Lua (solver runs) polls it, because
   /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.
@@ -67,7 +68,7 @@ struct Policy {
   /// step needs solver runs that were not made.
   std::function<void(int code)> request_exit;
 
-  std::filesystem::path out_root;                  // out_dir resolved at start (made on demand, no symlinks)
+  std::filesystem::path out_root;                  // output_root(out_dir) at start (made on demand, no symlinks)
   /// What the run read and ran (provenance, issue 24); set by the runtime, null in kernel tests.
   /// open_read records every file it opens here (hashed from the opened descriptor).
   RunRecord* record = nullptr;
@@ -117,6 +118,12 @@ struct Policy {
 /// For roots given on the command line (resolved once at start) and for messages only: never
 /// to decide whether a script may open something (that is Policy::open_read/open_write).
 std::filesystem::path resolve_path(const std::string& path);
+
+/// The output folder as an absolute path with no link in it followed: the working folder
+/// (resolved) joined with a relative --out, or an absolute --out's resolved parent and its name.
+/// Links planted where smi-lua makes its folders are then refused by name when it makes them
+/// (Policy::ensure_out_dir), instead of being followed to wherever they point.
+std::filesystem::path output_root(const std::string& path);
 
 /// True if `path` equals `root` or lies below it (component-wise, both already resolved).
 bool path_within(const std::filesystem::path& path, const std::filesystem::path& root);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "luax/load_guard.hpp"
 #include "repl/line_reader.hpp"
 #include "repl/printer.hpp"
 
@@ -17,7 +18,7 @@ constexpr const char* kChunkName = "=stdin";
 /// Compiles "return <line>"; on success the chunk is on the stack. Stack: [] -> [chunk] or [].
 bool load_as_expression(lua_State* L, const std::string& line) {
   const std::string code = "return " + line;
-  if (luaL_loadbufferx(L, code.data(), code.size(), kChunkName, "t") == LUA_OK) return true;
+  if (lua::load_buffer(L, code.data(), code.size(), kChunkName) == LUA_OK) return true;
   lua_pop(L, 1);
   return false;
 }
@@ -68,7 +69,7 @@ int run(vm::Runtime& rt) {
     if (!load_as_expression(L, entry)) {
       // A statement, possibly spread over several lines.
       for (;;) {
-        status = luaL_loadbufferx(L, entry.data(), entry.size(), kChunkName, "t");
+        status = lua::load_buffer(L, entry.data(), entry.size(), kChunkName);
         if (!incomplete(L, status)) break;
         auto more = reader.read(p2);
         if (!more) break;  // end of input inside a chunk: report the syntax error

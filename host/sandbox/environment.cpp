@@ -2,6 +2,7 @@
 // only what is named below is reachable from a script. The standard libraries are opened and
 // wrapped first (sandbox.cpp, files.cpp); this copies the listed entries into fresh tables and
 // makes them the globals, so the original library tables and the old global table are dropped.
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -57,29 +58,77 @@ int getenv_allowed(lua_State* L) {
 }
 
 // Lua 5.4.4 resets the C-call count in lua_resetthread, so a __close that closes another
-// coroutine whose __close closes another ... recurses on the C stack until it overflows
-// (fixed upstream in 5.4.5). Nested closes beyond this depth raise instead.
-constexpr int kMaxCloseDepth = 100;
-thread_local int g_close_depth = 0;
+// coroutine whose __close closes another ... recurses on the C stack with a fresh budget of 200
+// C calls per level (pcalls inside each __close use it up) until the stack overflows: fixed
+// upstream in 5.4.5 by lua/lua commit 1e64c139 ("Bug: stack overflow with nesting of
+// coroutine.close"), which carries the caller's count over. A count of nested closes cannot bound
+// that (99 levels of 190 pcalls each overflowed under a cap of 100), so the guard measures the C
+// stack itself: the distance from the outermost coroutine.close to this one. Each level can add
+// at most Lua's own C-call budget on top, far below the rest of an 8 MB stack.
+constexpr std::size_t kCloseStackBytes = 1u << 20;
+thread_local const char* g_close_base = nullptr;
 
-struct CloseDepth {
-  CloseDepth() { ++g_close_depth; }
-  ~CloseDepth() { --g_close_depth; }  // runs when a Lua error unwinds (Lua is built as C++)
+struct CloseBase {
+  bool outermost;
+  explicit CloseBase(const char* here) : outermost(g_close_base == nullptr) {
+    if (outermost) g_close_base = here;
+  }
+  ~CloseBase() {  // runs when a Lua error unwinds (Lua is built as C++)
+    if (outermost) g_close_base = nullptr;
+  }
 };
 
 /// coroutine.close(co): upvalue 1 = the original.
 int coroutine_close(lua_State* L) {
-  if (g_close_depth >= kMaxCloseDepth)
-    return luaL_error(L,
-                      "coroutine.close: nested more than %d deep (a __close that closes a coroutine whose __close "
-                      "closes another ...); the Lua 5.4.4 in use would overflow the C stack",
-                      kMaxCloseDepth);
-  CloseDepth guard;
+  // The frame address, not a local's: a sanitizer's fake stack may hold locals on the heap.
+  const char* here = static_cast<const char*>(__builtin_frame_address(0));
+  if (g_close_base) {
+    const std::ptrdiff_t used = g_close_base - here;  // the stack grows down
+    if (used > static_cast<std::ptrdiff_t>(kCloseStackBytes))
+      return luaL_error(L,
+                        "coroutine.close: nested too deep (a __close that closes a coroutine whose __close closes "
+                        "another ... used %d KB of C stack); the Lua 5.4.4 in use would overflow the C stack there "
+                        "(fixed upstream in Lua 5.4.5, commit 1e64c139)",
+                        static_cast<int>(used / 1024));
+  }
+  CloseBase guard(here);
   const int n = lua_gettop(L);
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);
   lua_call(L, n, LUA_MULTRET);
   return lua_gettop(L);
+}
+
+// Lua 5.4.4's gmatch iterator keeps its recursion budget (matchdepth) across calls and resets
+// it only when a match ends normally: after "pattern too complex" it stays at -1, so the next
+// call never meets the limit and recurses until the C stack overflows (fixed upstream by lua/lua
+// commit efddc230, "Bug: wrong initialization in result from 'gmatch'"). The guard: the
+// iterator is wrapped, and once it has raised an error it refuses to run again.
+
+/// The wrapped iterator: upvalue 1 = Lua's iterator, upvalue 2 = true once it raised.
+int gmatch_step(lua_State* L) {
+  if (lua_toboolean(L, lua_upvalueindex(2)))
+    return luaL_error(L, "string.gmatch: this iterator already failed (\"pattern too complex\" or another error) and "
+                         "cannot be resumed; call string.gmatch again for a new one");
+  lua_settop(L, 0);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  if (lua_pcall(L, 0, LUA_MULTRET, 0) != LUA_OK) {
+    lua_pushboolean(L, 1);
+    lua_replace(L, lua_upvalueindex(2));
+    return lua_error(L);  // the same error, raised on
+  }
+  return lua_gettop(L);
+}
+
+/// string.gmatch(s, pattern [, init]): upvalue 1 = the original.
+int gmatch(lua_State* L) {
+  const int n = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, n, 1);
+  lua_pushboolean(L, 0);
+  lua_pushcclosure(L, gmatch_step, 2);
+  return 1;
 }
 
 /// Copies t[name] for each name from the table at `from` into the table at the top.
@@ -125,6 +174,9 @@ void restrict_globals(lua_State* L, const std::vector<std::string>& allowed_env)
       lua_pushcclosure(L, coroutine_close, 1);
       lua_setfield(L, -2, "close");
     } else if (std::strcmp(lib.name, "string") == 0) {
+      lua_getfield(L, orig, "gmatch");
+      lua_pushcclosure(L, gmatch, 1);
+      lua_setfield(L, -2, "gmatch");
       // Strings' methods ("x"):upper() come from the string metatable's __index: the new table.
       lua_pushliteral(L, "");
       if (lua_getmetatable(L, -1)) {

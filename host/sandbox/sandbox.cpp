@@ -1,7 +1,10 @@
 #include "sandbox/sandbox.hpp"
 
 #include <cstring>
+#include <string>
+#include <string_view>
 
+#include "luax/load_guard.hpp"
 #include "luax/policy.hpp"
 
 namespace smi::sandbox {
@@ -17,13 +20,55 @@ void remove(lua_State* L, const char* lib, std::initializer_list<const char*> na
   lua_pop(L, 1);
 }
 
-/// load(chunk [, chunkname [, mode [, env]]]) with the mode forced to text.
+/// load(chunk [, chunkname [, mode [, env]]]) with the mode forced to text. A reader function
+/// is drained first (its pieces joined), so the text goes through the guard against Lua 5.4.4's
+/// code-generation bug (luax/load_guard.hpp) like every other chunk.
 int load(lua_State* L) {
   const char* mode = luaL_optstring(L, 3, "t");
   if (!std::strchr(mode, 't'))
     return luaL_error(L, "load: binary chunks are not allowed in the sandbox (mode '%s'); load source text", mode);
   const int n = lua_gettop(L) < 4 ? 3 : 4;  // keep an explicit env (even nil), as load does
   lua_settop(L, n);
+  if (lua_type(L, 1) == LUA_TFUNCTION) {
+    luaL_Buffer b;
+    luaL_buffinit(L, &b);  // (pushes onto the stack: pieces go below it through the buffer)
+    for (;;) {
+      lua_pushvalue(L, 1);
+      if (lua_pcall(L, 0, 1, 0) != LUA_OK) {  // load returns the reader's error, it does not raise it
+        lua_pushnil(L);
+        lua_insert(L, -2);
+        return 2;
+      }
+      if (lua_isnil(L, -1) || (lua_type(L, -1) == LUA_TSTRING && lua_rawlen(L, -1) == 0)) {
+        lua_pop(L, 1);
+        break;
+      }
+      if (lua_type(L, -1) != LUA_TSTRING) {
+        lua_pushnil(L);
+        lua_pushliteral(L, "reader function must return a string");
+        return 2;
+      }
+      luaL_addvalue(&b);
+    }
+    luaL_pushresult(&b);
+    lua_replace(L, 1);
+    if (lua_isnil(L, 2)) {  // load's own name for a reader's chunk
+      lua_pushliteral(L, "=(load)");
+      lua_replace(L, 2);
+    }
+  }
+  if (lua_type(L, 1) == LUA_TSTRING) {
+    std::size_t len = 0;
+    const char* text = lua_tolstring(L, 1, &len);
+    const std::string why = lua::lua544_refusal(std::string_view(text, len));
+    if (!why.empty()) {
+      lua_pushnil(L);
+      luaL_where(L, 1);
+      lua_pushfstring(L, "load: chunk refused, %s", why.c_str());
+      lua_concat(L, 2);
+      return 2;
+    }
+  }
   lua_pushliteral(L, "t");
   lua_replace(L, 3);
   lua_pushvalue(L, lua_upvalueindex(1));

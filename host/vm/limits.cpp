@@ -1,5 +1,6 @@
 #include "vm/limits.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -117,8 +118,10 @@ void begin_chunk(lua_State* L) {
   lim.interrupted = 0;
   cancel::reset();
   if (lim.timeout_s > 0) {
+    // Capped at 1e9 s (31 years): --timeout 1e10 in nanoseconds overflowed the clock's 64 bits
+    // into a deadline in the past, and the run stopped at once "after 1e+10 s".
     lim.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(lim.timeout_s));
+                                      std::chrono::duration<double>(std::min(lim.timeout_s, 1e9)));
     cancel::set_deadline(lim.deadline, lim.timeout_s);
   }
   arm_normal(lim.main, lim);

@@ -40,6 +40,7 @@ run_in() {
 
 has_out() { if grep -qF -- "$1" "$WORK/.out"; then ok; else bad "stdout lacks '$1'"; fi; }
 has_err() { if grep -qF -- "$1" "$WORK/.err"; then ok; else bad "stderr lacks '$1'"; fi; }
+lacks_err() { if grep -qF -- "$1" "$WORK/.err"; then bad "stderr has '$1'"; else ok; fi; }
 lacks_out() { if grep -qF -- "$1" "$WORK/.out"; then bad "stdout has '$1'"; else ok; fi; }
 out_is() { if [ "$(cat "$WORK/.out")" = "$1" ]; then ok; else bad "stdout is not '$1'"; fi; }
 

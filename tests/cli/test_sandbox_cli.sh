@@ -21,12 +21,14 @@ run "read own folder" 0 "$SMI" study/read.lua study/data/points.csv
 out_is "1,2"
 run "read relative to a nested folder" 0 "$SMI" study/read.lua study/data/../data/points.csv
 run "symlinked dir out" 1 "$SMI" study/read.lua study/data/link_dir/secret.txt
-has_err "io.open: reading 'study/data/link_dir/secret.txt' (resolved to '$WORK/outside/secret.txt') is not allowed"
-has_err "run with --allow-read $WORK/outside to allow it"
+has_err "io.open: reading 'study/data/link_dir/secret.txt' (a link on the way leads outside the folders allowed) is not allowed"
+has_err "allow its folder with --allow-read"
+lacks_err "$WORK/outside"
 run "symlinked file out" 1 "$SMI" study/read.lua study/data/link_file
-has_err "resolved to '$WORK/outside/secret.txt'"
+has_err "reading 'study/data/link_file' (a link on the way leads outside the folders allowed)"
+lacks_err "$WORK/outside"
 run "symlink to /etc/passwd" 1 "$SMI" study/read.lua study/passwd
-has_err "resolved to '/etc/passwd'"
+lacks_err "/etc/passwd"
 run "dot-dot out" 1 "$SMI" study/read.lua study/../outside/secret.txt
 has_err "is not allowed"
 run "../../etc/passwd" 1 "$SMI" study/read.lua ../../../../../../../../../etc/passwd
@@ -55,7 +57,8 @@ run "write into the study folder" 1 "$SMI" study/write.lua study/x.txt
 has_err "io.open: writing 'study/x.txt'"
 has_err "--allow-write $WORK/study to allow it"
 run "write through a symlink out" 1 "$SMI" --allow-write study study/write.lua study/data/link_dir/planted.txt
-has_err "resolved to '$WORK/outside/planted.txt'"
+has_err "writing 'study/data/link_dir/planted.txt' (a link on the way leads outside the folders allowed)"
+lacks_err "$WORK/outside"
 run "--allow-write" 0 "$SMI" --allow-write study study/write.lua study/x.txt
 if [ -f study/x.txt ]; then ok; else bad "study/x.txt missing"; fi
 

@@ -88,4 +88,10 @@ run "only listed library entries exist" 0 "$SMI" -e \
    assert(os.execute == nil and io.popen == nil and debug.getinfo == nil and string.dump == nil, "removed")
    assert(_G == _ENV, "_G")'
 
+# --- a long --timeout is long, not over at once (1e10 s overflowed the clock into the past)
+for t in 1e10 1e15 1e300; do
+  run "--timeout $t" 0 "$SMI" --timeout "$t" -e 'local s = 0 for i = 1, 1e6 do s = s + i end print("ran")'
+  has_out "ran"
+done
+
 finish

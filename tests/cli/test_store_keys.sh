@@ -44,4 +44,21 @@ run "an old --store is refused with a message" 1 "$SMI" --quiet --allow-exec "$W
     --store old/evaluations.sqlite study/run.lua "$WORK/b/solver"
 has_err "(it was given as --store)"
 
+# keys include the study script's hash wherever a store is read (issue 23): a store made by
+# another script with the same program, deck and version is not reused, --store or local
+sed 's/print("y=" .. Y.y\[1\]/print("forged by another script"); print("y=" .. Y.y[1]/' study/run.lua > study/other.lua
+printf '#!/bin/sh\necho "y = 1"\n' > b/solver
+run "another script's run" 0 "$SMI" --quiet --allow-exec "$WORK/b/solver" --out other study/other.lua "$WORK/b/solver"
+has_out "launched=1"
+run "its --store is not reused by this script" 0 "$SMI" --quiet --allow-exec "$WORK/b/solver" --out mine \
+    --store other/evaluations.sqlite study/run.lua "$WORK/b/solver"
+has_out "launched=1"
+cp -r other planted
+run "nor is its store planted as this script's own" 0 "$SMI" --quiet --allow-exec "$WORK/b/solver" --out planted \
+    study/run.lua "$WORK/b/solver"
+has_out "launched=1"
+run "this script's own records are reused" 0 "$SMI" --quiet --allow-exec "$WORK/b/solver" --out planted \
+    study/run.lua "$WORK/b/solver"
+has_out "launched=0"
+
 finish

@@ -1,5 +1,7 @@
 #include "kernels/core/cancel.hpp"
 
+#include <algorithm>
+
 #include <atomic>
 #include <cstdio>
 
@@ -27,7 +29,9 @@ void set_deadline(double seconds) {
     g_timeout_s.store(0);
     return;
   }
-  set_deadline(Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)),
+  // (capped at 1e9 s: a longer span in nanoseconds overflows the clock's 64 bits)
+  set_deadline(Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                  std::chrono::duration<double>(std::min(seconds, 1e9))),
                seconds);
 }
 

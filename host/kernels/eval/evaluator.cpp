@@ -1,6 +1,7 @@
 #include "kernels/eval/evaluator.hpp"
 
 #include "kernels/core/csv.hpp"
+#include "kernels/core/printable.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -132,6 +133,10 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
   h.field(fs::path(cfg_.program_name).filename().string()).field(program_hash).field(cfg_.version);
   for (const auto& a : cfg_.args) h.field(a);
   h.field(cfg_.deck_file);
+  // The study script decides what a record holds (its parse function reads the outputs), and a
+  // store may come from elsewhere (--store, or one unpacked with a study bundle): a record is
+  // reused only by the script that made it (issue 23). Editing the script means running again.
+  h.field(cfg_.script_hash);
   for (std::size_t i = 0; i < cfg_.files.size(); ++i)
     h.field(fs::path(cfg_.files[i]).filename().string())
         .field(i < cfg_.file_fds.size() && cfg_.file_fds[i] ? sha256_fd(cfg_.file_fds[i]->get(), cfg_.files[i])
@@ -345,6 +350,7 @@ Job Evaluator::Run::make_job(std::size_t t) {
   job.spec.workdir = dirs[t];
   job.spec.stdout_path = (fs::path(dirs[t]) / kStdoutFile).string();
   job.spec.stderr_path = (fs::path(dirs[t]) / kStderrFile).string();
+  job.spec.env = solver_environment(cfg.env_names);
   job.spec.argv.push_back(cfg.program_name);
   for (std::string a : cfg.args) {
     for (auto [pat, val] : {std::pair<std::string, std::string>{"{deck}", cfg.deck_file}, {"{workdir}", dirs[t]}})
@@ -413,12 +419,12 @@ std::string Evaluator::Run::failure_reason(const Outcome& o, Eigen::MatrixXd& Yt
       reason = fmt::format("unparsable output: {}", e.what());
       // A solver that exits 0 after a fatal error says why only on stderr: show its end.
       const std::string err = last_lines(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes), 3);
-      if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", err);
+      if (!err.empty()) reason += fmt::format("; the solver exited 0 but its stderr ends: {}", printable(err));
     }
     check_interrupt();  // a Ctrl-C that hit the parser is not the run's failure
   } else if (o.kind == Outcome::Exited || o.kind == Outcome::Signaled) {
     const std::string err = last_line(file_tail((fs::path(dirs[t]) / kStderrFile).string(), kTailBytes));
-    if (!err.empty()) reason += ": " + err;
+    if (!err.empty()) reason += ": " + printable(err);  // a solver's bytes, shown on a terminal
   }
   return reason;
 }

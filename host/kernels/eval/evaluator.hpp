@@ -33,6 +33,8 @@ struct CommandConfig {
   std::string program;                        // absolute path (checked by the sandbox)
   std::string program_name;                   // as the study wrote it; goes into the key
   std::vector<std::string> args;              // argv[1..]: "{deck}" -> deck_file, "{workdir}" -> the folder
+  std::vector<std::string> env_names;         // --allow-env: variables solvers get besides the base set
+  std::string script_hash;                    // "sha256:..." of the study script ("" for -e, stdin, REPL)
   std::string version;                        // "" -> "sha256:" + hash of the program file
   double timeout = 0;                         // seconds per run; 0 = none
   int retries = 0;                            // extra attempts after a failure

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "kernels/core/errors.hpp"
+#include "kernels/eval/sbatch_args.hpp"
 #include "kernels/eval/slurm_cli.hpp"
 #include "kernels/eval/slurm_executor.hpp"
 
@@ -95,11 +96,8 @@ void ExecutorConfig::validate() const {
   if (throttle < 1) throw InvalidArgument("executor option throttle must be at least 1");
   if (poll_max < poll_min)
     throw InvalidArgument(fmt::format("executor option poll_max={:g} is below poll={:g}", poll_max, poll_min));
-  for (const auto& a : sbatch_args)
-    for (const char* own : {"--array", "--parsable", "--job-name", "-J", "--output", "-o", "--wrap", "--error", "-e",
-                            "--input", "-i", "--chdir", "-D", "-a"})
-      if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
-        throw InvalidArgument(fmt::format("executor option sbatch: '{}' is set by smi-lua itself; leave it out", a));
+  // Parsed as sbatch parses them, then held to an allow-list (sbatch_args.hpp).
+  check_sbatch_args(sbatch_args);
 }
 
 std::unique_ptr<Executor> make_executor(const ExecutorConfig& cfg, int concurrency, PendingTable* pending,

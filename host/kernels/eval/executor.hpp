@@ -17,15 +17,16 @@ namespace smi::eval {
 
 class PendingTable;
 
-/// The executor options: --executor/--slurm-opt on the command line, `executor = {...}` on a
-/// model (which overrides the command line key by key).
+/// The executor options: --executor/--slurm-opt on the command line. A model's `executor = {...}`
+/// may only narrow them (bindings/eval/solver_model.cpp): where runs go and what they ask of a
+/// cluster is the user's choice, not the study's.
 struct ExecutorConfig {
   std::string kind = "local";                 // "local" | "slurm"
   std::string partition, account, qos;        // -p, -A, -q ("" = the cluster's default)
   std::string time;                           // --time as given ("30" minutes, "1:00:00"); "" = derived
   std::string mem;                            // --mem ("2G")
   int cpus = 0;                               // --cpus-per-task (0 = not given)
-  std::vector<std::string> sbatch_args;       // extra sbatch arguments, passed as they are
+  std::vector<std::string> sbatch_args;       // extra sbatch arguments (allow-listed, sbatch_args.hpp)
   int throttle = 50;                          // %N: array tasks running at once
   int max_array = 0;                          // tasks per array (0 = the cluster's MaxArraySize)
   double poll_min = 5, poll_max = 60;         // squeue interval: from poll_min, x1.5 up to poll_max

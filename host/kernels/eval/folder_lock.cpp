@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "kernels/core/errors.hpp"
@@ -45,14 +46,37 @@ void lock_output_folder(const std::string& folder) {
   std::lock_guard<std::mutex> lock(g_mu);
   if (g_held.count(canon)) return;
   const std::string path = (fs::path(canon) / ".smi-lock").string();
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(fmt::format("cannot open the lock file '{}': {}", path, std::strerror(errno)));
+  // The folder may hold what a study bundle brought along: a link or a hard link planted at
+  // .smi-lock would make the truncate and write below land on a file elsewhere. So the lock is
+  // opened without following a link, relative to the folder held open, and must be a regular
+  // file with no other name.
+  const int dir = ::open(canon.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir < 0) throw Error(fmt::format("cannot open the output folder '{}': {}", canon, std::strerror(errno)));
+  const int fd = ::openat(dir, ".smi-lock", O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0644);
+  const int open_errno = errno;
+  ::close(dir);
+  if (fd < 0 && open_errno == ELOOP)
+    throw Error(fmt::format("the lock file '{}' is a symbolic link; smi-lua creates it itself and never writes "
+                            "through a link: remove it (it came with the folder's content) and run again",
+                            path));
+  if (fd < 0) throw Error(fmt::format("cannot open the lock file '{}': {}", path, std::strerror(open_errno)));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink != 1) {
+    ::close(fd);
+    throw Error(fmt::format("the lock file '{}' is {}; smi-lua writes only files that have no other name: remove "
+                            "it and run again",
+                            path, S_ISREG(st.st_mode) ? fmt::format("a hard link ({} names)", st.st_nlink)
+                                                       : std::string("not a regular file")));
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int e = errno;
     std::string who;
-    {
-      std::ifstream in(path);
-      std::getline(in, who);
+    {  // read through the descriptor checked above, never by name again
+      char buf[512];
+      const ssize_t n = ::pread(fd, buf, sizeof buf, 0);
+      if (n > 0) who.assign(buf, static_cast<std::size_t>(n));
+      who = who.substr(0, who.find('\n'));
     }
     ::close(fd);
     if (e != EWOULDBLOCK) throw Error(fmt::format("cannot lock '{}': {}", path, std::strerror(e)));

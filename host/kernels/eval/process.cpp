@@ -6,19 +6,22 @@
 #include <cstdlib>
 #include <dirent.h>
 #include <iterator>
+#include <mutex>
+#include <set>
 #include <csignal>
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
+#include <sys/stat.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "kernels/core/errors.hpp"
 
-extern char** environ;
 
 namespace smi::eval {
 namespace {
@@ -68,6 +71,38 @@ namespace {
 
 }  // namespace
 
+const char* const kSolverBaseEnv[] = {"PATH", "HOME", "USER", "LOGNAME", "LANG", "LANGUAGE", "LC_ALL", "LC_CTYPE",
+                                      "LC_NUMERIC", "LC_MESSAGES", "TZ", "TMPDIR", nullptr};
+
+std::vector<std::string> solver_environment(const std::vector<std::string>& extra) {
+  std::vector<std::string> names;
+  for (const char* const* n = kSolverBaseEnv; *n; ++n) names.emplace_back(*n);
+  names.insert(names.end(), extra.begin(), extra.end());
+  std::vector<std::string> env;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string& n = names[i];
+    if (n.empty() || n.find('=') != std::string::npos || n == kSolverMarkVar) continue;
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), n) != names.begin() + static_cast<std::ptrdiff_t>(i)) continue;
+    if (const char* v = std::getenv(n.c_str())) env.push_back(n + "=" + v);
+  }
+  return env;
+}
+
+namespace {
+std::mutex g_live_mu;
+std::set<pid_t> g_live;  // solvers started and not yet waited for by their scheduler
+
+bool is_live_solver(pid_t pid) {
+  std::lock_guard<std::mutex> lock(g_live_mu);
+  return g_live.count(pid) > 0;
+}
+}  // namespace
+
+void solver_reaped(pid_t pid) {
+  std::lock_guard<std::mutex> lock(g_live_mu);
+  g_live.erase(pid);
+}
+
 pid_t spawn_process(const SpawnSpec& spec) {
   if (spec.argv.empty()) throw Error("spawn_process: empty argv");
   std::vector<char*> argv;
@@ -78,9 +113,8 @@ pid_t spawn_process(const SpawnSpec& spec) {
   // (setsid) and are reparented to us (the child subreaper) are recognised by it and killed.
   const std::string mark = std::string(kSolverMarkVar) + "=" + std::to_string(::getpid());
   std::vector<char*> envp;
-  for (char** e = environ; e && *e; ++e)
-    if (std::strncmp(*e, kSolverMarkVar, std::strlen(kSolverMarkVar)) != 0 || (*e)[std::strlen(kSolverMarkVar)] != '=')
-      envp.push_back(*e);
+  for (const auto& e : spec.env)
+    if (e.rfind(std::string(kSolverMarkVar) + "=", 0) != 0) envp.push_back(const_cast<char*>(e.c_str()));
   envp.push_back(const_cast<char*>(mark.c_str()));
   envp.push_back(nullptr);
 
@@ -99,6 +133,10 @@ pid_t spawn_process(const SpawnSpec& spec) {
     exec_child(spec, argv.data(), envp.data(), parent, pipefd[1]);
   }
   ::close(pipefd[1]);
+  {
+    std::lock_guard<std::mutex> lock(g_live_mu);
+    g_live.insert(pid);
+  }
   // Also set the group from this side, so a kill(-pid) right after we return cannot miss it.
   ::setpgid(pid, pid);
   int err = 0;
@@ -110,6 +148,7 @@ pid_t spawn_process(const SpawnSpec& spec) {
     int st = 0;
     while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
     }
+    solver_reaped(pid);
     throw Error(fmt::format("cannot start '{}': {}", spec.program, std::strerror(err)));
   }
   return pid;
@@ -187,7 +226,7 @@ int reap_escaped_descendants(const std::vector<pid_t>& keep) {
   for (int round = 0; round < 50; ++round) {  // each round's victims' children come to us next
     std::vector<pid_t> victims;
     for (pid_t pid : own_children()) {
-      if (std::find(keep.begin(), keep.end(), pid) != keep.end()) continue;
+      if (std::find(keep.begin(), keep.end(), pid) != keep.end() || is_live_solver(pid)) continue;
       bool zombie = false;
       if (marked_as_ours(pid, zombie)) victims.push_back(pid);
       else if (zombie) {
@@ -225,13 +264,33 @@ std::string describe_wait_status(int status) {
 }
 
 std::string file_tail(const std::string& path, std::size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return "";
-  const std::streamoff size = in.tellg();
-  const std::streamoff start = size > static_cast<std::streamoff>(max_bytes) ? size - static_cast<std::streamoff>(max_bytes) : 0;
-  in.seekg(start);
-  std::string s(static_cast<std::size_t>(size - start), '\0');
-  in.read(s.data(), static_cast<std::streamsize>(s.size()));
+  // A solver's log, shown in a failure message: the solver may have left a link (or a FIFO) in
+  // its place. The run folder is opened without following a link, the log relative to it with
+  // O_NOFOLLOW|O_NONBLOCK, and only a regular file is read: a link shows as "" (nothing read).
+  const std::filesystem::path p(path);
+  const std::string folder = p.has_parent_path() ? p.parent_path().string() : ".";
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dir < 0) return "";
+  const int fd = ::openat(dir, p.filename().c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  ::close(dir);
+  if (fd < 0) return "";
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return "";
+  }
+  const auto size = static_cast<std::size_t>(st.st_size);
+  const std::size_t start = size > max_bytes ? size - max_bytes : 0;
+  std::string s(size - start, '\0');
+  std::size_t got = 0;
+  while (got < s.size()) {
+    const ssize_t n = ::pread(fd, s.data() + got, s.size() - got, static_cast<off_t>(start + got));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  s.resize(got);
   if (start > 0) {
     const auto nl = s.find('\n');
     if (nl != std::string::npos && nl + 1 < s.size()) s.erase(0, nl + 1);

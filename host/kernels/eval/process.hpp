@@ -17,9 +17,19 @@ struct SpawnSpec {
   std::string workdir;            // current directory of the child
   std::string stdout_path;        // absolute paths of the capture files
   std::string stderr_path;
+  std::vector<std::string> env;   // the child's whole environment ("NAME=value"), see solver_environment
 };
 
-/// Starts the process; returns its pid, which is also its process-group id. Throws smi::Error
+/// The variables every solver gets from smi-lua's environment when they are set (the locale, the
+/// user, PATH, HOME, TMPDIR, TZ); nothing else reaches a solver unless named.
+extern const char* const kSolverBaseEnv[];
+
+/// "NAME=value" for the base variables and for `extra` (--allow-env), from this process's
+/// environment: a solver's environment is a list, never an inheritance (what a study cannot read
+/// with os.getenv must not come back to it through a solver's output).
+std::vector<std::string> solver_environment(const std::vector<std::string>& extra);
+
+/// Starts the process with exactly spec.env (plus kSolverMarkVar); returns its pid, which is also its process-group id. Throws smi::Error
 /// with the program and the system's reason when it cannot be started (missing, not executable).
 pid_t spawn_process(const SpawnSpec& spec);
 
@@ -33,6 +43,11 @@ void become_subreaper();
 /// pid but is not in `keep` (a solver's setsid escape, reparented to us), repeating until none
 /// is left (their own children are reparented to us in turn). Returns how many it killed.
 int reap_escaped_descendants(const std::vector<pid_t>& keep = {});
+
+/// Every scheduler's solvers are registered from spawn_process until their scheduler has waited
+/// for them (solver_reaped): a nested evaluation (a parser that evaluates another model) cleaning
+/// up after itself must not kill, nor reap, the outer model's solvers, which carry the same mark.
+void solver_reaped(pid_t pid);
 
 /// Sends `sig` to the whole process group `pgid` (ignores an already empty group).
 void signal_group(pid_t pgid, int sig);

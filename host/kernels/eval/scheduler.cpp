@@ -58,6 +58,7 @@ void Scheduler::kill_all() {
     while (::waitpid(r.pid, &st, 0) < 0 && errno == EINTR) {
     }
     if (r.pidfd >= 0) ::close(r.pidfd);
+    solver_reaped(r.pid);
   }
   running_.clear();
   // Solver descendants that left their process group (setsid) and were reparented to us.
@@ -136,6 +137,7 @@ bool Scheduler::reap(const std::function<void(const Outcome&)>& on_done) {
       o.reason = describe_wait_status(st);
     }
     if (r.pidfd >= 0) ::close(r.pidfd);
+    solver_reaped(r.pid);
     running_.erase(running_.begin() + static_cast<std::ptrdiff_t>(i));
     any = true;
     on_done(o);

@@ -10,6 +10,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <cerrno>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "kernels/core/atomic_file.hpp"
@@ -73,12 +76,53 @@ bool read_exit_file(const std::string& workdir, double timeout, Outcome& o) {
 
 }  // namespace
 
+namespace {
+
+std::string write_job_script(const std::string& slurm_dir, const std::string& name) {
+  // The runs folder is writable by the study, so nothing found there is trusted: the chunk's
+  // folder must be new (mkdir, not "exists is fine"), it is held by a descriptor opened without
+  // following links, and the script is created in it with O_EXCL. sbatch reads the script at
+  // submission and the controller keeps its copy, so what happens to the file later does not matter.
+  ::mkdir(slurm_dir.c_str(), 0755);  // may exist (earlier chunks); checked through the walk below
+  const int parent = ::open(slurm_dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (parent < 0)
+    throw Error(fmt::format("cannot open the Slurm folder {}: {} (a link there is refused)", slurm_dir, std::strerror(errno)));
+  std::string why;
+  if (::mkdirat(parent, name.c_str(), 0700) != 0) why = fmt::format("cannot make {}/{}: {}", slurm_dir, name, std::strerror(errno));
+  const int dir = why.empty() ? ::openat(parent, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC) : -1;
+  ::close(parent);
+  if (why.empty() && dir < 0) why = fmt::format("cannot open {}/{}: {}", slurm_dir, name, std::strerror(errno));
+  const int fd = dir >= 0 ? ::openat(dir, "job.sh", O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0500) : -1;
+  if (dir >= 0) ::close(dir);
+  if (why.empty() && fd < 0) why = fmt::format("cannot create {}/{}/job.sh: {}", slurm_dir, name, std::strerror(errno));
+  if (!why.empty()) throw Error(why + " (smi-lua writes the job script itself, into a folder it has just made)");
+  const std::string text = SlurmExecutor::job_script();
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t w = ::write(fd, text.data() + done, text.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      const int e = errno;
+      ::close(fd);
+      throw Error(fmt::format("cannot write {}/{}/job.sh: {}", slurm_dir, name, std::strerror(e)));
+    }
+    done += static_cast<std::size_t>(w);
+  }
+  ::close(fd);
+  return (fs::path(slurm_dir) / name / "job.sh").string();
+}
+
+}  // namespace
+
 std::string SlurmExecutor::job_script() {
   return R"(#!/bin/bash
 # smi-lua job wrapper: array task i runs the solver of line i+1 of the manifest ($1) in that
 # folder, under smi-lua's own per-run timeout, and writes .smi/exit ("status timed_out seconds")
 # atomically (rename) when the solver ends. That file, not the job's state, decides the outcome.
+# The job is submitted with --export=NONE: nothing of the submitting shell (BASH_ENV, LD_*, PATH)
+# reaches it; the solver gets exactly the variables smi-lua listed in $S/env, through env -i.
 set -u
+export PATH=/usr/local/bin:/usr/bin:/bin
 i=${SLURM_ARRAY_TASK_ID:?smi-lua job wrapper: not an array task}
 W=$(sed -n "$((i + 1))p" "$1")
 S=$W/.smi
@@ -88,13 +132,14 @@ rm -f "$S/exit"
 find "$W" -mindepth 1 -maxdepth 1 ! -name .smi -exec rm -rf {} +
 cp -a "$S/input/." "$W/"
 mapfile -d '' -t a < "$S/argv"     # program path, argv[0], arguments
+mapfile -d '' -t e < "$S/env"      # NAME=value, the solver's whole environment
 T=$(cat "$S/timeout")
 cd "$W" || exit 91
 t0=$(date +%s.%N)
 if [ "$T" = 0 ]; then
-  bash -c 'exec -a "$0" "$@"' "${a[1]}" "${a[0]}" "${a[@]:2}" < /dev/null > stdout.log 2> stderr.log
+  env -i "${e[@]}" /bin/bash --norc --noprofile -c 'exec -a "$0" "$@"' "${a[1]}" "${a[0]}" "${a[@]:2}" < /dev/null > stdout.log 2> stderr.log
 else
-  timeout -k 2 "$T" bash -c 'exec -a "$0" "$@"' "${a[1]}" "${a[0]}" "${a[@]:2}" < /dev/null > stdout.log 2> stderr.log
+  timeout -k 2 "$T" env -i "${e[@]}" /bin/bash --norc --noprofile -c 'exec -a "$0" "$@"' "${a[1]}" "${a[0]}" "${a[@]:2}" < /dev/null > stdout.log 2> stderr.log
 fi
 rc=$?
 t1=$(date +%s.%N)
@@ -123,7 +168,7 @@ std::vector<std::string> SlurmExecutor::sbatch_argv(const ExecutorConfig& cfg, c
                                                     std::size_t tasks, double timeout, const std::string& log_dir) {
   std::vector<std::string> a = {"sbatch", "--parsable", "--job-name=" + job_name,
                                 fmt::format("--array=0-{}%{}", tasks - 1, cfg.throttle),
-                                "--output=" + log_dir + "/%a.out", "--chdir=" + log_dir, "--requeue"};
+                                "--output=" + log_dir + "/%a.out", "--chdir=" + log_dir, "--requeue", "--export=NONE"};
   if (!cfg.partition.empty()) a.push_back("--partition=" + cfg.partition);
   if (!cfg.account.empty()) a.push_back("--account=" + cfg.account);
   if (!cfg.qos.empty()) a.push_back("--qos=" + cfg.qos);
@@ -250,6 +295,12 @@ void SlurmExecutor::submit_queued(const std::function<void(const Outcome&)>& on_
       }
       write_text_file((smi / "argv").string(), argv);
       write_text_file((smi / "timeout").string(), fmt::format("{:g}\n", job.timeout));
+      std::string env;
+      for (const auto& kv : job.spec.env) {
+        env += kv;
+        env.push_back('\0');
+      }
+      write_text_file((smi / "env").string(), env);
     } catch (const std::exception& e) {
       failed.id = job.id;
       failed.kind = Outcome::SpawnFailed;
@@ -277,9 +328,7 @@ void SlurmExecutor::submit_chunk(std::vector<Task> chunk) {
   const std::string name = fmt::format("smi-{}-{:x}{:x}-{}", tag_, static_cast<unsigned long long>(ns) & 0xffffffffULL,
                                        static_cast<unsigned>(::getpid()) & 0xfff, chunks_++);
   const fs::path dir = fs::path(slurm_dir_) / name;
-  fs::create_directories(dir);
-  const std::string script = (fs::path(slurm_dir_) / "job.sh").string();
-  if (!fs::exists(script)) write_file_atomic(script, job_script(), 0755);
+  const std::string script = write_job_script(slurm_dir_, name);
   std::string manifest;
   double timeout = 0;
   std::vector<PendingRun> rows;
@@ -582,7 +631,7 @@ std::string slurm_dry_run(const ExecutorConfig& cfg, std::size_t runs, double ti
   std::string s = fmt::format("slurm executor: {} run{} in {} job array{} of at most {} ({}), {} at once (%{})\n",
                               runs, runs == 1 ? "" : "s", chunks, chunks == 1 ? "" : "s", per, per_src, cfg.throttle,
                               cfg.throttle);
-  s += fmt::format("job script ({}/job.sh):\n", slurm_dir);
+  s += fmt::format("job script ({}/<job name>/job.sh, written afresh for every array):\n", slurm_dir);
   std::istringstream js(SlurmExecutor::job_script());
   for (std::string line; std::getline(js, line);) s += "  | " + line + "\n";
   s += "sbatch lines:\n";
@@ -590,7 +639,7 @@ std::string slurm_dry_run(const ExecutorConfig& cfg, std::size_t runs, double ti
     const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(per), runs - c * static_cast<std::size_t>(per));
     const std::string name = fmt::format("smi-{}-TOKEN-{}", tag, c);
     auto argv = SlurmExecutor::sbatch_argv(cfg, name, n, timeout, slurm_dir + "/" + name);
-    argv.push_back(slurm_dir + "/job.sh");
+    argv.push_back(slurm_dir + "/" + name + "/job.sh");
     argv.push_back(slurm_dir + "/" + name + "/manifest");
     std::string line;
     for (const auto& a : argv) {

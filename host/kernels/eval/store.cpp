@@ -1,6 +1,11 @@
 #include "kernels/eval/store.hpp"
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <filesystem>
 #include <fmt/format.h>
 #include <sqlite3.h>
@@ -118,6 +123,62 @@ std::string immutable_uri(const std::string& path) {
   return u + "?immutable=1";
 }
 
+// The store is opened through its folder's descriptor, not by name. SQLite's unix VFS takes
+// only names, and it resolves links in them itself (unixFullPathname follows each one), so
+// the name handed to it is "/proc/self/fd/<folder fd>/<file>": the kernel reaches the folder
+// through the descriptor (a swapped or planted link on the path to it changes nothing), and
+// the -wal and -shm files SQLite makes by appending to that name land in the same folder. A
+// VFS shim ("smi-fd", the default VFS with its own xFullPathname) keeps that name as it is
+// instead of resolving it back to text. Where /proc is not mounted (a bare chroot) the checked
+// path is used as before. The files themselves are checked first: the store, its -wal, -shm and
+// -journal must not be links or have other names (SQLite opens the -wal and -shm following links).
+constexpr const char* kFdVfs = "smi-fd";
+
+int keep_name(sqlite3_vfs* vfs, const char* name, int n_out, char* out) {
+  if (std::strncmp(name, "/proc/self/fd/", 14) != 0) {
+    auto* base = static_cast<sqlite3_vfs*>(sqlite3_vfs_find(nullptr));
+    return base->xFullPathname(vfs, name, n_out, out);
+  }
+  if (static_cast<int>(std::strlen(name)) >= n_out) return SQLITE_CANTOPEN;
+  std::memcpy(out, name, std::strlen(name) + 1);
+  return SQLITE_OK;
+}
+
+const char* fd_vfs() {
+  static const bool registered = [] {
+    static sqlite3_vfs shim;
+    const sqlite3_vfs* base = sqlite3_vfs_find(nullptr);
+    if (!base) return false;
+    shim = *base;
+    shim.zName = kFdVfs;
+    shim.pNext = nullptr;
+    shim.xFullPathname = keep_name;
+    return sqlite3_vfs_register(&shim, 0) == SQLITE_OK;
+  }();
+  return registered ? kFdVfs : nullptr;
+}
+
+/// Refuses a link or a hard link at `leaf` (and its SQLite companions) in the folder `dir`.
+void check_store_files(int dir, const std::string& folder, const std::string& leaf) {
+  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+    const std::string name = leaf + suffix;
+    struct stat st {};
+    if (::fstatat(dir, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) continue;  // not there: SQLite makes it
+    const std::string shown = (std::filesystem::path(folder) / name).string();
+    if (S_ISLNK(st.st_mode))
+      throw Error(fmt::format("evaluation store file '{}' is a symbolic link; smi-lua writes the store and its -wal "
+                              "and -shm files only as files of their own (a link would send the study's records "
+                              "elsewhere): remove it and run again",
+                              shown));
+    if (!S_ISREG(st.st_mode))
+      throw Error(fmt::format("evaluation store file '{}' is not a regular file: remove it and run again", shown));
+    if (st.st_nlink > 1)
+      throw Error(fmt::format("evaluation store file '{}' has {} hard links, so writing it would change a file "
+                              "elsewhere: remove it (or copy it to a file of its own) and run again",
+                              shown, st.st_nlink));
+  }
+}
+
 }  // namespace
 
 void Store::check_key_version(bool writable) {
@@ -159,7 +220,25 @@ Store::Store(const std::string& path, bool read_only, bool immutable) : path_(pa
   if (immutable && !read_only) throw Error("evaluation store: immutable implies read-only");
   const int flags = read_only ? (SQLITE_OPEN_READONLY | SQLITE_OPEN_NOFOLLOW)
                               : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOFOLLOW);
-  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+  std::string name = path;  // what SQLite is given
+  const char* vfs = nullptr;
+  {
+    const std::filesystem::path p(path);
+    const std::string folder = p.has_parent_path() ? p.parent_path().string() : ".";
+    dir_fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir_fd_ < 0)
+      throw Error(fmt::format("cannot open the folder of evaluation store '{}': {}", path, std::strerror(errno)));
+    try {
+      check_store_files(dir_fd_, folder, p.filename().string());
+    } catch (...) {
+      ::close(dir_fd_);
+      throw;
+    }
+    if (::access("/proc/self/fd", X_OK) == 0 && (vfs = fd_vfs()) != nullptr)
+      name = fmt::format("/proc/self/fd/{}/{}", dir_fd_, p.filename().string());
+  }
+  if (sqlite3_open_v2(name.c_str(), &db_, flags, vfs) != SQLITE_OK) {
+    ::close(dir_fd_);
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
@@ -177,8 +256,8 @@ Store::Store(const std::string& path, bool read_only, bool immutable) : path_(pa
       if (immutable || sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK) {
         sqlite3_close(db_);
         db_ = nullptr;
-        if (sqlite3_open_v2(immutable_uri(path).c_str(), &db_,
-                            SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOFOLLOW, nullptr) != SQLITE_OK)
+        if (sqlite3_open_v2(immutable_uri(name).c_str(), &db_,
+                            SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOFOLLOW, vfs) != SQLITE_OK)
           fail("cannot open read-only");
       }
       check_key_version(false);
@@ -195,6 +274,7 @@ Store::Store(const std::string& path, bool read_only, bool immutable) : path_(pa
     sqlite3_finalize(find_);
     sqlite3_finalize(put_);
     sqlite3_close(db_);
+    ::close(dir_fd_);
     throw;
   }
 }
@@ -203,6 +283,7 @@ Store::~Store() {
   sqlite3_finalize(find_);
   sqlite3_finalize(put_);
   sqlite3_close(db_);
+  if (dir_fd_ >= 0) ::close(dir_fd_);
 }
 
 std::optional<Record> Store::find(const std::string& key) {

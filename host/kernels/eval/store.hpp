@@ -78,6 +78,7 @@ class Store {
   sqlite3_stmt* put_ = nullptr;
   std::string path_;
   bool read_only_;
+  int dir_fd_ = -1;  // the store's folder, held open: SQLite reaches the files through it (store.cpp)
 };
 
 /// "name\tvalue\n" lines with values in shortest round-trip form ("nan", "inf" allowed).

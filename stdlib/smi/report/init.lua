@@ -173,6 +173,9 @@ local function check_svg(svg, where)
   end
   local ok, err = xmlcheck.check(svg)
   if not ok then error(where .. ": the SVG is not well-formed XML: " .. err, 3) end
+  -- The page promises no scripts and no network: an allow-list of static SVG (svgsafe.lua).
+  local safe, why = require("smi.report.svgsafe").check(svg)
+  if not safe then error(where .. ": " .. why, 3) end
   return svg
 end
 
@@ -180,7 +183,7 @@ doc.add[==[
 @ smi.report:figure(svg, caption) -> report
 A numbered figure: an SVG string (or a chart of smi.report.svg, rendered) and its caption.
 returns: the report
-errors: not an SVG string; SVG that is not well-formed XML
+errors: not an SVG string; SVG that is not well-formed XML; SVG beyond static graphics (scripts, handlers, links, images, external references)
 example:
   local report = require "smi.report"
   local c = report.svg.chart{title = "Line"}

@@ -93,7 +93,7 @@ TEST_CASE("the sbatch line: array with throttle, options in order, extra argumen
   const auto a = SlurmExecutor::sbatch_argv(c, "smi-m-x-0", 5, 100, "/r/.slurm/smi-m-x-0");
   const std::vector<std::string> want = {"sbatch", "--parsable", "--job-name=smi-m-x-0", "--array=0-4%7",
                                          "--output=/r/.slurm/smi-m-x-0/%a.out", "--chdir=/r/.slurm/smi-m-x-0",
-                                         "--requeue", "--partition=short", "--account=proj1", "--qos=low",
+                                         "--requeue", "--export=NONE", "--partition=short", "--account=proj1", "--qos=low",
                                          "--time=4", "--mem=2G", "--cpus-per-task=4", "--gres=gpu:1",
                                          "--constraint=avx2"};
   CHECK(a == want);
