@@ -67,6 +67,9 @@ struct Policy {
   std::function<void(int code)> request_exit;
 
   std::filesystem::path out_root;                  // out_dir resolved at start (made on demand, no symlinks)
+  /// Set while code that must not touch files or programs runs (a deck function, issue 30):
+  /// open_read, walk_write (so every write), ensure_out_dir and check_exec refuse with this reason.
+  const char* io_barred = nullptr;
 
   // Files a script names are opened only through these (issue 13 item 1): the path is walked
   // one component at a time through descriptors (core/path_walk.hpp), the canonical path reached
