@@ -10,8 +10,9 @@
 -- and <label>.md under --out (bench/run_calibrate_trial2.sh assembles the results file).
 --   smi-lua --lib scripts --allow-read STUDY --allow-read DATA_DIR --allow-read /proc/loadavg --out OUT \
 --     bench/calibrate_trial2.lua --study STUDY [--data FILE] [--results FILE] [--label NAME] [--repeats 3]
-local calibration = require "steering_column.calibration"
-local trial = require "steering_column.trial"
+local calibration = require "smi.improve.calibration"
+local trial = require "smi.improve.trial"
+local ALL = { "mode1", "mode2", "mode4" } -- the study's responses in declared order
 local options = require "smi.options"
 
 local opt = options.parse(arg, {
@@ -30,7 +31,7 @@ local opt = options.parse(arg, {
   { name = "threads", type = "integer", default = 2, min = 1, meaning = "smi.calibrate's threads (the starts side by side)" },
 })
 if not opt.study then error("calibrate_trial2: --study DIR is required (the output folder of scripts/steering_column.lua)", 0) end
-local MODES = trial.calibration_modes
+local MODES = { "mode1", "mode4" } -- the calibrated ones
 local results_file = opt.results or (opt.study .. "/results.json")
 
 -- ---------------------------------------------------------------------------------------------
@@ -52,7 +53,7 @@ local T = sur.model
 -- a data file that is not the study's would calibrate against other PDFs than the Krigings' study.
 local cols = smi.csv.read(opt.data)
 local data, data_tables = {}, {}
-for _, m in ipairs(trial.modes) do
+for _, m in ipairs(ALL) do
   local col = cols[m .. "_hz"]
   if type(col) ~= "userdata" then error(("%s: no numeric column '%s_hz'"):format(opt.data, m), 0) end
   local rec = recorded_data[m]
@@ -75,11 +76,12 @@ for _, m in ipairs(MODES) do kriging[m] = smi.kriging.load(("%s/trial2_%s.krigin
 -- calibration.lua's t for pr_stage: everything the study's calibration_step passes that the PR
 -- stage reads (no prior: the study's default)
 local t = { unknowns = T.unknowns, specs = T.specs, kriging = kriging, metric = cal.metric, n = cal.n, seed = cal.seed,
-            data = data, f_exp = calibration.experimental_pdfs(data_tables, R.seed), maxeval = cal.maxeval }
+            data = data, f_exp = calibration.experimental_pdfs(data_tables, R.seed, ALL), maxeval = cal.maxeval,
+            calibrate = MODES }
 if cal.metric ~= "pr" then error(("%s: trial 2 was calibrated with metric '%s'; this bench times the PR calibration"):format(
   results_file, tostring(cal.metric)), 0) end
 if #(cal.priors or {}) > 0 then error(("%s: trial 2 was calibrated with a prior; this bench has none"):format(results_file), 0) end
-local grids = calibration.grids_of(data)
+local grids = calibration.grids_of(data, MODES, { mode1 = 25, mode4 = 25 })
 
 -- parameter names, bounds and the declared starts (calibration.lua's declared_params order)
 local names, bounds, declared = {}, {}, {}
@@ -203,7 +205,7 @@ do
   local w0 = smi.now()
   local predicted = trial.predictor(kriging, T.unknowns, T.specs, t.n, t.seed)
   local tol = calibration.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = best.params,
-                                     grids = grids, seed = t.seed + 11 }
+                                     grids = grids, seed = t.seed + 11, calibrate = MODES }
   local r = calibration.pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = best.params, maxeval = 40,
     identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value }, threads = opt.threads })
   local dirs = {}

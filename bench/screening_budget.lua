@@ -10,12 +10,13 @@ local n_full, runs = tonumber(arg[2] or 200), tonumber(arg[3] or 300)
 local seed = tonumber(arg[4] or 20200234)  -- the study's screening seed (its seed + 20)
 local inputs = require "steering_column.inputs"
 local solver = require "steering_column.solver"
+local cost = require "smi.improve.cost"
 local modes = { "mode1", "mode2", "mode4" }
 
 local base = solver.write_deck(smi.out("screening_base_rigid.deck"), "rigid")
 local function batch(name, n)
-  return solver.batch{ solver = solver_path, airbag = "rigid", vary = inputs.names, name = name, base = base,
-                       batch_size = math.ceil(n / 2), concurrency = 2 }
+  return cost.wrap(solver.batch{ solver = solver_path, airbag = "rigid", vary = inputs.names, name = name, base = base,
+                                 batch_size = math.ceil(n / 2), concurrency = 2 }, name)
 end
 
 local function top(rows, key, k)
@@ -32,7 +33,7 @@ local function same_set(a, b)
   for _, x in ipairs(b) do if not s[x] then return false end end
   return true
 end
-local function points(name) return (solver.counts[name] or {}).launched and solver.counts[name].points or 0 end
+local function points(name) return (cost.counts[name] or {}).launched and cost.counts[name].points or 0 end
 
 io.stderr:write(("full eq.-3 screening: %d x %d = %d solutions\n"):format(#inputs.names + 1, n_full, (#inputs.names + 1) * n_full))
 local t0 = smi.now()

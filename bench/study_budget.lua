@@ -48,7 +48,7 @@ w("| mode | economical (surrogate) | full (eq. 3 on column-fe) | same four |")
 w("|---|---|---|---|")
 local se, sf = res(E, "screening"), res(F, "screening")
 for _, m in ipairs(MODES) do
-  local a, b = se.modes[m].top, sf.modes[m].top
+  local a, b = (se.responses or se.modes)[m].top, (sf.responses or sf.modes)[m].top
   local set = {}
   for _, x in ipairs(a) do set[x] = true end
   local ok = true

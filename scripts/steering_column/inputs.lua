@@ -55,28 +55,15 @@ function M.screening_inputs()
 end
 
 -- The initial model's unknowns (Tables 4 and 8): type, bounds of the mean and std {lower, upper,
--- start}, unit. The unknowns a refinement adds are declared by its candidate
--- (refinement/candidates.lua), not here.
-local unknown = {
-  wheel_cover_rho = { dist = "uniform", mean = { 0.5e-9, 1.5e-9, 1.00e-9 }, std = { 0.08e-9, 0.24e-9, 0.16e-9 },
-                      unit = "t/mm³" },
-  column_frame_E = { dist = "normal", mean = { 102500, 307500, 205000 }, std = { 7790, 23370, 15580 }, unit = "MPa" },
-  wheel_cover_thickness = { dist = "lognormal", mean = { 2.75, 8.25, 5.5 }, std = { 0.09, 0.26, 0.18 }, unit = "mm" },
-  ecu_bracket_thickness = { dist = "lognormal", mean = { 1.6, 4.8, 3.2 }, std = { 0.07, 0.20, 0.14 }, unit = "mm" },
+-- start}, unit, in the order of the trials' designs. The unknowns a refinement adds are declared
+-- by its candidate (steering_column.lua), not here.
+M.initial_unknowns = {
+  { name = "wheel_cover_rho", dist = "uniform", mean = { 0.5e-9, 1.5e-9, 1.00e-9 }, std = { 0.08e-9, 0.24e-9, 0.16e-9 },
+    unit = "t/mm³" },
+  { name = "column_frame_E", dist = "normal", mean = { 102500, 307500, 205000 }, std = { 7790, 23370, 15580 }, unit = "MPa" },
+  { name = "wheel_cover_thickness", dist = "lognormal", mean = { 2.75, 8.25, 5.5 }, std = { 0.09, 0.26, 0.18 }, unit = "mm" },
+  { name = "ecu_bracket_thickness", dist = "lognormal", mean = { 1.6, 4.8, 3.2 }, std = { 0.07, 0.20, 0.14 }, unit = "mm" },
 }
-M.unknown = unknown
-
-M.initial_unknowns = { "wheel_cover_rho", "column_frame_E", "wheel_cover_thickness", "ecu_bracket_thickness" }
-
---- The Kriging design box of an unknown (spec {dist, mean, std}): every value its distribution
--- can take with a mean and std inside the calibration bounds, up to 3 std (the uniform's
--- half-width √3·std), kept > 0.
-function M.design_box(u)
-  local reach = (u.dist == "uniform" and math.sqrt(3) or 3) * u.std[2]
-  local lo = u.mean[1] - reach
-  if lo <= 0 then lo = 0.5 * u.mean[1] end
-  return { lo, u.mean[2] + reach }
-end
 
 --- Wheel cover mass per unit length relative to nominal: density × the area of the cover tube
 -- (inner diameter 24 mm, wall t; spec §5 rim) — what weighing the wheels would measure.

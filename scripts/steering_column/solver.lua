@@ -1,31 +1,10 @@
 --- column-fe as the study drives it: decks written from the spec's inputs, per-point runs
 -- through smi.model.command (one deck and one .f06 per point, as with Nastran) and many points
 -- per process through smi.model.batch (`column-fe --batch`). Every run goes through the
--- evaluation store, so a rerun of the study reuses them. Counts of launched and reused runs are
--- kept here for the report.
+-- evaluation store, so a rerun of the study reuses them (smi.improve counts them).
 local inputs = require "steering_column.inputs"
 
-local M = { counts = {} }
-
-local function count(name, info, n)
-  local c = M.counts[name] or { points = 0, launched = 0, reused = 0, failed = 0 }
-  M.counts[name] = c
-  c.points = c.points + n
-  c.launched = c.launched + (info.launched or 0)
-  c.failed = c.failed + (info.failed or 0)
-  local r = 0
-  if info.reused then for i = 1, #info.reused do r = r + info.reused[i] end end
-  c.reused = c.reused + r
-end
-
---- Total launched processes and points over all models.
-function M.totals()
-  local t = { points = 0, launched = 0, reused = 0, failed = 0 }
-  for _, c in pairs(M.counts) do
-    for k in pairs(t) do t[k] = t[k] + c[k] end
-  end
-  return t
-end
+local M = {}
 
 --- Deck text: airbag variant, every input at its nominal value except `vary` (placeholders
 -- {{name:%.17g}} for smi.model.command) and `fixed` ({name = value}).
@@ -47,20 +26,6 @@ function M.deck(airbag, vary, fixed)
   return table.concat(lines, "\n") .. "\n"
 end
 
-local function wrap(m, name)
-  local w = { inputs = m.inputs, outputs = m.outputs, name = m.name, kind = m.kind, model = m }
-  function w.evaluate(_, X)
-    local Y, info = m:evaluate(X)
-    count(name, info, info.status and #info.status or 0)
-    if info.failed and info.failed > 0 then
-      error(("column-fe failed on %d point(s) of '%s': %s"):format(info.failed, name, info.failures[1].reason), 0)
-    end
-    return Y, info
-  end
-  function w.plan(_, X) return m:plan(X) end
-  return w
-end
-
 --- A per-point model: inputs `vary`, outputs mode1, mode2, mode4 (paper modes, Hz).
 -- opts: solver (path), airbag, vary, fixed, name, concurrency.
 function M.command(opts)
@@ -74,7 +39,7 @@ function M.command(opts)
     end,
     concurrency = opts.concurrency or 2, on_failure = "stop",
   }
-  return wrap(m, opts.name)
+  return m
 end
 
 --- A batch model over `vary` (any of the 46 inputs, airbag_stiffness): the base deck holds the
@@ -91,7 +56,7 @@ function M.batch(opts)
     end,
     batch_size = opts.batch_size or 0, concurrency = opts.concurrency or 2, on_failure = "stop",
   }
-  return wrap(m, opts.name)
+  return m
 end
 
 --- Writes a base deck (all inputs nominal, `fixed` overrides) to `path`; returns path.

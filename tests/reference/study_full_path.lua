@@ -16,8 +16,8 @@ local ref = { made_by = "tests/reference/study_full_path.sh: scripts/steering_co
               solver_runs = R.cost.solver_runs }
 for _, m in ipairs{ "mode1", "mode2", "mode4" } do
   local ne = {}
-  for _, row in ipairs(sc.modes[m].rows) do ne[row.input] = row.ne end
-  ref.screening[m] = { top = sc.modes[m].top, ne = ne }
+  for _, row in ipairs((sc.responses or sc.modes)[m].rows) do ne[row.input] = row.ne end
+  ref.screening[m] = { top = (sc.responses or sc.modes)[m].top, ne = ne }
 end
 for k, t in ipairs(R.conclusion.trials) do
   ref.trials[k] = { candidate = t.candidate, airbag = t.airbag, modes = t.modes, means = t.calibration.means }

@@ -28,7 +28,7 @@ T.case("screening: the full eq.-3 screening's top four per mode", function()
   for _, m in ipairs(MODES) do
     local set = {}
     for _, x in ipairs(F.screening[m].top) do set[x] = true end
-    for _, x in ipairs(S.screening.result.modes[m].top) do
+    for _, x in ipairs(S.screening.result.responses[m].top) do
       T.truthy(set[x], ("%s: %s is in the full screening's top four (%s)"):format(m, x, table.concat(F.screening[m].top, ", ")))
     end
   end

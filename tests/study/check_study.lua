@@ -50,6 +50,9 @@ T.case("conclusion: the issue's schema", function()
   table.sort(keys)
   T.eq(table.concat(keys, ","), "refinements,trials,undetermined,verdict", "the top-level fields, no more")
   for i, t in ipairs(C.trials) do
+    -- smi.improve's generic fields (issue 30) beside the column's airbag and modes
+    T.truthy(type(t.applied) == "table" and type(t.responses) == "table", "trial " .. i .. " applied and responses")
+    for _, m in ipairs{ "mode1", "mode2", "mode4" } do T.eq(t.responses[m], t.modes[m], ("trial %d %s"):format(i, m)) end
     T.truthy(t.airbag == "rigid" or t.airbag == "spring", "trial " .. i .. " airbag")
     T.truthy(type(t.candidate) == "string" and type(t.unknowns) == "table" and #t.unknowns >= 4, "trial " .. i .. " candidate and unknowns")
     for _, m in ipairs{ "mode1", "mode2", "mode4" } do T.truthy(VERDICTS[t.modes[m]], ("trial %d %s"):format(i, m)) end
@@ -81,6 +84,7 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(C.refinements[1], "airbag modelling type", "refinement picks the airbag modelling")
   T.eq(last.candidate, "airbag modelling type")
   T.eq(last.airbag, "spring")
+  T.eq(table.concat(last.applied, ","), "airbag modelling type", "the revision applied on top of the initial model")
   T.eq(last.unknowns[#last.unknowns], "airbag_stiffness", "the candidate's declared new unknown")
   T.eq(last.modes.mode1, "valid")
   T.eq(last.modes.mode4, "valid")
@@ -112,7 +116,7 @@ end)
 
 T.case("verdicts: decisive on calibrated modes, mode 2 from the near-optimal range", function()
   for k = 1, #C.trials do
-    local v = S["trial" .. k .. "_validation"].result.modes
+    local v = S["trial" .. k .. "_validation"].result.responses
     for _, m in ipairs{ "mode1", "mode4" } do
       T.eq(v[m].verdict, v[m].metric <= v[m].threshold and "valid" or "invalid", ("trial %d %s"):format(k, m))
     end
@@ -130,14 +134,14 @@ T.case("no knowledge the analyst did not give", function()
 end)
 
 T.case("the calibrated model predicts the calibrated modes", function()
-  local v = S["trial" .. #C.trials .. "_validation"].result.modes
+  local v = S["trial" .. #C.trials .. "_validation"].result.responses
   for _, m in ipairs{ "mode1", "mode4" } do
     T.near(v[m].predicted_mean, smi.vec(data[m]):mean(), 0.5, m .. " predicted mean vs data")
   end
 end)
 
 T.case("screening and surrogates", function()
-  local top = S.screening.result.modes.mode1.top
+  local top = S.screening.result.responses.mode1.top
   T.eq(top[1], "column_frame_E", "spec §12: column_frame_E dominates mode 1")
   T.eq(top[2], "ecu_bracket_thickness", "spec §12: then the ECU bracket")
   for k = 1, #C.trials do
@@ -154,7 +158,7 @@ T.case("report: one self-contained file with the study's figures and its conclus
   T.truthy(n >= 20, "figures: " .. n)
   T.truthy(html:find("Conclusion: the model is " .. C.verdict, 1, true) ~= nil, "conclusion verdict")
   if C.undetermined[1] then
-    local th = S["trial" .. #C.trials .. "_validation"].result.modes.mode2.threshold
+    local th = S["trial" .. #C.trials .. "_validation"].result.responses.mode2.threshold
     T.truthy(html:find(("mode 2 not determined by these data: U over %%d+ near%%-optimal calibrations in %%[[%%d.]+, [%%d.]+%%] against threshold %.4f"):format(th)) ~= nil,
              "the report says why mode 2 is undetermined, with the run's threshold")
   end

@@ -1,34 +1,35 @@
---- The calibration of one trial (Son et al. 2020 §4.1.3 and §4.2): the means and stds of the
--- unknowns that minimize PR(mode 1) + PR(mode 4) (or minus the log-likelihood) over the KDEs of a
--- common-random-number sample through the Krigings, SLSQP; then what the data leave open (the
--- tolerance of "fits as well", the near-optimal set, each mean's range over it) and, in the full
--- run, bootstrap intervals. One function per job; M.calibrate strings them together.
+--- smi.improve.calibration: the calibration of one trial (Son et al. 2020 §4.1.3 and §4.2): the
+-- means and stds of the unknowns that minimize the sum of PR over the calibrated responses (or
+-- minus the log-likelihood) over the KDEs of a common-random-number sample through the Krigings,
+-- SLSQP; then what the data leave open (the tolerance of "fits as well", the near-optimal set,
+-- each mean's range over it) and, in the full run, bootstrap intervals. One function per job;
+-- M.calibrate strings them together. t.calibrate / t.validate: the declared response names.
 --
--- Nothing but the data and the analyst's priors enters the objective: modes 1 and 4 leave
--- combinations of the means undetermined, and the study reports what that leaves open
+-- Nothing but the data and the analyst's priors enters the objective: the calibrated responses
+-- may leave combinations of the means undetermined, and the study reports what that leaves open
 -- (near_optimal.lua, the validation's "inconclusive") instead of choosing for the analyst.
-local inputs = require "steering_column.inputs"
-local trial = require "steering_column.trial"
-local near = require "steering_column.near_optimal"
+local trial = require "smi.improve.trial"
+local near = require "smi.improve.near_optimal"
 
 local M = {}
-local MODES = trial.calibration_modes
 
 -- The objective increase that still counts as fitting the data as well as the optimum, from the
--- data: for "pr" the standard deviation of PR(mode 1) + PR(mode 4) at the optimum over bootstrap
+-- data: for "pr" the standard deviation of the summed PR at the optimum over bootstrap
 -- resamples of the data rows (two calibrations whose objectives differ by less than that are not
--- told apart by nine measurements); for "loglik" (minus the log-likelihood of the data, summed as
+-- told apart by a few measurements); for "loglik" (minus the log-likelihood of the data, summed as
 -- smi.calibrate's model form does) the likelihood-ratio bound ½ χ²₁(0.95).
 local BOOT = 200 -- resamples for the PR tolerance
 
---- The tolerance and its basis: t {metric, data = {mode = vec}, predicted, theta, grids, seed}.
+--- The tolerance and its basis: t {metric, calibrate, data = {response = vec}, predicted, theta,
+-- grids, seed, result (the smi.calibrate result at the optimum)}.
 -- The resamples are paired across modes (a row is one impact test); each resample's
 -- experimental PDF is the plain KDE (the KDE-ebd's loop on every resample would cost more than
 -- the calibration, and the spread is what is measured).
 function M.tolerance(t)
+  local MODES = t.calibrate
   local n = #t.data[MODES[1]]
   if t.metric ~= "pr" then
-    return { value = 1.920729,
+    return { value = M.loglik_threshold(t.result),
              basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows")
                :format(n) }
   end
@@ -49,15 +50,25 @@ function M.tolerance(t)
   end
   local v = smi.vec(sums)
   return { value = v:std(), resamples = BOOT, mean = v:mean(),
-           basis = ("standard deviation of PR(mode 1) + PR(mode 4) at the optimum over %d bootstrap resamples of"
-             .. " the %d data rows"):format(BOOT, n) }
+           basis = ("standard deviation of the summed PR of %s at the optimum over %d bootstrap resamples of"
+             .. " the %d data rows"):format(table.concat(MODES, ", "), BOOT, n) }
+end
+
+-- SWITCH (issue 29, /work/wt/CALIBRATE_API.md): smi.calibrate's result now may carry
+-- r.tolerance (the "fits as well" threshold; for loglik ½ χ²₁(0.95)) and r.prior_at(theta) (the
+-- prior part at any point). These read them when present and fall back to the constant and the
+-- one-evaluation call below on a kernel without them. The only places to change.
+function M.loglik_threshold(r)
+  if r and type(r.tolerance) == "number" then return r.tolerance end
+  return 1.920729 -- ½ χ²₁(0.95)
 end
 
 --- The analyst's prior part at th, computed by smi.calibrate itself (its sum, weight and `fn`
 -- handling: one evaluation at th, no optimization), so the near-optimal points are checked
 -- against the very objective the calibration minimized. 0 without a prior.
-function M.prior_at(prior, params, th)
+function M.prior_at(prior, params, th, r)
   if not prior then return 0 end
+  if r and type(r.prior_at) == "function" then return r.prior_at(th) end
   local p = {}
   for i, q in ipairs(params) do
     p[i] = { name = q.name, lower = q.lower, upper = q.upper, start = math.min(q.upper, math.max(q.lower, th[q.name])) }
@@ -83,21 +94,25 @@ local function with_prior(t, spec)
   return spec
 end
 
---- The experimental PDFs f_exp of every mode (KDE-ebd, alpha 0.1, critical intersection area
--- 0.95), rebuilt deterministically from the data ({mode = list or vec}) and the study's seed, so
--- that any step, or a benchmark of one (bench/calibrate_trial2.lua), builds the same ones.
-function M.experimental_pdfs(data, seed)
+--- The experimental PDFs f_exp of every response (KDE-ebd, alpha 0.1, critical intersection area
+-- 0.95), rebuilt deterministically from the data ({response = list or vec}, names in declared
+-- order) and the study's seed, so that any step, or a benchmark of one, builds the same ones.
+function M.experimental_pdfs(data, seed, names)
   local d = {}
-  for k, m in ipairs(trial.modes) do
+  for k, m in ipairs(names) do
     d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
   end
   return d
 end
 
---- Fixed PR grids per calibrated mode (the data's range ± 25 Hz).
-function M.grids_of(data)
+--- Fixed PR grids per calibrated response: the data's range ± the declared grid margin (default
+-- 10 data stds), 6001 nodes. margins: {response = number or nil}.
+function M.grids_of(data, names, margins)
   local g = {}
-  for _, m in ipairs(MODES) do g[m] = { lower = data[m]:min() - 25, upper = data[m]:max() + 25, nodes = 6001 } end
+  for _, m in ipairs(names) do
+    local w = margins and margins[m] or 10 * data[m]:std()
+    g[m] = { lower = data[m]:min() - w, upper = data[m]:max() + w, nodes = 6001 }
+  end
   return g
 end
 local grids_of = M.grids_of
@@ -105,7 +120,7 @@ local grids_of = M.grids_of
 --- The study's objective on its own CRN sample (smi.propagate through the Krigings): "pr" against
 -- the experimental PDFs f_exp, or minus the log-likelihood of the data points. Returns
 -- objective(th) -> sum, {mode = part}.
-function M.objective(metric, predicted, grids, f_exp, data)
+function M.objective(metric, predicted, grids, f_exp, data, MODES)
   return function(th)
     local Y = predicted(th, MODES)
     local parts, sum = {}, 0
@@ -127,6 +142,7 @@ end
 -- identifiability, multistart, threads (nil: smi.calibrate's default), moment_start}. Exported for
 -- bench/calibrate_trial2.lua, which times this very call.
 function M.pr_stage(t, grids, o)
+  local MODES = t.calibrate
   local ins, model, dat, g = {}, {}, {}, {}
   for i, n in ipairs(t.unknowns) do
     local u = t.specs[n]
@@ -185,7 +201,7 @@ local function optimum(t, predicted, grids, params)
   local r0 = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = start, maxeval = t.maxeval,
                                   identifiability = false, multistart = t.multistart, moment_start = true })
   local tol = M.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = r0.params, grids = grids,
-                           seed = t.seed + 11 }
+                           seed = t.seed + 11, calibrate = t.calibrate, result = r0 }
   local r = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = r0.params, maxeval = 40,
                                  identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value } })
   r.evaluations = r.evaluations + r0.evaluations
@@ -255,10 +271,10 @@ end
 -- (near_optimal.lua). The union: a generic set cannot know which prediction matters, and a
 -- verdict over too narrow a set would be falsely decisive.
 local function near_optimal_set(t, r, tol, params, predicted, data_objective)
-  local function full_objective(th) return data_objective(th) + M.prior_at(t.prior, params, th) end
-  local pushes = near.by_prediction_extremes{ params = params, optimum = r.params, objective = full_objective,
+  local function full_objective(th) return data_objective(th) + M.prior_at(t.prior, params, th, r) end
+  local pushes = #t.validate == 0 and { points = {}, directions = {} } or near.by_prediction_extremes{ params = params, optimum = r.params, objective = full_objective,
     value = full_objective(r.params), predicted = predicted, prior = t.prior, tolerance = tol.value,
-    calibration_modes = MODES, validation_modes = trial.validation_modes, data = t.data }
+    calibration_modes = t.calibrate, validation_modes = t.validate, data = t.data }
   local points, from_calib = {}, 0
   for _, p in ipairs(r.near_optimal and r.near_optimal.points or {}) do points[#points + 1] = p end
   from_calib = #points
@@ -266,9 +282,10 @@ local function near_optimal_set(t, r, tol, params, predicted, data_objective)
   return { tolerance = tol.value, tolerance_basis = tol, points = points, directions = pushes.directions,
     from_calibrate = from_calib, from_pushes = #points - from_calib, mean_ranges = M.mean_ranges(t.unknowns, points),
     source = from_calib > 0
-      and ("%d from smi.calibrate's r.near_optimal, %d from the study's pushes of mode 2"):format(
-        from_calib, #points - from_calib)
-      or ("%d from the study's pushes of mode 2 (smi.calibrate gave no r.near_optimal)"):format(#points) }
+      and ("%d from smi.calibrate's r.near_optimal, %d from the study's pushes of %s"):format(
+        from_calib, #points - from_calib, table.concat(t.validate, ", "))
+      or ("%d from the study's pushes of %s (smi.calibrate gave no r.near_optimal)"):format(#points,
+        table.concat(t.validate, ", ")) }
 end
 
 --- Bootstrap CIs (beyond the paper): the data rows resampled with replacement (paired across
@@ -279,6 +296,7 @@ end
 -- percentiles can sit to one side of the estimate (seen: a thickness estimate of 4.385 with
 -- percentiles [4.387, 4.429]); the percentiles are kept too.
 local function bootstrap(t, grids, r, params)
+  local MODES = t.calibrate
   local rng = smi.rng(t.seed + 7)
   local n = #t.data[MODES[1]]
   local samples, failures = {}, {}
@@ -314,37 +332,38 @@ local function bootstrap(t, grids, r, params)
 end
 
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
--- data = {mode1 = x, mode4 = x}, f_exp = {mode1 = dist, mode4 = dist}, kriging, design_bounds, n,
--- seed, maxeval, bootstrap, boot_maxeval, metric = "pr"|"loglik", multistart, prior (the
--- analyst's, smi.calibrate's `prior` list; nil: none), prior_labels}. Both stages are one
--- smi.calibrate call in its model form: stage 1 its moment start, stage 2 the paper's metric
--- (analytic gradients: on 14 generated experiments 20 of 21 PR stages converged on their
--- tolerances, against 2 of 24 in the objective form on finite differences).
+-- calibrate, validate (response names), data = {response = vec}, f_exp = {response = dist},
+-- grid_margins = {response = number}, kriging, design_bounds, n, seed, maxeval, bootstrap,
+-- boot_maxeval, metric = "pr"|"loglik", multistart, prior (the analyst's, smi.calibrate's `prior`
+-- list; nil: none), prior_labels}. Both stages are one smi.calibrate call in its model form:
+-- stage 1 its moment start, stage 2 the paper's metric (analytic gradients).
 function M.calibrate(t)
   t.metric = t.metric or "pr"
   local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed)
   local params1 = declared_params(t)
-  local grids = grids_of(t.data)
+  local grids = grids_of(t.data, t.calibrate, t.grid_margins)
   local r, tol, r1 = optimum(t, predicted, grids, params1)
   local params = param_rows(t, r, r1)
-  local history = {}
-  for i, h in ipairs(r.history) do
-    if not h.probe then
-      history[#history + 1] = { i, h.objective, h.metrics.mode1, h.metrics.mode4, h.metrics.prior }
-    end
-  end
-  local rho, tc = r.params["wheel_cover_rho.mean"], r.params["wheel_cover_thickness.mean"]
-  local out = { objective = r.metrics.mode1 + r.metrics.mode4, prior_part = r.metrics.prior,
-    metrics = { mode1 = r.metrics.mode1, mode4 = r.metrics.mode4 }, evaluations = r.evaluations,
+  local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
     status = r.status, warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
-    theta = r.params, history = history, weak = r.identifiability and r.identifiability.weak or {},
-    n = t.n, seed = t.seed,
+    theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
+    n = t.n, seed = t.seed, calibrate = t.calibrate,
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,
-    priors = t.prior_labels or {},
-    cover_mass_ratio = rho and tc and inputs.cover_mass_ratio(rho, tc),
-    moments_stage = r1 }
-  local data_objective = M.objective(t.metric, predicted, grids, t.f_exp, t.data)
+    priors = t.prior_labels or {}, moments_stage = r1 }
+  out.objective = 0
+  for _, m in ipairs(t.calibrate) do
+    out.metrics[m] = r.metrics[m]
+    out.objective = out.objective + r.metrics[m]
+  end
+  out.history = {}
+  for i, h in ipairs(r.history) do
+    if not h.probe then out.history[#out.history + 1] = { i, h.objective, h.metrics.prior } end
+  end
+  -- PR saturated everywhere: the predicted and measured PDFs never overlap (issue 29's status);
+  -- the study stops on it, so nothing more is computed here
+  if out.converged == false and out.status == "no_overlap" then return out, r end
+  local data_objective = M.objective(t.metric, predicted, grids, t.f_exp, t.data, t.calibrate)
   -- the objective on the study's own CRN sample at this optimum: before/after comparisons
   out.objective_study_sample = data_objective(r.params)
   out.near_optimal = near_optimal_set(t, r, tol, params1, predicted, data_objective)
@@ -355,7 +374,7 @@ function M.calibrate(t)
         out.bootstrap.failed, t.bootstrap, out.bootstrap.failures[1].replicate, out.bootstrap.failures[1].error)
     end
   end
-  out.sensitivity = trial.sensitivity(t.kriging, out)
+  out.sensitivity = trial.sensitivity(t.kriging, out, t)
   return out, r
 end
 

@@ -1,17 +1,21 @@
---- The steering-column study's words: the report's paragraphs and the console's closing lines,
--- each a function of the run's results (thresholds, sample sizes and ranges are the numbers the
--- run computed, never retyped). steering_column.lua computes and places; this file says.
+--- smi.improve.text: a study's words: the report's paragraphs and the console's closing lines,
+-- each a function of the run's results and the declaration (response names and units, candidate
+-- names; thresholds, sample sizes and ranges are the numbers the run computed, never retyped).
+-- smi.improve computes and places; this file says. M.declare(D) takes the declaration.
 local M = {}
 
-local MODES = { "mode1", "mode2", "mode4" }
+local MODES, CAL, VAL = {}, {}, {}
+
+--- Takes the checked declaration's response lists.
+function M.declare(D) MODES, CAL, VAL = D.names, D.calibrate, D.validate end
 
 local function join(list, last)
   if #list <= 1 then return list[1] or "" end
   return table.concat(list, ", ", 1, #list - 1) .. (last or " and ") .. list[#list]
 end
 
---- "mode 1" for "mode1" (the conclusion's keys in words).
-function M.mode_name(m) return (m:gsub("^mode", "mode ")) end
+--- A response's name in words ("mode 1" for "mode1").
+function M.mode_name(m) return (m:gsub("^mode(%d+)$", "mode %1")) end
 
 local function mode_list(list)
   local w = {}
@@ -40,8 +44,7 @@ end
 function M.settle(mode, cal)
   local w = M.weak_inputs(cal and cal.near_optimal)
   return ("calibrate on %s as well, or measure an input that moves it%s and give it as --prior"):format(
-    M.mode_name(mode), w and (" (the means move most along: " .. w .. "; e.g. weigh the wheel cover)")
-      or " (e.g. weigh the wheel cover)")
+    M.mode_name(mode), w and (" (the means move most along: " .. w .. ")") or "")
 end
 
 --- One validation-only mode's verdict detail (the report's verdict list).
@@ -49,8 +52,8 @@ function M.range_detail(v, cal)
   local d = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f;"
     .. " not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
   if v.verdict ~= "inconclusive" then return d end
-  return d .. (". Modes 1 and 4 fit equally well across calibrations that predict it on both sides of the"
-    .. " threshold. What would settle it: %s"):format(M.settle("mode2", cal))
+  return d .. (". %s fit equally well across calibrations that predict it on both sides of the"
+    .. " threshold. What would settle it: %s"):format(mode_list(CAL), M.settle(v.name, cal))
 end
 
 --- A calibrated mode's verdict detail.
@@ -62,7 +65,7 @@ end
 --- An undetermined mode of the last trial in words, with its evidence (the U range over the
 -- near-optimal set and the threshold the run computed) and what would settle it.
 function M.undetermined_words(m, val, cal)
-  local v = val.modes[m]
+  local v = val.responses[m]
   local r = v.range
   local evidence = r and ("U over %d near-optimal calibrations in [%.4f, %.4f] against threshold %.4f"):format(
     r.points, r.lower, r.upper, r.threshold) or "no near-optimal range"
@@ -77,18 +80,19 @@ function M.conclusion_detail(c, R)
   local last = c.trials[k]
   local refined = #c.refinements > 0
   local path = refined and ("after refinement by " .. table.concat(c.refinements, ", then ") .. " ") or ""
-  local where = ("(trial %d, %s airbag%s)"):format(k, last.airbag, refined and "" or ", no refinement")
+  local where = ("(trial %d, %s%s)"):format(k, #last.applied > 0 and ("applied: " .. table.concat(last.applied, ", "))
+    or "initial model", refined and "" or ", no refinement")
   local val, cal = R["trial" .. k .. "_validation"], R["trial" .. k .. "_calibration"]
   if c.verdict == "valid" then
     local decided = {}
-    for _, m in ipairs(MODES) do if last.modes[m] == "valid" then decided[#decided + 1] = m end end
+    for _, m in ipairs(MODES) do if last.responses[m] == "valid" then decided[#decided + 1] = m end end
     local s = ("on %s %s%s"):format(mode_list(decided), path, where)
     for _, m in ipairs(c.undetermined) do s = s .. "; " .. M.undetermined_words(m, val, cal) end
     return s
   end
   if c.verdict == "inconclusive" then return ("%s%s: %s"):format(path, where, c.why or "") end
   local failed = {}
-  for _, m in ipairs(MODES) do if last.modes[m] == "invalid" then failed[#failed + 1] = m end end
+  for _, m in ipairs(MODES) do if last.responses[m] == "invalid" then failed[#failed + 1] = m end end
   return ("%s%s: invalid on %s%s"):format(path, where, mode_list(failed), c.ended and ("; " .. c.ended) or "")
 end
 
@@ -111,8 +115,9 @@ end
 --- One line per trial for the console (what the conclusion says, in words).
 function M.trial_line(i, t, refinement)
   local modes = {}
-  for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
-  return ("Trial %d: %s, %s airbag, unknowns %s: %s%s"):format(i, t.candidate, t.airbag, table.concat(t.unknowns, ", "),
+  for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. (t.responses[m] or "not validated") end
+  return ("Trial %d: %s, applied {%s}, unknowns %s: %s%s"):format(i, t.candidate, table.concat(t.applied, ", "),
+    table.concat(t.unknowns, ", "),
     table.concat(modes, ", "), refinement and ("; refined by " .. refinement) or "")
 end
 
@@ -121,9 +126,16 @@ end
 -- ---------------------------------------------------------------------------------------------
 
 function M.data_intro(n, file)
-  return ("%d measured combinations from %s (for the committed file: 3 steering wheels × 3 column assemblies,"
-    .. " each the mean of 5 impact tests). Modes 1 and 4 calibrate the model; mode 2 is kept for validation."):format(
-    n, file)
+  return ("%d measurements from %s. %s calibrate the model%s."):format(n, file, mode_list(CAL),
+    #VAL > 0 and ("; " .. mode_list(VAL) .. (#VAL > 1 and " are" or " is") .. " kept for validation") or "")
+end
+
+--- The data step's units check: the nominal run against the data, per response.
+function M.units_intro(rows)
+  return ("Before any solver budget is spent: one run of the initial model with every unknown at its start mean"
+    .. " gives %s. Data an order of magnitude or more away from it (or outside a declared plausible range) are"
+    .. " most often a units mistake, and the study stops on them unless --accept-units is given."):format(
+    table.concat(rows, ", "))
 end
 
 function M.characterize_intro(n)
@@ -136,31 +148,21 @@ end
 -- Screening
 -- ---------------------------------------------------------------------------------------------
 
---- The screening's paragraph: out is the screening step's record (method, n, solver_solutions,
--- the surrogate's leave-one-out Q² per mode).
+--- The screening's paragraph: out is the screening step's record (method, n, inputs,
+-- solver_solutions, the surrogate's leave-one-out Q² per response).
 function M.screening_intro(out)
   if out.method == "surrogate" then
-    return ("Area-metric screening (eq. 3 and 7) at the solver's cost: column-fe (model A, rigid airbag) ran %d"
-      .. " times in batch mode on a Latin hypercube of the 46 inputs through the spec's default distributions;"
-      .. " a ridge quadratic per mode (leave-one-out Q² %.4f, %.4f, %.4f for modes 1, 2, 4) stands in for the"
-      .. " model, and each input is fixed at its mean in turn on one common-random-number sample of %d points"
-      .. " of it. The full screening on the model itself ((46 + 1) × 200 = 9,400 runs, --screening full) ranks"
-      .. " the same four inputs first in every mode (bench/results/study_budget.md)."):format(
-      out.solver_solutions, out.modes.mode1.q2, out.modes.mode2.q2, out.modes.mode4.q2, out.n)
+    local q = {}
+    for _, m in ipairs(MODES) do q[#q + 1] = ("%s %.4f"):format(m, out.responses[m].q2 or 0 / 0) end
+    return ("Area-metric screening (eq. 3 and 7) at the solver's cost: the initial model ran %d times on a Latin"
+      .. " hypercube of the %d inputs through their declared distributions; a ridge quadratic per response"
+      .. " (leave-one-out Q² %s) stands in for the model, and each input is fixed at its mean in turn on one"
+      .. " common-random-number sample of %d points of it (--screening full: on the model itself)."):format(
+      out.solver_solutions, out.inputs, table.concat(q, ", "), out.n)
   end
-  return ("Area-metric screening (eq. 3 and 7): each of the 46 inputs is fixed at its mean in turn on one"
-    .. " common-random-number sample of %d points of the spec's default distributions, model A (rigid airbag),"
-    .. " %d column-fe solutions run in batch mode."):format(out.n, out.solver_solutions)
-end
-
---- Whether the screening confirms the paper's trial-1 unknowns for mode 1.
-function M.screening_callout(confirmed)
-  if confirmed then
-    return "As in the paper's Table 2, the column frame's modulus and the ECU bracket's thickness dominate mode 1;"
-      .. " with the wheel cover's density and thickness (whose statistics are unknown) they are the trial-1 unknowns."
-  end
-  return "The screening ranks other inputs above the column modulus and the ECU bracket thickness for mode 1;"
-    .. " the study keeps the paper's unknowns."
+  return ("Area-metric screening (eq. 3 and 7): each of the %d inputs is fixed at its mean in turn on one"
+    .. " common-random-number sample of %d points of their declared distributions, initial model, %d solutions."
+    ):format(out.inputs, out.n, out.solver_solutions)
 end
 
 -- ---------------------------------------------------------------------------------------------
@@ -170,6 +172,9 @@ end
 --- A trial's surrogate paragraph: T the trial's model, res its surrogate step's record, fixed the
 -- words for its fixed inputs ("" or ", fixed a = 1, ..."), test_points the independent test points.
 function M.surrogate_intro(T, res, fixed, test_points)
+  local form = {}
+  for k, v in pairs(T.form) do form[#form + 1] = ("%s = %s"):format(k, tostring(v)) end
+  table.sort(form)
   local sq = res.sequential
   local how = sq and ("a sequential design of %d points (a %d-point maximin Latin hypercube, then batches of %d"
     .. " where the Kriging variance, weighted by where the calibration can put the unknowns' mass, is largest;"
@@ -178,11 +183,11 @@ function M.surrogate_intro(T, res, fixed, test_points)
     sq.reached and ("stopped at leave-one-out Q² ≥ " .. sq.q2_target .. " in every mode")
       or ("stopped at its limit: " .. sq.stop), T.n_design)
     or ("a %d-point maximin Latin hypercube"):format(res.n_design)
-  return ("Kriging (Gauss correlation, %s trend, hyperparameters by maximum likelihood) of modes 1, 2 and 4 on"
-    .. " %s of the unknowns %s over the design box (mean bounds widened by 3 std bounds; uniform: √3), %s"
-    .. " airbag%s. Every solution is a column-fe run through smi.model.command, kept in the evaluation store."
+  return ("Kriging (Gauss correlation, %s trend, hyperparameters by maximum likelihood) of %s on"
+    .. " %s of the unknowns %s over the design box (mean bounds widened by 3 std bounds; uniform: √3), model"
+    .. " form {%s}%s. Every solution is a solver run of the declared model, kept in the evaluation store."
     .. " An independent %d-point hypercube measures the test RMSE (the paper's Tables 3 and 7)."):format(
-    T.trend, how, table.concat(T.unknowns, ", "), T.airbag, fixed, test_points)
+    T.trend, mode_list(MODES), how, table.concat(T.unknowns, ", "), table.concat(form, ", "), fixed, test_points)
 end
 
 -- ---------------------------------------------------------------------------------------------
@@ -210,19 +215,21 @@ end
 -- cfg: the run's sample sizes.
 function M.calibration_intro(T, res, cfg, prior_file, labels)
   local pr = res.metric == "pr"
-  return ("Means and standard deviations of the %d unknowns (types, bounds and start values as the model declares"
-    .. " them: Table 4/8 for the initial unknowns, the candidate's declaration for new ones) minimize %s over the"
-    .. " KDEs of %d common-random-number samples propagated through the Kriging models; SLSQP (NLopt), in"
+  local parts = {}
+  for _, m in ipairs(CAL) do parts[#parts + 1] = ("%s %.4f"):format(M.mode_name(m), res.metrics[m]) end
+  return ("Means and standard deviations of the %d unknowns (types, bounds and start values as declared: the"
+    .. " study's unknowns, and each applied candidate's new ones) minimize %s over the KDEs of %d"
+    .. " common-random-number samples propagated through the Kriging models; SLSQP (NLopt), in"
     .. " smi.calibrate's model form (the Krigings as the model: analytic gradients). PR saturates when the PDFs"
-    .. " do not overlap, so a first stage moves the start values to match the means and stds of modes 1 and 4"
+    .. " do not overlap, so a first stage moves the start values to match the means and stds of %s"
     .. " (smi.calibrate's moment start: Levenberg-Marquardt on the Krigings' Jacobian, %d model runs; %s); the"
-    .. " PR stage starts from there. %s Objective at the optimum %.4f (%s mode 1 %.4f, mode 4 %.4f), %d"
+    .. " PR stage starts from there. %s Objective at the optimum %.4f (%s %s), %d"
     .. " evaluations from %d start(s), %s (converged: %s)."):format(
-    #T.unknowns, pr and "PR(mode 1) + PR(mode 4) between the KDE-ebd PDFs of the data and"
-      or "minus the log-likelihood of the data points of modes 1 and 4 under", cfg.cal_n, res.moments_stage.evaluations,
-    M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels), res.objective, pr and "PR" or "-logL",
-    res.metrics.mode1, res.metrics.mode4, res.evaluations, res.starts and #res.starts or 1, res.status,
-    tostring(res.converged))
+    #T.unknowns, (pr and "the summed PR between the KDE-ebd PDFs of the data and the predicted ones, over %s"
+      or "minus the log-likelihood of the data points of %s"):format(mode_list(CAL)), cfg.cal_n, mode_list(CAL),
+    res.moments_stage.evaluations, M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
+    res.objective, pr and "PR" or "-logL", table.concat(parts, ", "), res.evaluations,
+    res.starts and #res.starts or 1, res.status, tostring(res.converged))
 end
 
 --- The bootstrap interval of one input (mean / std), or why there is none.
@@ -238,14 +245,11 @@ function M.parameters_caption(res)
   local b = res.bootstrap
   local ci = b and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart"
     .. " SLSQP at the optimum with %d evaluations each%s: the local pull of the data, which understates the spread"
-    .. " along the directions modes 1 and 4 leave undetermined"):format(b.replicates, b.maxeval,
+    .. " along the directions the calibrated responses leave undetermined"):format(b.replicates, b.maxeval,
       b.failed > 0 and ("; %d failed, see the warnings"):format(b.failed) or "") or "none (--quick)"
   return ("Calibrated statistical parameters. CI: %s."):format(ci)
 end
 
-function M.cover_mass(ratio)
-  return ("Wheel cover mass relative to nominal (density × cover tube area) at the optimum: %.3f."):format(ratio)
-end
 
 --- Each mean's range over the near-optimal set, in words.
 local function mean_ranges(no)
@@ -258,16 +262,21 @@ end
 --- The identifiability callout: what modes 1 and 4 fix and the near-optimal set.
 function M.identifiability(res)
   local sv, no = res.sensitivity, res.near_optimal
-  return ("Identifiability (beyond the paper): modes 1 and 4 fix 2 combinations of the %d means and leave %d"
-    .. " undetermined; %.0f %% of mode 2's sensitivity lies outside what modes 1 and 4 constrain. Near-optimal"
-    .. " calibrations (objective within %.3g of the optimum, the %s; %s): %d points; the means over them: %s."):format(
-    #sv.inputs, sv.undetermined, 100 * sv.mode2_unconstrained_share, no.tolerance,
+  local shares = {}
+  for _, m in ipairs(VAL) do
+    shares[#shares + 1] = ("%.0f %% of %s's sensitivity lies outside what they constrain"):format(
+      100 * (sv.unconstrained_share[m] or 0), M.mode_name(m))
+  end
+  return ("Identifiability (beyond the paper): %s fix %d combinations of the %d means and leave %d"
+    .. " undetermined%s. Near-optimal calibrations (objective within %.3g of the optimum, the %s; %s): %d points;"
+    .. " the means over them: %s."):format(mode_list(CAL), sv.constrained, #sv.inputs, sv.undetermined,
+    #shares > 0 and ("; " .. table.concat(shares, "; ")) or "", no.tolerance,
     no.tolerance_basis and no.tolerance_basis.basis or "tolerance", no.source, #no.points, mean_ranges(no))
 end
 
 function M.weak_parameters(weak)
   return ("Identifiability: the objective hardly changes with %s over its whole range; these parameters are not"
-    .. " determined by modes 1 and 4."):format(table.concat(weak, ", "))
+    .. " determined by %s."):format(table.concat(weak, ", "), mode_list(CAL))
 end
 
 -- ---------------------------------------------------------------------------------------------
@@ -276,16 +285,18 @@ end
 
 --- The validity check's paragraph; the threshold is the run's (res.modes.*.threshold).
 function M.validation_intro(res, n, cfg)
-  return ("u-pooling area metric (eq. 11 and 12) of the data of each mode against the KDE of %d samples of the"
-    .. " calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
-    .. " shared/spec/algorithms.md §5). Modes 1 and 4 were used by the calibration: their verdict is the optimum's."
-    .. " Mode 2 was not: the calibration data leave combinations of the means undetermined, so its metric is"
-    .. " computed over every near-optimal calibration (%d samples each) and it is valid or invalid only when that"
-    .. " whole range lies on one side of the threshold, else inconclusive. The trial is valid when every calibrated"
-    .. " mode is valid and its calibration converged; an undecided mode 2 is then listed as undetermined, not"
-    .. " hidden. As a check of the surrogate, %d points of the calibrated distributions, stratified (a Latin"
-    .. " hypercube in probability space), were also run through column-fe itself."):format(
-    res.n, res.modes.mode1.threshold, n, cfg.near_n, res.n_solver)
+  local val = #VAL == 0 and "" or (" %s %s not: the calibration data may leave combinations of the means"
+    .. " undetermined, so the metric is computed over every near-optimal calibration (%d samples each) and the"
+    .. " verdict is valid or invalid only when that whole range lies on one side of the threshold, else"
+    .. " inconclusive; an undecided one in a trial that is otherwise valid is listed as undetermined, not hidden."):format(
+    mode_list(VAL), #VAL > 1 and "were" or "was", cfg.near_n)
+  return ("u-pooling area metric (eq. 11 and 12) of the data of each response against the KDE of %d samples of"
+    .. " the calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
+    .. " shared/spec/algorithms.md §5). %s were used by the calibration: their verdict is the optimum's.%s The"
+    .. " trial is valid when every calibrated response is valid and its calibration converged. As a check of the"
+    .. " surrogate, %d points of the calibrated distributions, stratified (a Latin hypercube in probability"
+    .. " space), were also run through the solver itself."):format(
+    res.n, res.responses[CAL[1]].threshold, n, mode_list(CAL), val, res.n_solver)
 end
 
 function M.solver_disagrees(label, mode_title, metric)
@@ -326,24 +337,32 @@ function M.refinement_intro(k, out)
   local names = {}
   for j, c in ipairs(dm.candidates) do names[j] = c.name end
   local w = dm.weights
-  return ("Trial %d is invalid on %s. Candidates (the paper's §4.1.5, each declaring its revision in"
-    .. " refinement/candidates.lua): %s. Each revised model is run at the initial means; correctness is eq. (13)"
+  return ("Trial %d is invalid on %s. Candidates (each declaring its revision): %s. Each revised model (on top"
+    .. " of the revisions kept so far) is run at the start means; correctness is eq. (13)"
     .. " averaged over every response used in calibration (%s), whichever of them the calibration gave up;"
     .. " robustness the number of new unknowns, computational cost the measured run time (minutes, in whole"
     .. " seconds: shorter differences are timing noise), implementation cost the analyst's estimate (minutes)."
     .. " Weights: correctness %g, robustness %g, computational cost %g, implementation cost %g (criteria.lua"
     .. " explains why). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s (rank %d; candidates"
-    .. " already tried are passed over): %s. Trial %d is its declared revision: %s airbag, unknowns %s."):format(
+    .. " already tried are passed over): %s. Trial %d applies %s; unknowns %s.%s"):format(
     k, mode_list(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
     w.correctness, w.robustness, w.computational, w.implementation, table.concat(dm.ranking, " > "), out.chosen,
-    out.rank, out.why, k + 1, model.airbag, table.concat(model.unknowns, ", "))
+    out.rank, out.why, k + 1, table.concat(model.applied, " + "), table.concat(model.unknowns, ", "),
+    #(model.dropped or {}) > 0 and (" Dropped: " .. M.dropped(model.dropped) .. ".") or "")
+end
+
+--- The revisions a trial dropped, with why.
+function M.dropped(list)
+  local w = {}
+  for i, d in ipairs(list) do w[i] = ("%s (%s)"):format(d.name, d.why) end
+  return table.concat(w, "; ")
 end
 
 -- ---------------------------------------------------------------------------------------------
 -- Summary
 -- ---------------------------------------------------------------------------------------------
 
-M.solver_use_caption = "column-fe use in this run (steps run alone count only their own runs): points evaluated,"
+M.solver_use_caption = "Solver use in this run (steps run alone count only their own runs): points evaluated,"
   .. " processes launched, points reused from the store."
 
 --- The loop as it ran, in words (the summary's paragraph).
@@ -351,8 +370,9 @@ function M.story(c, R, prior_labels)
   local story = {}
   for i, t in ipairs(c.trials) do
     local modes = {}
-    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. t.modes[m] end
-    story[#story + 1] = ("Trial %d (%s, %s airbag, calibration %s): %s."):format(i, t.candidate, t.airbag,
+    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. (t.responses[m] or "not validated") end
+    story[#story + 1] = ("Trial %d (%s, applied {%s}, calibration %s): %s."):format(i, t.candidate,
+      table.concat(t.applied, ", "),
       t.calibration.converged and "converged" or ("stopped: " .. tostring(t.calibration.status)),
       table.concat(modes, ", "))
     if c.refinements[i] then

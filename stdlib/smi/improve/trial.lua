@@ -1,27 +1,33 @@
---- One trial of statistical model improvement on the steering column (Son et al. 2020 §4.1 and
--- §4.2): Kriging surrogates on a Latin hypercube of the unknowns (solver runs through
--- smi.model.command and the evaluation store), calibration of the unknowns' means and stds by
--- PR(mode 1) + PR(mode 4) with SLSQP on common random numbers (calibration.lua), and validation
--- by u-pooling on modes 1, 4 and 2. This file computes; the report's words are in report_text.lua.
-local inputs = require "steering_column.inputs"
-local solver = require "steering_column.solver"
-
+--- smi.improve.trial: one trial of statistical model improvement (Son et al. 2020 §4.1 and §4.2)
+-- on any declared product: Kriging surrogates of every response on a Latin hypercube of the
+-- unknowns (solver runs through the declaration's model factory and the evaluation store),
+-- calibration (calibration.lua), and validation by u-pooling, a validation-only response judged
+-- over the near-optimal calibrations. This file computes; the words are in text.lua.
+-- `responses` below is the declaration's list of response names (calibrate ones first or not:
+-- the roles come from `calibrate` / `validate` name lists).
 local M = {}
-M.modes = { "mode1", "mode2", "mode4" }
-M.calibration_modes = { "mode1", "mode4" } -- the responses the calibration fits
-M.validation_modes = { "mode2" }           -- kept for validation only
 
---- predicted(th, modes): the given modes (default all three) of the common-random-number sample
--- of n points through the Krigings, the unknowns distributed as their specs say with the means
--- and stds of th ({["input.mean"] = v, ["input.std"] = v}).
+--- Box of an unknown's Kriging design (spec {dist, mean, std}): every value its distribution
+-- can take with a mean and std inside the calibration bounds, up to 3 std (the uniform's
+-- half-width √3·std), kept > 0.
+function M.design_box(u)
+  local reach = (u.dist == "uniform" and math.sqrt(3) or 3) * u.std[2]
+  local lo = u.mean[1] - reach
+  if lo <= 0 then lo = 0.5 * u.mean[1] end
+  return { lo, u.mean[2] + reach }
+end
+
+--- predicted(th, names): the named responses of the common-random-number sample of n points
+-- through the Krigings k ({response = kriging}), the unknowns distributed as their specs say
+-- with the means and stds of th ({["input.mean"] = v, ["input.std"] = v}).
 function M.predictor(k, unknowns, specs, n, seed)
-  return function(th, modes)
+  return function(th, names)
     local dists = {}
     for i, name in ipairs(unknowns) do
       dists[i] = { name, smi.dist[specs[name].dist]{ mean = th[name .. ".mean"], std = th[name .. ".std"] } }
     end
     local model = {}
-    for _, m in ipairs(modes or M.modes) do model[m] = k[m] end
+    for _, m in ipairs(names) do model[m] = k[m] end
     return smi.propagate{ model = model, inputs = dists, n = n, seed = seed }
   end
 end
@@ -32,29 +38,29 @@ local function col_table(v)
   return t
 end
 
---- Design, solver runs, Kriging per mode, leave-one-out and an independent test set.
--- t: {name, airbag, fixed, unknowns, specs, trend, n_design (the fixed design's size, the
--- sequential one's limit), design = "sequential"|"fixed", n_test, seed, solver}
+--- Design, solver runs, Kriging per response, leave-one-out and an independent test set.
+-- t: {name, model (the factory's smi.model over the unknowns), responses, unknowns, specs, trend,
+-- n_design (the fixed design's size, the sequential one's limit), design = "sequential"|"fixed",
+-- n_test, seed}
 function M.surrogate(t)
   local box = {}
-  for i, n in ipairs(t.unknowns) do box[i] = inputs.design_box(t.specs[n]) end
-  local model = solver.command{ solver = t.solver, airbag = t.airbag, fixed = t.fixed, vary = t.unknowns,
-                                name = t.name .. "-design" }
+  for i, n in ipairs(t.unknowns) do box[i] = M.design_box(t.specs[n]) end
+  local model = t.model
   -- sequential (design.lua: start small, add batches, stop on the leave-one-out target) or the
   -- fixed maximin hypercube of n_design points
   local X, Y, seq
   if t.design == "sequential" then
-    X, Y, seq = require("steering_column.design").sequential{
+    X, Y, seq = require("smi.improve.design").sequential{
       box = box, unknowns = t.unknowns, specs = t.specs, model = model,
-      max = t.n_design, seed = t.seed, trend = t.trend }
+      max = t.n_design, seed = t.seed, trend = t.trend, responses = t.responses }
   else
     X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
     Y = model:evaluate(X)
   end
-  local Xt = smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" })
-  local Yt = t.n_test > 0 and model:evaluate(Xt) or nil
+  local Xt = t.n_test > 0 and smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" }) or nil
+  local Yt = Xt and model:evaluate(Xt) or nil
   local k, diag = {}, {}
-  for _, m in ipairs(M.modes) do
+  for _, m in ipairs(t.responses) do
     k[m] = smi.kriging.fit(X, Y[m], { trend = t.trend, corr = "gauss", inputs = t.unknowns, output = m, seed = t.seed })
     -- saved beside the report: smi.kriging.load(file) gives the analyst this very surrogate
     local file = smi.out(("%s_%s.kriging"):format(t.name, m))
@@ -79,7 +85,7 @@ function M.surrogate(t)
   for i, n in ipairs(t.unknowns) do bounds[n] = box[i] end
   return { kriging = k, design = design, diagnostics = diag, design_bounds = bounds, n_design = X:rows(),
            n_test = t.n_test,
-           trend = t.trend, unknowns = t.unknowns, sequential = seq }
+           trend = t.trend, unknowns = t.unknowns, responses = t.responses, sequential = seq }
 end
 
 --- The Kriging models of a surrogate step's results: the live objects or, when the step ran in
@@ -87,9 +93,9 @@ end
 -- removed) gets them refitted from the saved design and solver outputs at the saved
 -- hyperparameters (no search, no solver run: the same model).
 function M.krigings(s)
-  if s.kriging and type(s.kriging.mode1) == "userdata" then return s.kriging end
+  if s.kriging and type(s.kriging[s.responses[1]]) == "userdata" then return s.kriging end
   local k, X = {}, nil
-  for _, m in ipairs(M.modes) do
+  for _, m in ipairs(s.responses) do
     local file = s.diagnostics[m].model_file
     local ok, loaded = false, nil
     if file then ok, loaded = pcall(smi.kriging.load, file) end
@@ -105,16 +111,19 @@ function M.krigings(s)
   return k
 end
 
---- What modes 1 and 4 can determine (beyond the paper): the relative sensitivities
--- d ln f / d ln x of the Kriging modes at the calibrated means (central differences of ±1 %),
--- the share of each mode's sensitivity vector that lies outside the span of those of modes 1
--- and 4 (0: the calibration fixes that mode's mean; 1: it leaves it free), and the number of
--- mean combinations modes 1 and 4 leave undetermined (unknowns − 2).
-function M.sensitivity(k, cal)
+--- What the calibrated responses can determine (beyond the paper): the relative sensitivities
+-- d ln y / d ln x of each response's Kriging at the calibrated means (central differences of
+-- ±1 %), for each validation-only response the share of its sensitivity vector outside the span
+-- of the calibrated ones' (0: the calibration fixes it; 1: it leaves it free), and the number of
+-- mean combinations the calibrated responses leave undetermined. t: {calibrate, validate}.
+function M.sensitivity(k, cal, t)
   local names, x0 = {}, {}
   for i, p in ipairs(cal.params) do names[i], x0[i] = p.input, p.mean end
+  local all = {}
+  for _, m in ipairs(t.calibrate) do all[#all + 1] = m end
+  for _, m in ipairs(t.validate) do all[#all + 1] = m end
   local J = {}
-  for _, m in ipairs(M.modes) do
+  for _, m in ipairs(all) do
     J[m] = {}
     local f0 = k[m]:predict(smi.mat{ x0 })[1]
     for j = 1, #x0 do
@@ -124,26 +133,32 @@ function M.sensitivity(k, cal)
       J[m][j] = (k[m]:predict(smi.mat{ up })[1] - k[m]:predict(smi.mat{ dn })[1]) / (0.02 * f0)
     end
   end
-  -- Gram-Schmidt on the rows of modes 1 and 4, then the residual of mode 2.
+  -- Gram-Schmidt on the calibrated rows, then each validation-only row's residual.
   local function dot(a, b) local s = 0 for i = 1, #a do s = s + a[i] * b[i] end return s end
   local basis = {}
-  for _, m in ipairs{ "mode1", "mode4" } do
+  for _, m in ipairs(t.calibrate) do
     local v = {}
     for i = 1, #x0 do v[i] = J[m][i] end
     for _, b in ipairs(basis) do local c = dot(v, b) for i = 1, #v do v[i] = v[i] - c * b[i] end end
     local n = math.sqrt(dot(v, v))
     if n > 1e-12 then for i = 1, #v do v[i] = v[i] / n end basis[#basis + 1] = v end
   end
-  local r = {}
-  for i = 1, #x0 do r[i] = J.mode2[i] end
-  for _, b in ipairs(basis) do local c = dot(r, b) for i = 1, #r do r[i] = r[i] - c * b[i] end end
+  local share, most = {}, 0
+  for _, m in ipairs(t.validate) do
+    local r = {}
+    for i = 1, #x0 do r[i] = J[m][i] end
+    for _, b in ipairs(basis) do local c = dot(r, b) for i = 1, #r do r[i] = r[i] - c * b[i] end end
+    local jj = dot(J[m], J[m])
+    share[m] = jj > 0 and math.sqrt(dot(r, r) / jj) or 0
+    most = math.max(most, share[m])
+  end
   local sens = {}
-  for _, m in ipairs(M.modes) do
+  for _, m in ipairs(all) do
     sens[m] = {}
     for j, n in ipairs(names) do sens[m][n] = J[m][j] end
   end
-  return { inputs = names, sensitivity = sens, undetermined = #x0 - #basis,
-           mode2_unconstrained_share = math.sqrt(dot(r, r) / dot(J.mode2, J.mode2)) }
+  return { inputs = names, responses = all, sensitivity = sens, undetermined = #x0 - #basis,
+           constrained = #basis, unconstrained_share = share, most_unconstrained_share = most }
 end
 
 --- The calibrated input distributions of a calibration result (numbers only, so that a step
@@ -177,36 +192,37 @@ function M.metric_range(t, mode)
 end
 
 --- Validation: propagate the calibrated distributions through the Krigings (n samples) and,
--- as a check of the surrogate, through the solver itself (n_solver samples, batch runs);
--- u-pooling of the data of each mode against the predicted KDE, at 95 %. A mode used by the
--- calibration gets the verdict at the optimum; a validation-only mode gets the verdict over the
--- near-optimal calibrations (metric_range). t: {name, model, kriging, calibration, data, n,
--- n_solver, n_near, seed, solver}.
+-- as a check of the surrogate, through the solver itself (n_solver points, stratified:
+-- check_points.lua); u-pooling of the data of each response against the predicted KDE, at 95 %.
+-- A response used by the calibration gets the verdict at the optimum; a validation-only one
+-- gets the verdict over the near-optimal calibrations (metric_range). t: {name, model (trial
+-- model record), check_model (the factory's smi.model over the unknowns, or nil: no solver
+-- check), kriging, calibration, data, responses, calibrate, n, n_solver, n_near, seed}.
 function M.validate(t)
   local k, dists = t.kriging, M.distributions(t.calibration)
-  local Ys, X = smi.propagate{ model = { mode1 = k.mode1, mode2 = k.mode2, mode4 = k.mode4 }, inputs = dists,
-                               n = t.n, seed = t.seed }
-  local out = { n = t.n, n_solver = t.n_solver, modes = {} }
-  local Xs = require("steering_column.check_points")(dists, t.n_solver, t.seed + 7)
-  local base = solver.write_deck(smi.out(t.name .. "_base.deck"), t.model.airbag, t.model.fixed)
-  local names = {}
-  for i, d in ipairs(dists) do names[i] = d[1] end
-  local bm = solver.batch{ solver = t.solver, airbag = t.model.airbag, vary = names, name = t.name .. "-check",
-                           base = base,
-                           batch_size = math.ceil(t.n_solver / 2), concurrency = 2 }
-  local Ysol = bm:evaluate(Xs)
+  local km = {}
+  for _, m in ipairs(t.responses) do km[m] = k[m] end
+  local Ys = smi.propagate{ model = km, inputs = dists, n = t.n, seed = t.seed }
+  local out = { n = t.n, n_solver = t.n_solver, responses = {} }
+  local Ysol
+  if t.check_model and t.n_solver > 0 then
+    local Xs = require("smi.improve.check_points")(dists, t.n_solver, t.seed + 7)
+    Ysol = t.check_model:evaluate(Xs)
+  end
   local used = {}
-  for _, m in ipairs(M.calibration_modes) do used[m] = true end
-  for _, m in ipairs(M.modes) do
+  for _, m in ipairs(t.calibrate) do used[m] = true end
+  for _, m in ipairs(t.responses) do
     local pred = smi.kde(Ys[m])
     local v = smi.metric.upool{ data = { t.data[m] }, predicted = { pred }, confidence = 0.95, seed = t.seed + 3 }
-    local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95,
-                                 seed = t.seed + 3 }
     local c = v:curve()
     local o = { metric = v.metric, threshold = v.threshold, p = v.p, pass = v.pass, u = col_table(v.u),
       predicted_mean = Ys[m]:mean(), predicted_std = Ys[m]:std(),
-      solver = { metric = vs.metric, pass = vs.pass, p = vs.p, mean = Ysol[m]:mean(), std = Ysol[m]:std() },
-      curve = { x = col_table(c.x), y = col_table(c.y) }, used_in_calibration = used[m] == true }
+      curve = { x = col_table(c.x), y = col_table(c.y) }, used_in_calibration = used[m] == true, name = m }
+    if Ysol then
+      local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95,
+                                   seed = t.seed + 3 }
+      o.solver = { metric = vs.metric, pass = vs.pass, p = vs.p, mean = Ysol[m]:mean(), std = Ysol[m]:std() }
+    end
     if used[m] then
       o.verdict = v.pass and "valid" or "invalid"
     else
@@ -214,12 +230,12 @@ function M.validate(t)
       o.verdict = o.range.verdict
     end
     o.pdf = M.pdf_curve(pred, t.data[m])
-    out.modes[m] = o
+    out.responses[m] = o
   end
-  -- the trial's verdict (verdict.lua): invalid if any mode is; valid when every calibrated mode
-  -- is and the calibration converged, the undecided validation-only modes listed apart
-  out.verdict, out.undetermined, out.why = require("steering_column.verdict").trial{
-    modes = out.modes, converged = t.calibration.converged == true, status = t.calibration.status }
+  -- the trial's verdict (verdict.lua): invalid if any response is; valid when every calibrated
+  -- one is and the calibration converged, the undecided validation-only ones listed apart
+  out.verdict, out.undetermined, out.why = require("smi.improve.verdict").trial{ names = t.responses,
+    responses = out.responses, converged = t.calibration.converged == true, status = t.calibration.status }
   return out
 end
 

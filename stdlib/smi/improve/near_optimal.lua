@@ -141,8 +141,8 @@ function M.by_prediction_extremes(t)
   end
   -- strongest first: the push that moved the parameters furthest while still fitting
   table.sort(pushes, function(a, b) return (a.kept and a.length or -1) > (b.kept and b.length or -1) end)
-  return { source = "study stand-in (near_optimal.lua): pushes of mode 2's mean and std up and down with modes 1 and 4"
-             .. " held, checked against the objective",
+  return { source = ("pushes of %s's mean and std up and down with %s held, checked against the objective"):format(
+             table.concat(t.validation_modes, ", "), table.concat(t.calibration_modes, ", ")),
            tolerance = t.tolerance, points = points, objectives = objectives, directions = pushes }
 end
 

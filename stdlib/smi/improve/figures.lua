@@ -1,13 +1,20 @@
---- Report figures of the steering-column study (inline SVG through smi.report.svg).
+--- smi.improve.figures: the report's figures of a study (inline SVG through smi.report.svg),
+-- labelled from the declaration (each response's title and unit: M.declare).
 local svg = require "smi.report.svg"
 
 local M = {}
-local title = { mode1 = "Mode 1 (vertical bending)", mode2 = "Mode 2 (lateral bending)",
-                mode4 = "Mode 4 (wheel pitch)" }
+local title, unit = {}, {}
 M.title = title
 
+--- Takes the titles and units of the checked declaration's responses.
+function M.declare(D)
+  for _, r in ipairs(D.responses) do title[r.name], unit[r.name] = r.title, r.unit end
+end
+
+local function axis(mode) return unit[mode] ~= "" and ("Value (%s)"):format(unit[mode]) or "Value" end
+
 function M.kde_vs_ebd(mode, c)
-  local ch = svg.chart{ title = title[mode], xlabel = "Frequency (Hz)", ylabel = "Density", width = 420, height = 300 }
+  local ch = svg.chart{ title = title[mode], xlabel = axis(mode), ylabel = "Density", width = 420, height = 300 }
   ch:line(c.kde.x, c.kde.y, { label = "KDE" }):line(c.ebd.x, c.ebd.y, { label = "KDE-ebd" })
   ch:rug(c.data, { label = ("%d data"):format(#c.data) })
   return ch:render()
@@ -21,17 +28,20 @@ function M.screening(mode, rows, chosen)
 end
 
 function M.loo(mode, d)
-  local ch = svg.chart{ title = "Leave-one-out, " .. title[mode], xlabel = "Solver (Hz)", ylabel = "Kriging LOO (Hz)",
+  local u = unit[mode] ~= "" and (" (" .. unit[mode] .. ")") or ""
+  local ch = svg.chart{ title = "Leave-one-out, " .. title[mode], xlabel = "Solver" .. u, ylabel = "Kriging LOO" .. u,
                         equal = true, width = 360, height = 330, legend = "top-left" }
   ch:scatter(d.observed, d.loo_predicted, { label = "design points" }):diagonal{ label = "y = x" }
-  ch:note(("Q² %.4f, LOO RMSE %.3g Hz, test RMSE %.3g Hz"):format(d.loo_q2, d.loo_rmse, d.test_rmse))
+  ch:note(("Q² %.4f, LOO RMSE %.3g%s, test RMSE %.3g%s"):format(d.loo_q2, d.loo_rmse, u, d.test_rmse or 0 / 0, u))
   return ch:render()
 end
 
 function M.history(cal, name)
   local it, obj = {}, {}
   for i, h in ipairs(cal.history) do it[i], obj[i] = i, h[2] end
-  local objective = cal.metric == "loglik" and "-logL(mode 1) - logL(mode 4)" or "PR(mode 1) + PR(mode 4)"
+  local parts = {}
+  for i, m in ipairs(cal.calibrate or {}) do parts[i] = (cal.metric == "loglik" and "-logL(%s)" or "PR(%s)"):format(m) end
+  local objective = table.concat(parts, cal.metric == "loglik" and " " or " + ")
   local ch = svg.chart{ title = name .. ": " .. objective, xlabel = "Optimizer step", ylabel = "Objective",
                         width = 420, height = 300, legend = "none" }
   ch:line(it, obj, { label = "objective" })
@@ -39,7 +49,7 @@ function M.history(cal, name)
 end
 
 function M.pdf_over_data(mode, v, data, ebd)
-  local ch = svg.chart{ title = title[mode], xlabel = "Frequency (Hz)", ylabel = "Density", width = 420, height = 300 }
+  local ch = svg.chart{ title = title[mode], xlabel = axis(mode), ylabel = "Density", width = 420, height = 300 }
   ch:line(v.pdf.x, v.pdf.y, { label = "calibrated model" })
   if ebd then ch:line(ebd.x, ebd.y, { label = "data, KDE-ebd" }) end
   ch:rug(data, { label = ("%d data"):format(#data) })

@@ -1,13 +1,13 @@
 --- The analyst's prior knowledge (--prior FILE.lua): a Lua file returning smi.calibrate `prior`
--- entries, checked here so that a mistake names the file and the entry. No file: no prior (the
--- default study uses the data file alone; issue 12 item 3).
+-- entries, checked here so that a mistake names the file and the entry. No file: no prior (a
+-- study uses the data file alone by default).
 local M = {}
 
 local SHAPE = '{param = "input.mean", mean = m, std = s} or'
   .. ' {name = "label", fn = function(theta) ... end, mean = m, std = s}'
 
 local function fail(path, fmt, ...)
-  error(("steering_column: --prior %s%s"):format(path, fmt:format(...)), 0)
+  error(("--prior %s%s"):format(path, fmt:format(...)), 0)
 end
 
 local function valid_entry(e)

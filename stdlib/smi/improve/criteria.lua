@@ -1,9 +1,10 @@
---- The weighted decision matrix of the steering-column study (Son et al. 2020, §4.1.5, Table 6;
--- Oh et al. 2016): criteria, weights and magnitude functions, smaller magnitude = better.
+--- smi.improve.criteria: the paper's four criteria of the weighted decision matrix (Son et al.
+-- 2020, §4.1.5, Table 6; Oh et al. 2016), the default of a declaration without `criteria`:
+-- magnitude functions, smaller = better.
 --   correctness      eq. (13): |E[y_exp] − y_pre(x̄)| / E[y_exp] of the revised model run at the
---                    mean x̄ of the initial unknowns, averaged over every response used in
---                    calibration (modes 1 and 4), so the score does not depend on which of
---                    them the calibration happened to give up
+--                    start means x̄ of the unknowns, averaged over every response used in
+--                    calibration, so the score does not depend on which of them the
+--                    calibration happened to give up
 --   robustness       number of new input variables of the revision
 --   computational    measured wall time of one run of the revised model (minutes), counted in
 --                    whole seconds (M.cost_resolution_s): below that a single timing is
@@ -11,7 +12,7 @@
 --                    largest magnitude, so 0.012 s against 0.029 s would otherwise weigh like
 --                    a model twice as expensive and flip the choice from run to run
 --   implementation   the analyst's estimate of the time to implement the revision (minutes)
--- Weights: correctness 0.4, the three others 0.2 each. The weights of Oh et al. (2016) could not
+-- Default weights (declaration `weights`): correctness 0.4, the three others 0.2 each. The weights of Oh et al. (2016) could not
 -- be recovered (shared/spec/algorithms.md §6); correctness counts double because a revision that
 -- does not move the failed response cannot make the model valid.
 local M = {}
@@ -26,7 +27,8 @@ function M.cost_minutes(seconds)
 end
 
 --- Criteria for smi.refine.decision_matrix. opts.observed = {response = E[y_exp]};
--- opts.responses = the responses used in calibration; opts.run(candidate) -> {response = value}, seconds.
+-- opts.responses = the responses used in calibration; opts.run(candidate) -> {response = value}, seconds;
+-- opts.weights (default M.weights).
 -- Runs are cached per candidate so each is run once.
 function M.build(opts)
   local cache = {}
@@ -37,8 +39,9 @@ function M.build(opts)
     end
     return cache[c]
   end
+  local W = opts.weights or M.weights
   return {
-    { name = "correctness", weight = M.weights.correctness, magnitude = function(c)
+    { name = "correctness", weight = W.correctness, magnitude = function(c)
         local r, s = run(c), 0
         for _, resp in ipairs(opts.responses) do
           local obs = opts.observed[resp]
@@ -46,10 +49,10 @@ function M.build(opts)
         end
         return s / #opts.responses
       end },
-    { name = "robustness", weight = M.weights.robustness, magnitude = function(c) return c.new_inputs end },
-    { name = "computational cost", weight = M.weights.computational,
+    { name = "robustness", weight = W.robustness, magnitude = function(c) return c.new_inputs end },
+    { name = "computational cost", weight = W.computational,
       magnitude = function(c) return M.cost_minutes(run(c).seconds) end },
-    { name = "implementation cost", weight = M.weights.implementation,
+    { name = "implementation cost", weight = W.implementation,
       magnitude = function(c) return c.implement_minutes end },
   }, function(c) return run(c) end
 end

@@ -1,0 +1,144 @@
+--- smi.improve: the method of statistical model improvement (Son et al. 2020) as a library. A
+-- study declares its responses, unknowns, model factory, refinement candidates, criteria and
+-- limits (docs/new-product.md, IMPROVE_API.md); smi.improve.run(declaration, arg) runs the loop
+-- through smi.study (resume, --only/--from, --dry-run cost plan):
+--   data (and a units check on one nominal run), characterize (KDE vs KDE-ebd), [screening],
+--   then per trial k: trialk_surrogate, trialk_calibration, trialk_validation and, after an
+--   invalid trial, refinementk (decision matrix; the chosen revision goes on top of the kept
+--   ones); summary. It stops when a trial is valid, when the data cannot decide, or at the limit.
+-- The numerics are the kernels' (smi.kriging, smi.calibrate, smi.propagate, smi.metric, ...);
+-- this file places them and the report; smi/improve/*.lua hold one job each.
+local doc = require "smi.doc"
+doc.add[==[
+@ module smi.improve
+The trial loop of statistical model improvement for any declared product (responses, unknowns,
+a model factory, refinement candidates, criteria and limits): smi.improve.run(declaration, arg).
+See docs/new-product.md.
+]==]
+local study = require "smi.study"
+local options = require "smi.options"
+local declare = require "smi.improve.declare"
+local trial = require "smi.improve.trial"
+local calibration = require "smi.improve.calibration"
+local verdict = require "smi.improve.verdict"
+local criteria = require "smi.improve.criteria"
+local cost = require "smi.improve.cost"
+local text = require "smi.improve.text"
+local figs = require "smi.improve.figures"
+local revise = require "smi.improve.revise"
+
+local M = {}
+local BADGE = { valid = "pass", invalid = "fail", inconclusive = "warn" }
+
+-- The options every study gets (a declaration adds its own with `options`).
+local function spec(D)
+  local s = {
+    name = D.name, summary = D.title or ("the statistical model improvement study " .. D.name),
+    usage = ("smi-lua [--allow-exec SOLVER] %s.lua [options]"):format(D.name),
+    { name = "data", type = "path", default = D.data, meaning = "measurements (CSV; give --allow-read for its folder)" },
+    { name = "quick", type = "flag", default = false,
+      meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },
+    { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
+      meaning = "calibration metric per response: the paper's probability residual, or minus the log-likelihood" },
+    { name = "multistart", type = "integer", default = 1, min = 1,
+      meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
+    { name = "prior", type = "path", meaning = "a Lua file returning smi.calibrate prior entries; none by default" },
+    { name = "max-refinements", type = "integer", default = D.limits.refinements, min = 0,
+      meaning = "how many refinements (revised trials) to try after an invalid trial" },
+    { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" },
+      meaning = "eq.-3 screening on a ridge quadratic of --screening-runs runs, or on the model itself" },
+    { name = "screening-runs", type = "integer", default = D.screening and D.screening.runs or 300, min = 50,
+      meaning = "solver runs of the surrogate screening" },
+    { name = "design", type = "string", default = "fixed", allowed = { "fixed", "sequential" },
+      meaning = "the trials' Kriging designs: a maximin hypercube, or sequential batches up to the same size" },
+    { name = "test-points", type = "integer", min = 0,
+      meaning = ("independent test points of each Kriging (default %d)"):format(D.design.test_points) },
+    { name = "solver-check", type = "integer", min = 0,
+      meaning = ("points of the validation's solver check (default %d)"):format(D.design.solver_check) },
+    { name = "dry-run", type = "flag", default = false, meaning = "print the cost plan and stop before anything runs" },
+    { name = "minutes-per-run", type = "number", min = 0,
+      meaning = "the solver's minutes per run for the cost plan (default: the store's mean)" },
+    { name = "accept-units", type = "flag", default = D.accept_units,
+      meaning = "go on when the data's magnitudes look like a units mistake (the data step's check)" },
+    options.study_steps,
+    epilog = ("smi-lua's own --out DIR (default smi-out/%s/), --seed N and --quiet apply."):format(D.name),
+  }
+  for _, o in ipairs(D.options) do s[#s + 1] = o end
+  return s
+end
+
+-- Sample sizes. Quick differs only where the verdicts do not depend on it.
+local function config(opt, D)
+  local cfg = opt.quick and {
+    screen_n = 40, cal_n = 2000, maxeval = 300, bootstrap = 0, val_n = 20000, near_n = 5000,
+  } or {
+    screen_n = 200, cal_n = 2000, maxeval = 300, bootstrap = 50, val_n = 20000, near_n = 5000,
+  }
+  cfg.screening, cfg.screen_runs, cfg.design = opt.screening, opt.screening_runs, opt.design
+  cfg.test_points = opt.test_points or D.design.test_points
+  cfg.solver_check = opt.solver_check or D.design.solver_check
+  return cfg
+end
+
+--- The factory's model for `T` (a trial model record or the initial one), checked and counted:
+-- a factory error names the candidate; missing outputs name the response.
+function M.model(D, opt, T, ctx)
+  local who = #T.applied > 0 and ("candidate '%s'"):format(T.applied[#T.applied]) or "the initial model"
+  ctx.form, ctx.fixed, ctx.opt = T.form, T.fixed, opt
+  local ok, m = pcall(D.model, T.applied, T.unknowns, ctx)
+  if not ok then error(("smi.improve: %s: the model factory failed (%s): %s"):format(who, ctx.purpose, tostring(m)), 0) end
+  if type(m) ~= "table" and type(m) ~= "userdata" then
+    error(("smi.improve: %s: the model factory returned a %s, not an smi.model"):format(who, type(m)), 0)
+  end
+  declare.outputs(D, m, who)
+  return cost.wrap(m, ctx.name)
+end
+
+--- Runs the declared study (see the module's comment). argv: the script's arg; run_opts
+-- (optional, for tests and harnesses): {results = path of results.json, out = report folder}.
+-- Returns the results and the conclusion, or nil with --dry-run.
+function M.run(declaration, argv, run_opts)
+  run_opts = run_opts or {}
+  local D = declare.check(declaration)
+  text.declare(D)
+  figs.declare(D)
+  local opt = options.parse(argv or {}, spec(D))
+  if not opt.data then error(("smi.improve: %s: no data: give --data FILE.csv or declare `data`"):format(D.name), 0) end
+  local cfg = config(opt, D)
+  local seed = smi.seed or 20200214
+  local MAX_TRIALS = 1 + opt.max_refinements
+  local PRIOR = require("smi.improve.prior_file").load(opt.prior)
+  local s = study.new{ name = D.name, seed = seed, results = run_opts.results, out = run_opts.out,
+    report = { title = D.title or D.name, subtitle = (D.subtitle or "") .. (opt.quick and " (quick run)" or ""),
+               author = D.author or "smi.improve" } }
+  local E = { D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR, max_trials = MAX_TRIALS }
+  require("smi.improve.steps").add(E)
+
+  if opt.dry_run or smi.dry_run then
+    local probe = M.model(D, opt, revise.initial(D, D.unknowns), { purpose = "nominal", name = "nominal" })
+    local minutes, source = cost.minutes_per_run(opt.minutes_per_run, probe)
+    local rows = cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, D = D }
+    local words, total = cost.plan_text(rows, minutes, source)
+    io.stdout:write(words)
+    if D.limits.runs and total > D.limits.runs then
+      io.stdout:write(("the plan's %d runs exceed the declared limits.runs = %d\n"):format(total, D.limits.runs))
+    end
+    if opt.dry_run then return nil end
+  end
+
+  local results = s:run(opt)
+  local ok, summary = pcall(function() return results.summary end)
+  if ok and summary and summary.conclusion then
+    local c = summary.conclusion
+    s:annotate("conclusion", verdict.top_level(c))
+    s:annotate("cost", { solver_runs = summary.solver_runs_total, screening = D.screening and cfg.screening or "none",
+                         test_points = cfg.test_points, solver_check = cfg.solver_check })
+    for i, t in ipairs(c.trials) do io.stdout:write(text.trial_line(i, t, c.refinements[i]), "\n") end
+    io.stdout:write(summary.words or ("Conclusion: the model is " .. tostring(c.verdict)), "\n")
+    return results, verdict.top_level(c)
+  end
+  return results, nil
+end
+
+M.BADGE = BADGE
+return M

@@ -1,0 +1,80 @@
+--- smi.improve.verdict: the verdicts above the single response: a trial's verdict from its
+-- responses' verdicts and its calibration, and the study's conclusion (results.json's top-level
+-- `conclusion`) from the trials as they ran. Pure functions of saved results, so a step running
+-- alone, the summary and a harness all judge the same way.
+--
+-- A response used in calibration always has a decisive verdict (trial.validate). A
+-- validation-only response is "inconclusive" when the calibration data leave it undetermined.
+-- That is the honest verdict on the response, not on the model form: the trial is
+--   invalid       when any response is invalid (the refinement loop acts on this alone);
+--   inconclusive  when its calibration did not converge, or a calibrated response is undecided;
+--   valid         otherwise, with the undecided validation-only responses listed as `undetermined`.
+-- A trial that is not invalid ends the study: nothing is refined without an invalid verdict.
+local M = {}
+
+--- t: {names = {response, ...}, responses = {name = {verdict, used_in_calibration}}, converged, status}.
+-- Returns verdict, undetermined (list of the validation-only responses left undecided), why (words
+-- when the verdict is inconclusive, else nil).
+function M.trial(t)
+  local undetermined, undecided_calibrated = {}, {}
+  for _, m in ipairs(t.names) do
+    local v = t.responses[m]
+    if v.verdict == "invalid" then return "invalid", {}, nil end
+    if v.verdict == "inconclusive" then
+      if v.used_in_calibration then undecided_calibrated[#undecided_calibrated + 1] = m
+      else undetermined[#undetermined + 1] = m end
+    end
+  end
+  if not t.converged then
+    return "inconclusive", undetermined, "its calibration did not converge (" .. tostring(t.status) .. ")"
+  end
+  if #undecided_calibrated > 0 then
+    return "inconclusive", undetermined,
+      "no decisive verdict on calibrated " .. table.concat(undecided_calibrated, ", ")
+  end
+  return "valid", undetermined, nil
+end
+
+local function skipped(r) return r == nil or r.skipped end
+
+--- The conclusion from the saved step results R (trialk_surrogate, trialk_calibration,
+-- trialk_validation, refinementk) for at most max_trials trials: {verdict, refinements,
+-- undetermined, trials = {{candidate, applied, unknowns, responses, calibration = {converged,
+-- status, means, stds}}}} plus `ended` (why the loop stopped) and `why` (of an inconclusive
+-- verdict), which stay in the summary step. extra(model, responses) -> more keys of a trial.
+function M.conclusion(R, D, max_trials, extra)
+  local c = { trials = {}, refinements = {}, undetermined = {} }
+  for k = 1, max_trials do
+    local sur = R["trial" .. k .. "_surrogate"]
+    if skipped(sur) then break end
+    local cal, val = R["trial" .. k .. "_calibration"], R["trial" .. k .. "_validation"]
+    local means, stds = {}, {}
+    for _, p in ipairs(cal.params or {}) do means[p.input], stds[p.input] = p.mean, p.std end
+    local responses = {}
+    if not skipped(val) then for _, m in ipairs(D.names) do responses[m] = val.responses[m].verdict end end
+    local T = sur.model
+    local t = { candidate = T.candidate, applied = T.applied, unknowns = T.unknowns, responses = responses,
+                calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds } }
+    for key, v in pairs(extra and extra(T, responses) or {}) do t[key] = v end
+    c.trials[#c.trials + 1] = t
+    if skipped(val) then
+      c.verdict, c.why, c.ended = "inconclusive", val and val.reason, val and val.reason
+      break
+    end
+    c.verdict, c.undetermined, c.why = M.trial{ names = D.names, responses = val.responses,
+                                                converged = cal.converged == true, status = cal.status }
+    if k < max_trials then
+      local ref = R["refinement" .. k]
+      if ref and not ref.skipped then c.refinements[#c.refinements + 1] = ref.chosen
+      elseif ref then c.ended = ref.reason end
+    end
+  end
+  return c
+end
+
+--- The top-level entry of results.json: exactly the generic fields.
+function M.top_level(c)
+  return { verdict = c.verdict, refinements = c.refinements, trials = c.trials, undetermined = c.undetermined }
+end
+
+return M
