@@ -114,11 +114,18 @@ function M.run(declaration, argv, run_opts)
   local E = { D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR, max_trials = MAX_TRIALS }
   require("smi.improve.steps").add(E)
 
+  -- the declared cap on solver runs holds for the plan's upper bound, before anything runs
+  local plan_rows = cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, D = D }
+  local _, planned = cost.plan_text(plan_rows)
+  if D.limits.runs and planned > D.limits.runs and not opt.dry_run then
+    error(("smi.improve: %s: the plan needs up to %d solver runs, more than limits.runs = %d (--dry-run lists them);"
+      .. " lower --max-refinements, the designs' sizes or --solver-check, or raise limits.runs"):format(
+      D.name, planned, D.limits.runs), 0)
+  end
   if opt.dry_run or smi.dry_run then
     local probe = M.model(D, opt, revise.initial(D, D.unknowns), { purpose = "nominal", name = "nominal" })
     local minutes, source = cost.minutes_per_run(opt.minutes_per_run, probe)
-    local rows = cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, D = D }
-    local words, total = cost.plan_text(rows, minutes, source)
+    local words, total = cost.plan_text(plan_rows, minutes, source)
     io.stdout:write(words)
     if D.limits.runs and total > D.limits.runs then
       io.stdout:write(("the plan's %d runs exceed the declared limits.runs = %d\n"):format(total, D.limits.runs))

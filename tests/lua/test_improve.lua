@@ -131,6 +131,12 @@ T.case("data 1000 times the model's magnitude stop the study before its budget, 
   T.truthy(#R.data.units >= 2, "both calibrated responses flagged, as warnings")
 end)
 
+T.case("a plan over the declared limit on runs stops before anything runs", function()
+  local d = declaration{ name = "improve_limit", limits = { refinements = 1, runs = 20 } }
+  local e = run_error(d)
+  T.truthy(e:find("the plan needs up to 55 solver runs, more than limits.runs = 20", 1, true), e)
+end)
+
 T.case("a declared plausible range the data leave stops the study", function()
   local d = declaration{ name = "improve_plausible" }
   d.responses[1].plausible = { 20, 100 }
