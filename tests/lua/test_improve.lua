@@ -187,4 +187,23 @@ T.case("the loop: trial 1 invalid, the joint applied on top, valid; the generic 
   T.near(last.calibration.means.a, 1.05, 0.02, "a near its truth")
 end)
 
+T.case("a calibration without overlap (status no_overlap) stops the study before validation", function()
+  -- the kernel's status of issue 29, forced here on trial 1's real calibration
+  local calibration = require "smi.improve.calibration"
+  local real = calibration.calibrate
+  calibration.calibrate = function(t)
+    local out, r = real(t)
+    out.converged, out.status = false, "no_overlap"
+    return out, r
+  end
+  local ok, R, C = pcall(run, declaration{ name = "improve_no_overlap" }, { "--quick" })
+  calibration.calibrate = real
+  T.truthy(ok, tostring(R))
+  T.eq(C.verdict, "inconclusive")
+  T.eq(#C.trials, 1, "no trial after it")
+  T.eq(#C.refinements, 0)
+  T.truthy(R.trial1_validation.skipped and R.trial1_validation.reason:find("no_overlap", 1, true), "validation skipped, why")
+  T.eq(C.trials[1].calibration.status, "no_overlap")
+end)
+
 T.finish()
