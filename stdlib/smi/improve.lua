@@ -80,6 +80,25 @@ local function config(opt, D)
   return cfg
 end
 
+doc.add[==[
+@ smi.improve.model(D, opt, trial, ctx) -> model
+The declaration's model factory called for one trial model (smi.improve.revise's record): the
+factory gets (trial.applied, trial.unknowns, ctx with form, fixed and opt added); the returned
+model's outputs are checked against the responses; its runs are counted for the cost tables.
+returns: the model, wrapped (evaluate and plan as the factory's model)
+errors: the factory's error, re-raised naming the candidate (the last applied one, or the
+  initial model); a response the model does not give, named
+example:
+  local improve = require "smi.improve"
+  local D = require("smi.improve.declare").check{name = "doc_model", responses = {{name = "y"}},
+    unknowns = {{name = "a", dist = "normal", mean = {1, 3, 2}, std = {0.1, 0.3, 0.2}}},
+    model = function(applied, unknowns, ctx)
+      return smi.model.lua{inputs = unknowns, outputs = {"y"}, fn = function(X) return {y = X:col(1) * 2} end}
+    end}
+  local trial = require("smi.improve.revise").initial(D, D.unknowns)
+  local m = improve.model(D, {}, trial, {purpose = "nominal", name = "doc"})
+  print(m:evaluate(smi.mat{{2}}).y[1])
+]==]
 --- The factory's model for `T` (a trial model record or the initial one), checked and counted:
 -- a factory error names the candidate; missing outputs name the response.
 function M.model(D, opt, T, ctx)
@@ -94,6 +113,29 @@ function M.model(D, opt, T, ctx)
   return cost.wrap(m, ctx.name)
 end
 
+doc.add[==[
+@ smi.improve.run(declaration, arg [, run_opts]) -> results, conclusion
+Checks the declaration, parses the study's options from arg (--data, --quick, --metric,
+--max-refinements, --dry-run, --accept-units, --only/--from, ... and the declaration's own) and
+runs the trial loop through smi.study; results.json gets the top-level `conclusion`
+{verdict, refinements, undetermined, trials = {{candidate, applied, unknowns, responses,
+calibration}}}. docs/new-product.md describes every field.
+options (run_opts, for tests and harnesses):
+  results = nil   -- path of results.json (default <out>/results.json)
+  out = nil       -- folder of the report (default smi-lua's --out)
+returns: the steps' results and the conclusion (nil, nil with --dry-run)
+errors: a missing or misspelt declaration field (named, with the likely one), a response the data
+  or the model lack, a failing model factory (the candidate named), data whose magnitudes look
+  like a units error (unless --accept-units), a plan over limits.runs, any step's error
+example:
+  local improve = require "smi.improve"
+  local line = function(applied, unknowns, ctx)
+    return smi.model.lua{inputs = unknowns, outputs = {"y"}, fn = function(X) return {y = X:col(1) * 2} end}
+  end
+  improve.run({name = "doc_improve", data = "tests.csv", responses = {{name = "y", unit = "mm"}},
+               unknowns = {{name = "a", dist = "normal", mean = {1, 3, 2}, std = {0.1, 0.3, 0.2}}},
+               model = line}, {"--dry-run", "--quick"})
+]==]
 --- Runs the declared study (see the module's comment). argv: the script's arg; run_opts
 -- (optional, for tests and harnesses): {results = path of results.json, out = report folder}.
 -- Returns the results and the conclusion, or nil with --dry-run.
