@@ -35,7 +35,8 @@ local function model(applied, unknowns, ctx)
   }
 end
 
-local results, conclusion = improve.run({
+print("Note: " .. IDENTIFIABILITY)
+return improve.run({
   name = "bracket_plate",
   title = "Bolted bracket plate: statistical model improvement",
   subtitle = "CalculiX 2.20, S8R shells", author = "scripts/bracket_plate.lua",
@@ -70,5 +71,3 @@ local results, conclusion = improve.run({
     {name = "solver", type = "string", default = "ccx", meaning = "the CalculiX program (allow it with --allow-exec)"},
   },
 }, arg)
-if conclusion then print("Note: " .. IDENTIFIABILITY) end
-return results
