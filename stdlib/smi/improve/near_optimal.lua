@@ -1,13 +1,13 @@
---- The study's pushes beside smi.calibrate's r.near_optimal (`smi-lua doc smi.calibrate`):
+--- smi.improve.near_optimal: the study's pushes beside smi.calibrate's r.near_optimal (`smi-lua doc smi.calibrate`):
 -- calibrations that fit the calibration responses as well as the optimum, within a tolerance,
 -- chosen to show how far a validation response's prediction can move among them. calibration.lua
 -- takes the union of both: the kernel's points follow the objective's weak directions and cannot
 -- know which prediction matters.
 --
--- How: for each summary of each validation response (mean, std of mode 2, in units of the data's
+-- How: for each summary of each validation response (its mean and std, in units of the data's
 -- std) and each way (up, down), and once towards the data's mean and std of the validation
 -- response, a calibration from the optimum (smi.calibrate, SLSQP) pushes the summaries while a
--- quadratic penalty holds the calibration responses' summaries (means and stds of modes 1 and 4)
+-- quadratic penalty holds the calibration responses' summaries (their means and stds)
 -- at the optimum's; the penalty weight is raised tenfold if the end point does not fit. An end
 -- point, and the points at 1/3 and 2/3 of the way
 -- to it, are kept when the calibration objective (the study's PR or log-likelihood) there is
@@ -32,7 +32,8 @@ end
 
 -- The pushes: each validation summary up and down (sign = ±1, summary r), and one towards the
 -- data (sign = 0): all validation summaries at the data's mean and std, i.e. is there a
--- calibration fitting modes 1 and 4 as well that predicts mode 2 as measured? Also returns the
+-- calibration fitting the calibrated responses as well that predicts the validation ones as
+-- measured? Also returns the
 -- data's summaries (the sign = 0 push's target) by summary index.
 local function push_plan(t, nc, n)
   local plan = {}
