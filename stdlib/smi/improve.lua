@@ -110,6 +110,12 @@ function M.model(D, opt, T, ctx)
     error(("smi.improve: %s: the model factory returned a %s, not an smi.model"):format(who, type(m)), 0)
   end
   declare.outputs(D, m, who)
+  local ins = m.inputs
+  if type(ins) == "table" and table.concat(ins, ",") ~= table.concat(T.unknowns, ",") then
+    error(("smi.improve: %s: the model factory's model takes inputs {%s}, but the trial's unknowns are {%s} (%s):"
+      .. " give smi.model the `unknowns` list it receives, in that order"):format(who, table.concat(ins, ", "),
+      table.concat(T.unknowns, ", "), ctx.purpose), 0)
+  end
   return cost.wrap(m, ctx.name)
 end
 

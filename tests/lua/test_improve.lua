@@ -118,6 +118,18 @@ T.case("a revision whose factory fails names the candidate", function()
            and tostring(e):find("no joint elements", 1, true), tostring(e))
 end)
 
+T.case("a model whose inputs are not the trial's unknowns is named", function()
+  local d = declaration()
+  d.model = function(applied, unknowns, ctx)
+    return smi.model.lua{ name = ctx.name, inputs = { "b" }, outputs = { "f1", "f2", "f3" },
+                          fn = function(X) return { f1 = X:col(1), f2 = X:col(1), f3 = X:col(1) } end }
+  end
+  local D = require("smi.improve.declare").check(d)
+  local T0 = require("smi.improve.revise").initial(D, D.unknowns)
+  local ok, e = pcall(improve.model, D, {}, T0, { purpose = "design", name = "x" })
+  T.truthy(not ok and tostring(e):find("takes inputs {b}, but the trial's unknowns are {a}", 1, true), tostring(e))
+end)
+
 T.case("data 1000 times the model's magnitude stop the study before its budget, unless accepted", function()
   local file = smi.out("improve_data_khz.csv")
   smi.csv.write(file, { f1 = smi.vec{ 10000, 10100, 9900 }, f2 = smi.vec{ 19500, 19600, 19400 },
