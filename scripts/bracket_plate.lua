@@ -35,7 +35,6 @@ local function model(applied, unknowns, ctx)
   }
 end
 
-print("Note: " .. IDENTIFIABILITY)
 return improve.run({
   name = "bracket_plate",
   title = "Bolted bracket plate: statistical model improvement",
@@ -65,7 +64,10 @@ return improve.run({
   },
   limits = {refinements = 2, runs = 300},
   sections = {
-    data = function(ctx) ctx.report:text(IDENTIFIABILITY) end,
+    data = function(ctx)   -- in the report and on the terminal, before anything is calibrated
+      ctx.report:text(IDENTIFIABILITY)
+      print("Note: " .. IDENTIFIABILITY)
+    end,
   },
   options = {
     {name = "solver", type = "string", default = "ccx", meaning = "the CalculiX program (allow it with --allow-exec)"},
