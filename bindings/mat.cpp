@@ -4,6 +4,7 @@
 
 #include "bindings/modules.hpp"
 #include "kernels/core/descriptive.hpp"
+#include "kernels/core/linalg.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
 
@@ -199,6 +200,56 @@ int mat_dot(lua_State* L) {
   push_mat(L, m * b);
   return 1;
 }
+// Linear algebra (kernels/core/linalg.hpp): arguments are read from Lua first (Lua errors),
+// the kernel runs under protect (its errors become "mat:solve: A (2x2) is singular: ...").
+
+/// A:solve(b): b a vec or a table of numbers gives a vec; b a mat (n x k) gives a mat.
+int mat_solve(lua_State* L) {
+  const Mat& a = self(L);
+  const bool vector_rhs = lua::test_vec(L, 2) || (lua_istable(L, 2) && !lua::test_mat(L, 2) &&
+                                                  (lua_rawgeti(L, 2, 1), lua_type(L, -1) == LUA_TNUMBER));
+  lua_settop(L, 2);
+  const Mat b = vector_rhs ? Mat(lua::to_vector(L, 2, "b")) : lua::to_matrix(L, 2, "b");
+  return lua::protect(L, "mat:solve", [&] {
+    Mat x = smi::linalg::solve(a, b);
+    if (vector_rhs) push_vec(L, x.col(0));
+    else push_mat(L, std::move(x));
+    return 1;
+  });
+}
+int mat_inverse(lua_State* L) {
+  const Mat& a = self(L);
+  return lua::protect(L, "mat:inverse", [&] {
+    push_mat(L, smi::linalg::inverse(a));
+    return 1;
+  });
+}
+int mat_det(lua_State* L) {
+  const Mat& a = self(L);
+  return lua::protect(L, "mat:det", [&] {
+    lua_pushnumber(L, smi::linalg::det(a));
+    return 1;
+  });
+}
+int mat_chol(lua_State* L) {
+  const Mat& a = self(L);
+  return lua::protect(L, "mat:chol", [&] {
+    push_mat(L, smi::linalg::chol(a));
+    return 1;
+  });
+}
+/// smi.mat.eigh(K [, M]) -> values (vec, ascending), vectors (mat, by column).
+int mat_eigh(lua_State* L) {
+  const Mat k = lua::to_matrix(L, 1, "K");
+  const Mat m = lua_isnoneornil(L, 2) ? Mat() : lua::to_matrix(L, 2, "M");
+  return lua::protect(L, "smi.mat.eigh", [&] {
+    smi::linalg::Eigh e = smi::linalg::eigh(k, m);
+    push_vec(L, std::move(e.values));
+    push_mat(L, std::move(e.vectors));
+    return 2;
+  });
+}
+
 int mat_totable(lua_State* L) {
   const Mat& m = self(L);
   lua_createtable(L, static_cast<int>(m.rows()), 0);
@@ -274,14 +325,16 @@ const luaL_Reg kMethods[] = {{"rows", mat_rows},       {"cols", mat_cols},      
                              {"col", mat_col},         {"set_col", mat_set_col},   {"set_row", mat_set_row},
                              {"sub", mat_sub},         {"t", mat_t},               {"copy", mat_copy},
                              {"sum", mat_sum},         {"colmeans", mat_colmeans}, {"colstds", mat_colstds},
-                             {"dot", mat_dot},         {"totable", mat_totable},   {nullptr, nullptr}};
+                             {"dot", mat_dot},         {"totable", mat_totable},   {"solve", mat_solve},
+                             {"inverse", mat_inverse}, {"det", mat_det},           {"chol", mat_chol},
+                             {nullptr, nullptr}};
 
 const luaL_Reg kMeta[] = {{"__len", mat_len}, {"__tostring", mat_tostring}, {"__add", mat_add},
                           {"__sub", mat_subtract}, {"__mul", mat_mul}, {"__div", mat_div},
                           {"__unm", mat_unm}, {nullptr, nullptr}};
 
 const luaL_Reg kFunctions[] = {{"zeros", mat_zeros}, {"identity", mat_identity}, {"hcat", mat_hcat},
-                               {"vcat", mat_vcat},   {nullptr, nullptr}};
+                               {"vcat", mat_vcat},   {"eigh", mat_eigh},         {nullptr, nullptr}};
 
 }  // namespace
 

@@ -168,6 +168,56 @@ returns: a new table {{...}, {...}}
 errors: none
 example:
   print(smi.mat{{1, 2}, {3, 4}}:totable()[2][1])
+
+@ smi.mat:solve(b) -> vec | mat
+The x with A x = b for a square A (LU with full pivoting): b a vec or a table of numbers gives
+a vec; b a mat with one column per right-hand side gives a mat.
+returns: a new vec or mat
+errors: A not square ("A must be square, got 2x3"); b with another number of rows ("A is 2x2
+  but b has 3 rows"); A singular to working precision ("A (2x2) is singular: numerical rank 1
+  of 2"); a NaN or infinite entry (named by row and column)
+example:
+  local A = smi.mat{{4, 1}, {2, 3}}
+  print(A:solve(smi.vec{1, 2}))   -- 0.1, 0.6
+
+@ smi.mat:inverse() -> mat
+The inverse of a square matrix (prefer A:solve(b) to A:inverse():dot(b): fewer operations and
+smaller rounding errors).
+returns: a new mat
+errors: not square; singular ("numerical rank r of n"); a NaN or infinite entry
+example:
+  print(smi.mat{{4, 1}, {2, 3}}:inverse())   -- {{0.3, -0.1}, {-0.2, 0.4}}
+
+@ smi.mat:det() -> number
+The determinant of a square matrix (LU with partial pivoting); a singular matrix gives 0 (or
+a number near it), not an error.
+returns: a number
+errors: not square; a NaN or infinite entry
+example:
+  print(smi.mat{{4, 1}, {2, 3}}:det())   -- 10
+
+@ smi.mat:chol() -> mat
+The Cholesky factor: the lower triangular L with A = L L^T, for a symmetric positive definite A.
+returns: a new mat (lower triangular)
+errors: not square; not symmetric (relative tolerance 1e-10 of the largest entry; the first
+  pair that differs is named); not positive definite ("A (2x2) is not positive definite")
+example:
+  local L = smi.mat{{4, 2}, {2, 3}}:chol()
+  print(L, L:dot(L:t()))   -- {{2, 0}, {1, 1.414}}, then A again
+
+@ smi.mat.eigh(K [, M]) -> values, vectors
+The symmetric eigenproblem K phi = lambda phi, or with M the generalised one K phi = lambda M phi
+(M symmetric positive definite: a mass matrix). Eigenvalues ascending; eigenvectors by column,
+in the same order, of unit length without M and M-normalised (phi^T M phi = 1) with it. Each
+vector's sign is fixed: its entry of largest magnitude is positive. For a lumped-mass model the
+natural frequencies are sqrt(values[i]) / (2 pi).
+returns: a vec of eigenvalues and a mat of eigenvectors (column j for values[j])
+errors: K or M not square, of different sizes, not symmetric (the first pair named) or with a
+  NaN entry; M not positive definite
+example:
+  local K = smi.mat{{2, -1}, {-1, 2}}          -- two masses, three springs
+  local lambda, phi = smi.mat.eigh(K, smi.mat.identity(2))
+  print(lambda, phi)   -- 1 and 3; columns (1, 1)/sqrt(2) and (1, -1)/sqrt(2)
 )DOC"};
 }
 

@@ -19,11 +19,17 @@ An external solver run once per point: the deck is made from a template ({{name}
 take the point's inputs and the constants), the program runs in its own work folder without a
 shell, and parse(dir, h) reads its outputs. Runs go through an SQLite evaluation store keyed by
 deck, program and version: a rerun (or a resumed study) reuses every finished point.
+template may also be a Lua function(p) returning the deck text, p = {input = value, constant =
+value}: a deck that computes (per-node stiffnesses, 10^x of a log-scaled input). It runs without
+I/O: the model keeps a copy of it that sees only string, math, table, utf8 and the pure base
+functions (another global is an error naming it), with its other upvalues copied when the model
+is made; and while it runs the sandbox refuses every file and program, also to the helpers it
+calls. The deck text is the store key, as a rendered template's is.
 options:
   name = "${name}"           -- names the runs folder <out>/runs/<name> and the progress line
   inputs = (required)        -- input names, in the column order of X
   outputs = (required)       -- output names, the keys parse returns
-  template = nil             -- the deck template file (or template_string)
+  template = nil             -- the deck template file, or a function(p) -> deck text (or template_string)
   template_string = nil      -- the deck template text
   deck = "${deck}"           -- the deck's file name in the work folder ({deck} in command)
   constants = {}             -- more placeholder values {name = number | string}
@@ -41,7 +47,8 @@ options:
                              -- or "retry"
   concurrency = ${concurrency}  -- processes at once
   reuse_failed = ${reuse_failed}  -- also reuse stored failures (default: run them again)
-  store = nil                -- the store file (default <out>/evaluations.sqlite)
+  store = nil                -- the store file (default <out>/evaluations.sqlite); a missing folder
+                             -- is made (under --out or an --allow-write path only)
   executor = nil             -- where the runs execute, overriding --executor: {kind = "slurm",
                              -- partition =, account =, time =, ...} (the --slurm-opt keys)
 returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
@@ -49,7 +56,8 @@ errors: a missing or mistyped option (named); both or neither template; a progra
   not exist or is not an executable file (refused here, not at the first run); the sandbox refuses
   the program (--allow-exec), the template (--allow-read) or the runs folder; a bad template
   placeholder (file and line); version_args given and the program prints nothing on stdout or
-  takes more than 10 s
+  takes more than 10 s; a deck function that uses another global, tries I/O or returns no string
+  (raised by m:evaluate, naming it)
 example:
   local m = smi.model.command{
     name = "doc-square", inputs = {"x"}, outputs = {"y"}, version = "doc-1",
@@ -183,6 +191,32 @@ example:
           "        2         2        4.455839E+04        2.110886E+02        3.359579E+01        1.000000E+00        4.455839E+04\n")
   f:close()
   print(smi.model.parse.f06(p).cycles)
+
+@ smi.model.parse.ccx_dat(file) -> table
+A CalculiX (ccx 2.20) .dat results file: the "E I G E N V A L U E   O U T P U T" table of a
+*FREQUENCY step (columns: mode, eigenvalue, rad/time, cycles/time = Hz, imaginary part), and the
+blocks *NODE PRINT and *EL PRINT write ("displacements (vx,vy,vz) for set TIP and time ...").
+A block's columns are the header's names made into keys ("integ.pnt." -> integ_pnt), with
+"node" first for node blocks; in a *FREQUENCY step each block has the mode it was printed under.
+The participation-factor and effective-mass tables are skipped. In a parser, h.ccx_dat("job.dat").
+returns: {mode, eigenvalue, radians, cycles, imaginary = vecs (cycles in Hz), blocks = {{name,
+  set, time, mode, columns = {names}, rows = mat, [column name] = vec}, ...}}
+errors: a file with neither an eigenvalue table nor a result block (a run that stopped early);
+  a row with the wrong number of fields (file and line named)
+example:
+  local p = smi.out("doc.dat")
+  local f = io.open(p, "w")
+  f:write("     E I G E N V A L U E   O U T P U T\n\n",
+          " MODE NO    EIGENVALUE                       FREQUENCY\n",
+          "                                     REAL PART            IMAGINARY PART\n",
+          "                           (RAD/TIME)      (CYCLES/TIME     (RAD/TIME)\n\n",
+          "      1   0.1554390E+06   0.3942575E+03   0.6274803E+02   0.0000000E+00\n",
+          "      2   0.6069984E+07   0.2463734E+04   0.3921154E+03   0.0000000E+00\n\n",
+          " displacements (vx,vy,vz) for set TIP and time  0.1000000E+01\n\n",
+          "        43  2.389716E-11  1.139152E-10 -2.079296E+02\n\n")
+  f:close()
+  local r = smi.model.parse.ccx_dat(p)
+  print(r.cycles, r.blocks[1].vz)   -- 62.748, 392.115 Hz; the tip's vz
 )DOC";
 
 }  // namespace

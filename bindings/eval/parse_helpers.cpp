@@ -1,4 +1,4 @@
-// Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06. A parser
+// Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06, h.ccx_dat. A parser
 // receives them bound to its run's work directory (h.f06("column.f06")); smi.model.parse holds
 // the same functions for any allowed path. Every read goes through the sandbox.
 #include <cerrno>
@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "bindings/eval/model.hpp"
+#include "kernels/eval/ccx_dat.hpp"
 #include "kernels/eval/f06.hpp"
 #include "kernels/eval/text_parsers.hpp"
 #include "luax/luax.hpp"
@@ -137,8 +138,49 @@ int h_f06(lua_State* L) {
   });
 }
 
+/// h.ccx_dat(file) -> {mode, eigenvalue, radians, cycles, imaginary (smi.vec each; cycles in Hz),
+///   blocks = {{name, set, time, mode, columns = {names}, rows = smi.mat, [column] = smi.vec}}}
+int h_ccx_dat(lua_State* L) {
+  const std::string p = path_arg(L);
+  return lua::protect(L, "smi.model.parse.ccx_dat", [&] {
+    const se::CcxDat r = se::parse_ccx_dat(read_output(L, p), p);
+    const auto n = static_cast<Eigen::Index>(r.eigen.size());
+    Eigen::MatrixXd cols(n, 5);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto& e = r.eigen[static_cast<std::size_t>(i)];
+      cols.row(i) << e.mode, e.eigenvalue, e.radians, e.cycles, e.imaginary;
+    }
+    lua_createtable(L, 0, 6);
+    const char* names[] = {"mode", "eigenvalue", "radians", "cycles", "imaginary"};
+    for (int j = 0; j < 5; ++j) lua::set_vec(L, names[j], cols.col(j));
+    lua_createtable(L, static_cast<int>(r.blocks.size()), 0);
+    for (std::size_t b = 0; b < r.blocks.size(); ++b) {
+      const auto& blk = r.blocks[b];
+      lua_createtable(L, 0, static_cast<int>(6 + blk.columns.size()));
+      lua::set_string(L, "name", blk.name);
+      lua::set_string(L, "set", blk.set);
+      lua::set_number(L, "time", blk.time);
+      lua::set_integer(L, "mode", blk.mode);
+      lua_createtable(L, static_cast<int>(blk.columns.size()), 0);
+      for (std::size_t j = 0; j < blk.columns.size(); ++j) {
+        lua_pushstring(L, blk.columns[j].c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(j + 1));
+        lua::push_vec(L, blk.rows.col(static_cast<Eigen::Index>(j)));
+        lua_setfield(L, -3, blk.columns[j].c_str());  // into the block, below the columns list
+      }
+      lua_setfield(L, -2, "columns");
+      lua::push_mat(L, blk.rows);
+      lua_setfield(L, -2, "rows");
+      lua_rawseti(L, -2, static_cast<lua_Integer>(b + 1));
+    }
+    lua_setfield(L, -2, "blocks");
+    return 1;
+  });
+}
+
 const luaL_Reg kHelpers[] = {{"read", h_read},   {"exists", h_exists}, {"regex", h_regex}, {"regex_all", h_regex_all},
-                             {"csv", h_csv},     {"f06", h_f06},       {nullptr, nullptr}};
+                             {"csv", h_csv},     {"f06", h_f06},       {"ccx_dat", h_ccx_dat},
+                             {nullptr, nullptr}};
 
 }  // namespace
 

@@ -142,6 +142,16 @@ void read_constants(lua_State* L, lua::Options& o, const char* fname, se::Comman
 // points file's name (batch form).
 void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se::CommandConfig& c, SolverOptions& so) {
   if (!batch) {
+    if (o.push("template") == LUA_TFUNCTION) {  // a deck function (deck_function.cpp)
+      lua_pop(L, 1);
+      c.deck_function = true;
+      if (!o.string("template_string", "").empty())
+        luaL_error(L, "%s: give exactly one of 'template' (a file or a function) or 'template_string' (the text)", fname);
+      c.deck_file = o.string("deck", "input.deck");
+      read_constants(L, o, fname, c);
+      return;
+    }
+    lua_pop(L, 1);
     so.template_file = o.string("template", "");
     so.template_text = o.string("template_string", "");
     if (so.template_file.empty() == so.template_text.empty())
@@ -223,7 +233,7 @@ void open_solver_inputs(Policy& pol, const SolverOptions& so, bool batch, const 
   if (!so.template_file.empty()) {
     const CheckedFile tf = pol.open_read(so.template_file);
     c.deck = std::make_shared<se::DeckTemplate>(read_checked(tf, so.template_file), tf.path);
-  } else if (!batch) {
+  } else if (!batch && !c.deck_function) {
     c.deck = std::make_shared<se::DeckTemplate>(so.template_text, "(template_string)");
   }
 }
@@ -234,7 +244,13 @@ void place_solver_outputs(Policy& pol, const SolverOptions& so, se::CommandConfi
   const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
   c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
   se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
-  c.store_path = pol.checked_write_file(so.store.empty() ? (out / "evaluations.sqlite").string() : so.store);
+  // A store shared by several studies (store = "shared/plate.sqlite") may name a folder that no
+  // run has made yet: make it, under a write root only (checked_write_dir refuses elsewhere and
+  // names --allow-write).
+  const std::string store = so.store.empty() ? (out / "evaluations.sqlite").string() : so.store;
+  if (const fs::path folder = fs::path(store).parent_path(); !so.store.empty() && !folder.empty())
+    pol.checked_write_dir(folder.string());
+  c.store_path = pol.checked_write_file(store);
   if (!pol.store_path.empty()) {
     const std::string shared = pol.checked_read_file(pol.store_path);
     if (shared != c.store_path) c.shared_store_path = shared;
@@ -356,6 +372,12 @@ int make_solver_model(lua_State* L, bool batch) {
   se::CommandConfig c = solver_config(L, batch, fname);
   lua_getfield(L, 1, "parse");
   const int fn = lua_gettop(L);
+  int deck_fn = 0;
+  if (c.deck_function) {
+    lua_getfield(L, 1, "template");
+    push_pure_function(L, -1, fname);
+    deck_fn = lua_gettop(L);
+  }
   Model m;
   m.kind = batch ? Model::Batch : Model::Command;
   m.name = c.name;
@@ -365,7 +387,7 @@ int make_solver_model(lua_State* L, bool batch) {
     m.ev = std::make_unique<se::Evaluator>(std::move(c));
     return 0;
   });
-  push_model(L, std::move(m), fn);
+  push_model(L, std::move(m), fn, deck_fn);
   return 1;
 }
 
@@ -514,6 +536,7 @@ int evaluate_solver(lua_State* L, Model& m) {
   // the memory ceiling or os.exit: we ask the runtime through the policy instead.
   m.ev->set_stop_check([stop = pol.stop_reason]() -> std::string { return stop ? stop() : ""; });
 
+  const DeckFunctionScope decks(L, 1, m);
   se::EvalResult r;
   std::string summary;
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored

@@ -134,8 +134,8 @@ int box_close(lua_State* L) {
 /// Pushes a new, empty box with the metatable `type` (registered with register_type) and
 /// returns the slot to fill. The box is consistent (p = nullptr) before anything may fail.
 template <class T>
-T*& new_box(lua_State* L, const char* type) {
-  auto* b = static_cast<Box<T>*>(lua_newuserdatauv(L, sizeof(Box<T>), 1));
+T*& new_box(lua_State* L, const char* type, int user_values = 1) {
+  auto* b = static_cast<Box<T>*>(lua_newuserdatauv(L, sizeof(Box<T>), user_values));
   b->p = nullptr;
   b->bytes = 0;
   b->closed = false;

@@ -102,7 +102,7 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
   if (cfg_.deck_file.empty() || cfg_.deck_file.find('/') != std::string::npos || cfg_.deck_file == "." ||
       cfg_.deck_file == ".." || cfg_.deck_file == kStdoutFile || cfg_.deck_file == kStderrFile)
     throw InvalidArgument(fmt::format("deck file name '{}' must be a plain file name", cfg_.deck_file));
-  if (!cfg_.batch) {
+  if (!cfg_.batch && !cfg_.deck_function) {
     if (!cfg_.deck) throw InvalidArgument("a command model needs a deck template");
     for (const auto& in : cfg_.inputs) {
       if (cfg_.constants.count(in))
@@ -156,6 +156,10 @@ Store& Evaluator::store() {
 }
 
 std::string Evaluator::render(const Eigen::VectorXd& x) const {
+  if (cfg_.deck_function) {
+    if (!deck_fn_) throw InvalidArgument("the model's deck function is not set (internal: set_deck_function)");
+    return deck_fn_(x);
+  }
   DeckValues v = cfg_.constants;
   for (std::size_t j = 0; j < cfg_.inputs.size(); ++j) v[cfg_.inputs[j]] = DeckValue::num(x[static_cast<Eigen::Index>(j)]);
   return cfg_.deck->render(v);

@@ -24,6 +24,7 @@ struct CommandConfig {
   std::string name = "model";               // names the runs folder and the progress line
   std::vector<std::string> inputs, outputs;
   std::shared_ptr<const DeckTemplate> deck;   // per-point deck (nullptr in batch mode)
+  bool deck_function = false;                 // decks come from Evaluator::set_deck_function instead
   std::string deck_file = "input.deck";       // its file name in the work directory
   DeckValues constants;                       // extra placeholder values (numbers or strings)
   std::vector<std::string> files;             // absolute paths copied into every work directory
@@ -110,6 +111,12 @@ class Evaluator {
   /// in the store already, so running the study again resumes.
   void set_stop_check(std::function<std::string()> check) { stop_check_ = std::move(check); }
 
+  /// With CommandConfig::deck_function: the function that makes the deck text of a point (the
+  /// binding sets it around each evaluate/plan, see bindings/eval/deck_function.cpp). It is called
+  /// on the calling thread only, while the points are keyed, never by the scheduler's workers.
+  /// The deck text goes into the key, as a rendered template's does.
+  void set_deck_function(std::function<std::string(const Eigen::VectorXd&)> fn) { deck_fn_ = std::move(fn); }
+
   /// The content key of row `x` (tests and reports).
   std::string key(const Eigen::VectorXd& x) const;
   /// The deck text for `x` (command mode).
@@ -128,6 +135,7 @@ class Evaluator {
   std::string key_prefix_;  // hash state of everything but the point, as text fed first
   std::unique_ptr<Store> store_, shared_;
   std::function<std::string()> stop_check_;
+  std::function<std::string(const Eigen::VectorXd&)> deck_fn_;
 };
 
 }  // namespace smi::eval
