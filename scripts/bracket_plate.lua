@@ -1,4 +1,4 @@
--- The bolted bracket plate (shared/spec/bracket-plate.md): statistical model improvement of a
+-- The bolted bracket plate (docs/spec/bracket-plate.md): statistical model improvement of a
 -- CalculiX shell model on smi.improve. Only the product is here: its responses, unknowns, model
 -- factory (the deck writer in bracket_plate/deck.lua, run as a deck function), its two
 -- refinement candidates and a note in the report on what the data can determine.

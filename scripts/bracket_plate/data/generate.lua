@@ -1,4 +1,4 @@
--- The bracket plate's experimental data (shared/spec/bracket-plate.md §4): nine specimens whose
+-- The bracket plate's experimental data (docs/spec/bracket-plate.md §4): nine specimens whose
 -- E, rho, t (and log10_kw for a truth with the compliant joint) are drawn from normal
 -- distributions at the TRUE means and stds given here, each solved by CalculiX on a finer mesh
 -- (h = 5 mm; the study uses 10 mm) in the truth's form, plus a small measurement noise (the mean
