@@ -51,6 +51,9 @@ options:
                              -- is made (under --out or an --allow-write path only)
   executor = nil             -- where the runs execute, overriding --executor: {kind = "slurm",
                              -- partition =, account =, time =, ...} (the --slurm-opt keys)
+  env = nil                  -- {NAME = "value"}: variables the solver needs (OMP_NUM_THREADS, a
+                             -- licence server); loader and interpreter hooks (LD_*, BASH_ENV,
+                             -- PATH, PYTHONPATH, ...) are refused. Part of the store key
 returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
 errors: a missing or mistyped option (named); both or neither template; a program path that does
   not exist or is not an executable file (refused here, not at the first run); the sandbox refuses

@@ -121,6 +121,35 @@ std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State
   return exec_opts;
 }
 
+// env = {NAME = "value"}: variables the solver needs, set explicitly by the model (never taken
+// from smi-lua's environment: that stays --allow-env's). Names that make a program load or run
+// other code are refused (se::declared_env_refusal), sorted so the store key does not depend on
+// the table's traversal order.
+std::vector<std::pair<std::string, std::string>> read_env(lua_State* L, lua::Options& o, const char* fname) {
+  std::vector<std::pair<std::string, std::string>> env;
+  if (const int t = o.push("env"); t != LUA_TNIL) {
+    if (t != LUA_TTABLE) luaL_error(L, "%s: option 'env' must be a table {NAME = \"value\"}, got %s", fname, luaL_typename(L, -1));
+    lua_pushnil(L);
+    while (lua_next(L, -2)) {
+      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: env keys must be variable names", fname);
+      const std::string k = lua_tostring(L, -2);
+      if (lua_type(L, -1) != LUA_TSTRING && lua_type(L, -1) != LUA_TNUMBER)
+        luaL_error(L, "%s: env.%s must be a string or a number, got %s", fname, k.c_str(), luaL_typename(L, -1));
+      size_t n = 0;
+      const char* v = lua_tolstring(L, -1, &n);
+      if (std::string(v, n).find('\0') != std::string::npos) luaL_error(L, "%s: env.%s holds a NUL byte", fname, k.c_str());
+      if (const std::string why = se::declared_env_refusal(k); !why.empty())
+        luaL_error(L, "%s: env.%s cannot be set by a model: %s (a variable from your environment goes with --allow-env %s)",
+                   fname, k.c_str(), why.c_str(), k.c_str());
+      env.emplace_back(k, std::string(v, n));
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 1);
+  std::sort(env.begin(), env.end());
+  return env;
+}
+
 // constants = {name = number | string}: values the deck template sees besides the inputs.
 void read_constants(lua_State* L, lua::Options& o, const char* fname, se::CommandConfig& c) {
   if (o.push("constants") != LUA_TNIL) {
@@ -321,11 +350,11 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   if (batch)
     o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
                    "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor",
-                   "version_args"});
+                   "version_args", "env"});
   else
     o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
                    "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
-                   "executor", "version_args"});
+                   "executor", "version_args", "env"});
   Policy& pol = lua::policy(L);
   se::CommandConfig c;
   SolverOptions so;
@@ -351,6 +380,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   c.reuse_failed = o.boolean("reuse_failed", c.reuse_failed);
   so.on_failure = o.string("on_failure", "stop");
   so.exec_opts = read_executor_options(L, o, fname);
+  c.env_set = read_env(L, o, fname);
   so.store = o.string("store", "");
   read_deck(L, o, batch, fname, c, so);
   lua::protect(L, fname, [&] {

@@ -137,6 +137,7 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
   // store may come from elsewhere (--store, or one unpacked with a study bundle): a record is
   // reused only by the script that made it (issue 23). Editing the script means running again.
   h.field(cfg_.script_hash);
+  for (const auto& [name, value] : cfg_.env_set) h.field("env").field(name).field(value);
   for (std::size_t i = 0; i < cfg_.files.size(); ++i)
     h.field(fs::path(cfg_.files[i]).filename().string())
         .field(i < cfg_.file_fds.size() && cfg_.file_fds[i] ? sha256_fd(cfg_.file_fds[i]->get(), cfg_.files[i])
@@ -355,6 +356,7 @@ Job Evaluator::Run::make_job(std::size_t t) {
   job.spec.stdout_path = (fs::path(dirs[t]) / kStdoutFile).string();
   job.spec.stderr_path = (fs::path(dirs[t]) / kStderrFile).string();
   job.spec.env = solver_environment(cfg.env_names);
+  apply_declared_env(job.spec.env, cfg.env_set);
   job.spec.argv.push_back(cfg.program_name);
   for (std::string a : cfg.args) {
     for (auto [pat, val] : {std::pair<std::string, std::string>{"{deck}", cfg.deck_file}, {"{workdir}", dirs[t]}})

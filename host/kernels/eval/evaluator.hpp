@@ -35,6 +35,9 @@ struct CommandConfig {
   std::string program_name;                   // as the study wrote it; goes into the key
   std::vector<std::string> args;              // argv[1..]: "{deck}" -> deck_file, "{workdir}" -> the folder
   std::vector<std::string> env_names;         // --allow-env: variables solvers get besides the base set
+  // Declared by the model (env = {NAME = "value"}): set in every run's environment, checked by
+  // declared_env_refusal, part of the store key (they can change a run's result).
+  std::vector<std::pair<std::string, std::string>> env_set;
   std::string script_hash;                    // "sha256:..." of the study script ("" for -e, stdin, REPL)
   std::string version;                        // "" -> "sha256:" + hash of the program file
   double timeout = 0;                         // seconds per run; 0 = none

@@ -1,6 +1,7 @@
 #include "kernels/eval/process.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -86,6 +87,37 @@ std::vector<std::string> solver_environment(const std::vector<std::string>& extr
     if (const char* v = std::getenv(n.c_str())) env.push_back(n + "=" + v);
   }
   return env;
+}
+
+std::string declared_env_refusal(const std::string& name) {
+  if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+    return "a variable name starts with a letter or '_'";
+  for (const char ch : name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
+      return "a variable name holds only letters, digits and '_'";
+  if (name == kSolverMarkVar) return "smi-lua sets it itself to find its solvers' processes";
+  if (name.rfind("LD_", 0) == 0 || name.rfind("BASH_FUNC_", 0) == 0 || name.rfind("DYLD_", 0) == 0)
+    return "it makes the program load or run other code";
+  static const char* const kHooks[] = {
+      "PATH", "BASH_ENV", "ENV", "SHELLOPTS", "BASHOPTS", "PS4", "PROMPT_COMMAND", "IFS", "CDPATH", "GCONV_PATH",
+      "GLIBC_TUNABLES", "LOCPATH", "NLSPATH", "HOSTALIASES", "RESOLV_HOST_CONF", "MALLOC_CHECK_", "PYTHONSTARTUP",
+      "PYTHONPATH", "PYTHONHOME", "PYTHONINSPECT", "PERL5OPT", "PERL5LIB", "PERLLIB", "PERL5DB", "RUBYOPT", "RUBYLIB",
+      "NODE_OPTIONS", "NODE_PATH", "LUA_INIT", "LUA_INIT_5_4", "LUA_PATH", "LUA_CPATH", "LUA_PATH_5_4",
+      "LUA_CPATH_5_4", "JAVA_TOOL_OPTIONS", "_JAVA_OPTIONS", "TCLLIBPATH", "GIT_CONFIG_PARAMETERS", nullptr};
+  for (const char* const* h = kHooks; *h; ++h)
+    if (name == *h)
+      return name == "PATH" ? "a study could put a folder it writes first; give the solver's absolute path instead"
+                            : "it makes the program load or run other code";
+  return "";
+}
+
+void apply_declared_env(std::vector<std::string>& env, const std::vector<std::pair<std::string, std::string>>& set) {
+  for (const auto& [name, value] : set) {
+    const std::string prefix = name + "=";
+    env.erase(std::remove_if(env.begin(), env.end(), [&](const std::string& e) { return e.rfind(prefix, 0) == 0; }),
+              env.end());
+    env.push_back(prefix + value);
+  }
 }
 
 namespace {

@@ -29,6 +29,17 @@ extern const char* const kSolverBaseEnv[];
 /// with os.getenv must not come back to it through a solver's output).
 std::vector<std::string> solver_environment(const std::vector<std::string>& extra);
 
+/// Why a model may not set the solver variable `name` itself ("" when it may). A study sets such
+/// variables with values of its own choosing, so the ones that make a program load or run other
+/// code are refused: the dynamic loader's (LD_*, GCONV_PATH, ...), the shells' and interpreters'
+/// start-up hooks (BASH_ENV, ENV, PYTHONSTARTUP, PERL5OPT, NODE_OPTIONS, ...), PATH (a script
+/// could put a folder it writes first) and smi-lua's own mark. Names are [A-Za-z_][A-Za-z0-9_]*.
+std::string declared_env_refusal(const std::string& name);
+
+/// `env` ("NAME=value" entries) with each declared variable set, replacing an inherited one of
+/// the same name.
+void apply_declared_env(std::vector<std::string>& env, const std::vector<std::pair<std::string, std::string>>& set);
+
 /// Starts the process with exactly spec.env (plus kSolverMarkVar); returns its pid, which is also its process-group id. Throws smi::Error
 /// with the program and the system's reason when it cannot be started (missing, not executable).
 pid_t spawn_process(const SpawnSpec& spec);

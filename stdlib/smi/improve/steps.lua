@@ -14,7 +14,7 @@ local revise = require "smi.improve.revise"
 local sanity = require "smi.sanity"
 
 local M = {}
-local BADGE = { valid = "pass", invalid = "fail", inconclusive = "warn" }
+local BADGE = { valid = "pass", invalid = "fail", inconclusive = "inconclusive" }
 
 -- Wall-clock seconds of a step and the solver solutions it made.
 local function timed(fn)
@@ -335,9 +335,12 @@ local function validation_report(E, ctx, L, res, cal)
                         sv.metric or "—", v.solver and { status = sv.pass and "pass" or "fail",
                                                          text = sv.pass and "valid" or "invalid" } or "—" }
     v.detail = v.range and text.range_detail(v, cal) or text.decisive_detail(v)
+    -- one entry per response: the verdict with its solver check beside it, and when the two
+    -- disagree the sentence saying which one governs and why
+    local checks = v.solver and { { name = "Solver check", pass = sv.pass, value = sv.metric } } or nil
     r:verdict{ name = ("%s, %s"):format(L, figs.title[m]), status = BADGE[v.verdict], value = v.metric,
-               threshold = v.threshold, detail = v.detail }
-    if v.solver and v.pass ~= sv.pass then r:callout(text.solver_disagrees(L, figs.title[m], sv.metric), "warn") end
+               threshold = v.threshold, detail = v.detail, checks = checks,
+               governs = v.solver and v.pass ~= sv.pass and text.solver_disagrees(L, figs.title[m], sv.metric, cfg) or nil }
   end
   r:figures(pdfs)
   r:figures(cdfs)

@@ -299,9 +299,15 @@ function M.validation_intro(res, n, cfg)
     res.n, res.responses[CAL[1]].threshold, n, mode_list(CAL), val, res.n_solver)
 end
 
-function M.solver_disagrees(label, mode_title, metric)
-  return ("%s, %s: the solver check (U = %.4f) disagrees with the Kriging verdict at the optimum: the surrogate's"
-    .. " error matters here."):format(label, mode_title, metric)
+--- The sentence that says which of the Kriging verdict and the solver check governs when they
+-- disagree: the verdict, because it is the u-pooling of the calibrated distributions sampled
+-- val_n times, where the check runs the solver at solver_check stratified points only; the
+-- disagreement says the surrogate's error matters near this optimum.
+function M.solver_disagrees(label, mode_title, metric, cfg)
+  return ("%s, %s: the verdict governs. It is the u-pooling of the calibrated distributions on %d Kriging"
+    .. " samples; the solver check (U = %.4f) runs the solver at %d points only, so it flags the surrogate's error"
+    .. " near this optimum rather than overrules the verdict. More points (--solver-check N) or a larger design"
+    .. " would settle the disagreement."):format(label, mode_title, cfg.val_n, metric, cfg.solver_check)
 end
 
 -- ---------------------------------------------------------------------------------------------
