@@ -18,17 +18,13 @@ See docs/new-product.md.
 local study = require "smi.study"
 local options = require "smi.options"
 local declare = require "smi.improve.declare"
-local trial = require "smi.improve.trial"
-local calibration = require "smi.improve.calibration"
 local verdict = require "smi.improve.verdict"
-local criteria = require "smi.improve.criteria"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
 local figs = require "smi.improve.figures"
 local revise = require "smi.improve.revise"
 
 local M = {}
-local BADGE = { valid = "pass", invalid = "fail", inconclusive = "warn" }
 
 -- The options every study gets (a declaration adds its own with `options`).
 local function spec(D)

@@ -4,24 +4,10 @@
 #include <fmt/format.h>
 #include <sstream>
 
+#include "kernels/eval/text_parsers.hpp"
+
 namespace smi::eval {
 namespace {
-
-std::vector<std::string> split_ws(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> out;
-  std::string w;
-  while (in >> w) out.push_back(w);
-  return out;
-}
-
-/// Titles are spaced out ("E I G E N V A L U E   O U T P U T"); compare without blanks.
-std::string squeeze(const std::string& line) {
-  std::string s;
-  for (char c : line)
-    if (!std::isspace(static_cast<unsigned char>(c))) s += c;
-  return s;
-}
 
 /// A header's column name as a Lua-friendly key: lower case, runs of other characters -> '_'.
 std::string column_key(const std::string& raw) {
@@ -79,7 +65,7 @@ struct Parser {
     if (open == std::string::npos || close == std::string::npos || close < open || for_set == std::string::npos ||
         for_set < close)
       return false;
-    const std::vector<std::string> words = split_ws(text.substr(0, open));
+    const std::vector<std::string> words = split_words(text.substr(0, open));
     if (words.empty()) return false;
     CcxBlock b;
     b.mode = mode;
@@ -89,7 +75,7 @@ struct Parser {
     std::istringstream in(cols);
     for (std::string c; std::getline(in, c, ',');)
       if (const std::string k = column_key(c); !k.empty()) b.columns.push_back(k);
-    const std::vector<std::string> tail = split_ws(text.substr(for_set + 9));
+    const std::vector<std::string> tail = split_words(text.substr(for_set + 9));
     if (!tail.empty()) b.set = tail[0];
     for (std::size_t i = 0; i + 1 < tail.size(); ++i)
       if (tail[i] == "time" && !parse_number(tail[i + 1], b.time)) bad("the block's time is not a number", text);
@@ -130,7 +116,7 @@ CcxDat parse_ccx_dat(const std::string& text, const std::string& source) {
   for (std::string s; std::getline(in, s);) {
     ++p.line;
     if (!s.empty() && s.back() == '\r') s.pop_back();
-    const std::string sq = squeeze(s);
+    const std::string sq = squeeze_blanks(s);
     if (sq == "EIGENVALUEOUTPUT") {
       close_block();
       state = In::EigenHeader;
@@ -147,7 +133,7 @@ CcxDat parse_ccx_dat(const std::string& text, const std::string& source) {
       if (state == In::EigenRows || state == In::BlockRows) close_block();
       continue;
     }
-    const std::vector<std::string> f = split_ws(s);
+    const std::vector<std::string> f = split_words(s);
     double first = 0;
     const bool numeric = parse_number(f[0], first);
     switch (state) {

@@ -3,24 +3,10 @@
 #include <fmt/format.h>
 #include <sstream>
 
+#include "kernels/eval/text_parsers.hpp"
+
 namespace smi::eval {
 namespace {
-
-std::vector<std::string> split_ws(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> out;
-  std::string w;
-  while (in >> w) out.push_back(w);
-  return out;
-}
-
-/// Title lines are spaced out ("R E A L   E I G E N V A L U E S"); compare without blanks.
-std::string squeeze(const std::string& line) {
-  std::string s;
-  for (char c : line)
-    if (c != ' ' && c != '\t' && c != '\r') s += c;
-  return s;
-}
 
 bool is_int(const std::string& s, int& out) {
   double v = 0;
@@ -91,7 +77,7 @@ F06Result parse_f06(const std::string& text, const std::string& source) {
   while (std::getline(in, raw)) {
     ++p.line;
     if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-    const std::string sq = squeeze(raw);
+    const std::string sq = squeeze_blanks(raw);
     if (sq == "REALEIGENVALUES") {
       block = Block::Eigen;
       saw_eigen_title = true;
@@ -106,7 +92,7 @@ F06Result parse_f06(const std::string& text, const std::string& source) {
       block = Block::None;
       continue;
     }
-    const auto f = split_ws(raw);
+    const auto f = split_words(raw);
     if (f.empty()) continue;
     if (f.size() >= 2 && f[0] == "PAPER" && f[1] == "MODE") {
       p.paper_line(f, raw);

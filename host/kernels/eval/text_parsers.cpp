@@ -1,6 +1,7 @@
 #include "kernels/eval/text_parsers.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -119,6 +120,21 @@ Eigen::VectorXd csv_column(const std::string& text, const std::string& column, c
     vals.push_back(v);
   }
   return Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
+}
+
+std::vector<std::string> split_words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  std::string w;
+  while (in >> w) out.push_back(w);
+  return out;
+}
+
+std::string squeeze_blanks(const std::string& line) {
+  std::string s;
+  for (const char c : line)
+    if (!std::isspace(static_cast<unsigned char>(c))) s += c;
+  return s;
 }
 
 }  // namespace smi::eval

@@ -30,6 +30,12 @@ Eigen::VectorXd regex_numbers(const std::string& text, const std::string& patter
 /// with '#' are skipped.
 Eigen::VectorXd csv_column(const std::string& text, const std::string& column, const std::string& source);
 
+/// The blank-separated words of a line of a solver's listing.
+std::vector<std::string> split_words(const std::string& line);
+/// The line without blanks: listings space out their titles ("E I G E N V A L U E   O U T P U T",
+/// "R E A L   E I G E N V A L U E S"), so titles are compared squeezed.
+std::string squeeze_blanks(const std::string& line);
+
 /// A whole number from text (strtod over the trimmed text), false if the text is not entirely
 /// one: the CSV codec's rule, so a solver's numbers read the same from CSV and from a regex match.
 using csv::parse_number;
