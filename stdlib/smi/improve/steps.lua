@@ -280,7 +280,6 @@ local function calibration_report(E, ctx, L, T, res)
            columns = { "Input", "Type", "Unit", "Mean bounds", "Std bounds", "Initial mean", "Initial std",
                        "Stage-1 mean", "Stage-1 std", "Calibrated mean", "Calibrated std", "Bootstrap CI" } }
   for _, w in ipairs(res.warnings) do r:callout(L .. ": " .. w, "warn") end
-  if res.status == "no_overlap" and not res.converged then r:callout(L .. ": " .. tostring(res.message), "warn") end
   if calibration.units_stop(res) then return end
   local sv = res.sensitivity
   local srows, columns = {}, { "Input" }

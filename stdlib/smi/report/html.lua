@@ -150,7 +150,7 @@ local function toc_html(items)
     end
     out[#out + 1] = "<li>" .. link(e.it) .. subs .. "</li>"
   end
-  out[#out + 1] = '<li><a href="#provenance">Provenance</a></li></ol></nav>'
+  out[#out + 1] = '<li><a href="#run-details">Run details</a></li></ol></nav>'
   return table.concat(out, "\n")
 end
 
@@ -183,9 +183,11 @@ local function summary_html(items, counts)
   return table.concat(html)
 end
 
--- Provenance: ordered groups of key/value pairs; nested tables are flattened "a.b".
+-- Run details (report:provenance): ordered groups of key/value pairs; nested tables are flattened
+-- "a.b". Not titled "Provenance": smi.study's first section is the run's provenance, every file
+-- and program with its hash; this is what the study itself chose to note (seed, run counts).
 local function prov_html(groups)
-  local out = { '<h2 id="provenance">Provenance</h2>' }
+  local out = { '<h2 id="run-details">Run details</h2>' }
   if #groups == 0 then
     out[#out + 1] = "<p>No provenance was recorded.</p>"
     return table.concat(out)

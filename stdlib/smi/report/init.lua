@@ -379,8 +379,9 @@ end
 
 doc.add[==[
 @ smi.report:provenance(p) -> report
-Provenance shown at the end of the page and stored in the JSON: any key/value table (seed,
-versions, solver runs, input file hashes); several calls add up.
+Run details shown at the end of the page (under "Run details") and stored in the JSON as
+`provenance`: any key/value table (seed, versions, solver runs); several calls add up. smi.study's
+own first section, Provenance, lists every file and program the run used with its hash.
 returns: the report
 errors: p not a table
 example:
