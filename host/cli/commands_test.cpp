@@ -59,10 +59,7 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
   }
   const fs::path dir = args[0];
   std::error_code ec;
-  if (!fs::is_regular_file(dir / vm::kManifestName, ec))
-    throw Error("'" + dir.string() + "' is not a library folder: it has no " + vm::kManifestName +
-                " (make one with smi-lua new-lib NAME)");
-  const vm::Manifest m = vm::read_manifest(dir / vm::kManifestName);
+  const vm::Manifest m = vm::read_library_folder(dir);
   std::vector<fs::path> tests;
   if (fs::is_directory(dir / "tests", ec))
     for (const auto& e : fs::directory_iterator(dir / "tests", ec)) {

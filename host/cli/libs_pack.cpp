@@ -26,11 +26,8 @@ int libs_pack(const Args&, const std::vector<std::string>& args) {
     return 2;
   }
   const fs::path dir = args[0];
+  const vm::Manifest m = vm::read_library_folder(dir);
   std::error_code ec;
-  if (!fs::is_regular_file(dir / vm::kManifestName, ec))
-    throw Error("'" + dir.string() + "' is not a library folder: it has no " + vm::kManifestName +
-                " (make one with smi-lua new-lib NAME)");
-  const vm::Manifest m = vm::read_manifest(dir / vm::kManifestName);
   const std::string top = m.name + "-" + m.version.text;
   const fs::path out = args.size() == 2 ? fs::path(args[1]) : fs::path(top + ".tar.gz");
   const fs::path out_abs = fs::weakly_canonical(fs::absolute(out), ec);

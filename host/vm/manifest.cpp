@@ -195,4 +195,12 @@ Manifest read_manifest(const std::filesystem::path& file) {
   return parse_manifest(text, file);
 }
 
+Manifest read_library_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(dir / kManifestName, ec))
+    throw Error("'" + dir.string() + "' is not a library folder: it has no " + kManifestName +
+                " (make one with smi-lua new-lib NAME)");
+  return read_manifest(dir / kManifestName);
+}
+
 }  // namespace smi::vm

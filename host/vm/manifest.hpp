@@ -38,6 +38,9 @@ bool valid_library_name(const std::string& name);
 
 /// Reads and checks `file`. Throws smi::Error naming the file, the field and the fix.
 Manifest read_manifest(const std::filesystem::path& file);
+/// The manifest of the library folder `dir` (`smi-lua test`, `libs pack`); a folder without one
+/// is an error naming it and `smi-lua new-lib`.
+Manifest read_library_folder(const std::filesystem::path& dir);
 /// Same from text (chunk named after `file`).
 Manifest parse_manifest(const std::string& text, const std::filesystem::path& file);
 
