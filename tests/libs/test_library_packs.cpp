@@ -17,22 +17,12 @@
 #include "vm/manifest.hpp"
 #include "vm/tar_gz.hpp"
 
+#include "temp_dir.hpp"
+
 namespace fs = std::filesystem;
 using namespace smi::vm;
 
 namespace {
-
-struct TempDir {
-  fs::path p;
-  TempDir() {
-    char tmpl[] = "/tmp/smi-packs-XXXXXX";
-    p = ::mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(p, ec);
-  }
-};
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

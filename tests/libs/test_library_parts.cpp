@@ -17,22 +17,12 @@
 #include "vm/manifest.hpp"
 #include "vm/semver.hpp"
 
+#include "temp_dir.hpp"
+
 namespace fs = std::filesystem;
 using namespace smi::vm;
 
 namespace {
-
-struct TempDir {
-  fs::path p;
-  TempDir() {
-    char tmpl[] = "/tmp/smi-libs-XXXXXX";
-    p = ::mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(p, ec);
-  }
-};
 
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
