@@ -8,6 +8,7 @@ usage: calibrate_hidden_peers.py <dir> <ours.txt> <results.md>"""
 import sys, time, datetime
 import numpy as np
 import scipy, scipy.optimize, scipy.special
+from peer_kde import normal_reference, kde_pdf, kde_cdf
 
 d, ours_path, out = sys.argv[1], sys.argv[2], sys.argv[3]
 ours = {}
@@ -15,7 +16,6 @@ for line in open(ours_path):
     k, *v = line.split()
     ours[k] = v
 
-SQ2PI = np.sqrt(2 * np.pi)
 # tests/lua/hidden_problem.lua's box: (lower, upper, start) for x1..x5 mean, std
 BOX = np.array([[8, 12, 9], [0.2, 2, 1.2], [1.5, 3, 2.6], [0.05, 0.6, 0.2], [3, 7, 4], [0.1, 1.5, 0.8],
                 [-1, 1, 0.4], [0.1, 1, 0.3], [0.6, 1.6, 1.3], [0.05, 0.5, 0.3]], dtype=float)
@@ -50,17 +50,6 @@ def model(X):
     x1, x2, x3, x4, x5 = X.T
     return [x1 * x2 + x3, x3 * np.exp(0.2 * x4) + 2 * x5 ** 2, x1 / x5 + x2 * x4 + 0.2 * x3 ** 2]
 
-
-def normal_reference(x):
-    return (4.0 / (3.0 * len(x))) ** 0.2 * x.std(ddof=1)
-
-
-def kde_pdf(sample, h, x):
-    return np.exp(-0.5 * ((x[:, None] - sample[None, :]) / h) ** 2).sum(axis=1) / (len(sample) * h * SQ2PI)
-
-
-def kde_cdf(sample, h, x):
-    return scipy.special.ndtr((x[:, None] - sample[None, :]) / h).mean(axis=1)
 
 
 X0 = np.loadtxt(f"{d}/x0.txt")

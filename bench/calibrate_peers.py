@@ -7,6 +7,7 @@ usage: calibrate_peers.py <data dir> <bench_calibrate output> <results.md>"""
 import os, sys, time, datetime
 import numpy as np
 import scipy, scipy.optimize, scipy.special
+from peer_kde import normal_reference, kde_pdf, kde_cdf
 
 d, ours_path, out = sys.argv[1], sys.argv[2], sys.argv[3]
 ours = {}
@@ -14,19 +15,7 @@ for line in open(ours_path):
     k, *v = line.split()
     ours[k] = v
 
-SQ2PI = np.sqrt(2 * np.pi)
 
-
-def normal_reference(x):
-    return (4.0 / (3.0 * len(x))) ** 0.2 * x.std(ddof=1)
-
-
-def kde_pdf(sample, h, x):
-    return np.exp(-0.5 * ((x[:, None] - sample[None, :]) / h) ** 2).sum(axis=1) / (len(sample) * h * SQ2PI)
-
-
-def kde_cdf(sample, h, x):
-    return scipy.special.ndtr((x[:, None] - sample[None, :]) / h).mean(axis=1)
 
 
 def model(X):
