@@ -32,7 +32,7 @@ double median(std::vector<double> v) {
 }
 
 /// Median seconds of calling the global Lua function `fn` (no arguments, one result).
-double time_lua(smi::vm::Runtime& rt, const char* fn, double& result) {
+double time_lua(smi::app::Runtime& rt, const char* fn, double& result) {
   lua_State* L = rt.state();
   std::vector<double> t;
   for (int r = 0; r < kRepeats; ++r) {
@@ -81,9 +81,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   constexpr long n = 10'000'000;
-  smi::vm::Config cfg;
+  smi::app::Config cfg;
   cfg.quiet = true;
-  smi::vm::Runtime rt(cfg);
+  smi::app::Runtime rt(cfg);
   const std::string setup =
       "N = " + std::to_string(n) + "\n"
       "t = {} for i = 1, N do t[i] = i * 0.5 end\n"

@@ -23,13 +23,13 @@
 
 #include <string>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/calibration.hpp"
 #include "kernels/improve/overlap_start.hpp"
 #include "kernels/improve/start_agreement.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/surrogate/kriging.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::improve;
 

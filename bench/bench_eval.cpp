@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "app/runtime.hpp"
-#include "kernels/eval/evaluator.hpp"
-#include "kernels/eval/process.hpp"
-#include "kernels/eval/text_parsers.hpp"
+#include "platform/eval/evaluator.hpp"
+#include "platform/eval/process.hpp"
+#include "platform/eval/text_parsers.hpp"
 
 namespace fs = std::filesystem;
 using namespace smi::eval;
@@ -121,11 +121,11 @@ std::pair<Cost, Cost> evaluator(const std::string& solver, const fs::path& dir, 
 Cost through_lua(const std::string& solver, const fs::path& dir, int n, int conc) {
   fs::remove_all(dir);
   fs::create_directories(dir);
-  smi::vm::Config cfg;
+  smi::app::Config cfg;
   cfg.quiet = true;
   cfg.allow_exec = {solver};
   cfg.out_dir = dir.string();
-  smi::vm::Runtime rt(cfg);
+  smi::app::Runtime rt(cfg);
   const std::string chunk = fmt::format(R"lua(
     local m = smi.model.command{{name = "bench", inputs = {{"x1", "x2"}}, outputs = {{"f", "g"}},
       template_string = "x1 = {{{{x1}}}}\nx2 = {{{{x2}}}}\n", deck = "run.deck", version = "bench-lua",

@@ -8,12 +8,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/pdf_overlap.hpp"
+#include "platform/core/rng.hpp"
 
 namespace {
 template <class F>

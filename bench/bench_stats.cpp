@@ -6,10 +6,10 @@
 #include <fstream>
 #include <string>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/upool.hpp"
+#include "platform/core/rng.hpp"
 
 namespace {
 

@@ -12,10 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/csv.hpp"
-#include "kernels/core/json.hpp"
-#include "kernels/core/number_text.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/grid.hpp"
@@ -23,6 +19,10 @@
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/propagate.hpp"
+#include "platform/core/csv.hpp"
+#include "platform/core/json.hpp"
+#include "platform/core/number_text.hpp"
+#include "platform/core/rng.hpp"
 
 namespace {
 

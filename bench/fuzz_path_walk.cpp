@@ -1,4 +1,4 @@
-// libFuzzer target over the sandbox's path resolver (host/kernels/core/path_walk.cpp), with the
+// libFuzzer target over the sandbox's path resolver (host/platform/core/path_walk.cpp), with the
 // kernel as oracle. Built and run by bench/run_fuzz_path_walk.sh (clang, -fsanitize=fuzzer,
 // address, undefined); not part of the CMake build.
 //
@@ -23,7 +23,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "kernels/core/path_walk.hpp"
+#include "platform/core/path_walk.hpp"
 
 namespace {
 

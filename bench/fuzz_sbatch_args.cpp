@@ -1,5 +1,5 @@
-// libFuzzer target over the sbatch argument parser (host/kernels/eval/sbatch_args.cpp), with
-// glibc's getopt_long as oracle (sbatch_getopt_reference in host/kernels/eval/sbatch_args.cpp). Built and run by
+// libFuzzer target over the sbatch argument parser (host/platform/eval/sbatch_args.cpp), with
+// glibc's getopt_long as oracle (sbatch_getopt_reference in host/platform/eval/sbatch_args.cpp). Built and run by
 // bench/run_fuzz_sbatch_args.sh (clang, -fsanitize=fuzzer,address,undefined); not part of the
 // CMake build. An input is a list of words separated by '\n'. Checked on every input:
 //  1. no crash, leak, overflow or undefined behaviour (the sanitizers);
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/eval/sbatch_args.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/eval/sbatch_args.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
   std::vector<std::string> words(1);

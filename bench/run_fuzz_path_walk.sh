@@ -4,4 +4,4 @@
 # CI build: run on demand).
 # usage: bash bench/run_fuzz_path_walk.sh [SECONDS]   (default 120)
 exec bash "$(dirname "$0")/fuzz_run.sh" path_walk "${1:-120}" 512 \
-  "bench/fuzz_path_walk.cpp host/kernels/core/path_walk.cpp" "bench/run_fuzz_path_walk.sh"
+  "bench/fuzz_path_walk.cpp host/platform/core/path_walk.cpp" "bench/run_fuzz_path_walk.sh"

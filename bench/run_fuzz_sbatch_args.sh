@@ -4,4 +4,4 @@
 # Needs Debian's clang and libclang-rt-14-dev (not part of the CI build: run on demand).
 # usage: bash bench/run_fuzz_sbatch_args.sh [SECONDS]   (default 120)
 exec bash "$(dirname "$0")/fuzz_run.sh" sbatch_args "${1:-120}" 256 \
-  "-I /usr/include bench/fuzz_sbatch_args.cpp host/kernels/eval/sbatch_args.cpp -lfmt" "bench/run_fuzz_sbatch_args.sh"
+  "-I /usr/include bench/fuzz_sbatch_args.cpp host/platform/eval/sbatch_args.cpp -lfmt" "bench/run_fuzz_sbatch_args.sh"

@@ -21,11 +21,11 @@
 #include <map>
 #include <vector>
 
-#include "kernels/core/csv.hpp"
 #include "bindings/modules.hpp"
-#include "kernels/core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/csv.hpp"
+#include "platform/core/number_text.hpp"
 
 namespace smi::bind {
 namespace {
@@ -158,8 +158,8 @@ int csv_read(lua_State* L) {
     const std::string decimal = opts.string("decimal", ".");
     if (decimal != "." && decimal != ",") throw Error("option 'decimal' must be '.' or ',', got '" + decimal + "'");
     if (decimal == "," && sep == ',') throw Error("decimal = ',' needs another separator: pass sep = ';' (or '\\t')");
-    const CheckedFile f = lua::policy(L).open_read(path);
-    const Table t = parse_table(read_checked(f, path), sep, decimal[0], path, strings);
+    const lua::CheckedFile f = lua::policy(L).open_read(path);
+    const Table t = parse_table(lua::read_checked(f, path), sep, decimal[0], path, strings);
     lua_createtable(L, 0, static_cast<int>(t.header.size()));  // stack: [..., columns]
     for (std::size_t j = 0; j < t.header.size(); ++j) {
       if (const auto* num = std::get_if<std::vector<double>>(&t.columns[j])) {
@@ -280,7 +280,7 @@ int csv_write(lua_State* L) {
   }
   return lua::protect(L, "smi.csv.write", [&] {
     const std::string text = csv::write(header, cols, sep);
-    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    const lua::CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
     if (!pathwalk::write_all(f.fd.get(), text))
       throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;

@@ -1,26 +1,16 @@
 #pragma once
 // Reference texts of the C++ bindings. Each binding folder keeps its texts in a *_doc.cpp file
 // beside the registration (format: stdlib/smi/doc.lua's header) and exposes them through one
-// function listed in doc_sources.cpp. Defaults come from the kernels' option structs through
-// ${name} placeholders filled by fill(), so a changed default changes the reference.
-#include <initializer_list>
-#include <string>
-#include <string_view>
-#include <utility>
+// function listed in doc_sources.cpp (DocText and fill: luax/doc_text.hpp).
 #include <vector>
+
+#include "luax/doc_text.hpp"
 
 namespace smi::bind {
 
-struct DocText {
-  const char* source;  // the file that holds the text, e.g. "bindings/stats/kde_doc.cpp"
-  std::string text;    // one or more "@ name(...)" blocks
-};
-
-/// Replaces every ${key} in text with its value; throws smi::Error on a ${key} not given, so a
-/// misspelt placeholder fails the doc tests instead of printing "${...}".
-std::string fill(std::string_view text, std::initializer_list<std::pair<std::string_view, std::string>> values);
-/// A default value as the reference shows it: %.10g (0.95, 1e-06, 200).
-std::string num(double v);
+using lua::DocText;
+using lua::fill;
+using lua::num;
 
 /// Every binding area's texts, in a fixed order.
 std::vector<DocText> binding_docs();

@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "bindings/modules.hpp"
-#include "kernels/core/json.hpp"
-#include "kernels/core/number_text.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/json.hpp"
+#include "platform/core/number_text.hpp"
 
 namespace smi::bind {
 namespace {
@@ -306,7 +306,7 @@ int json_write(lua_State* L) {
   return lua::protect(L, "smi.json.write", [&] {
     std::string s = encode(L, 2, e);
     s += '\n';
-    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    const lua::CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
     if (!pathwalk::write_all(f.fd.get(), s))
       throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
@@ -317,8 +317,8 @@ int json_read(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
   const int null_idx = null_option(L, 2, "smi.json.read");
   return lua::protect(L, "smi.json.read", [&] {
-    const CheckedFile f = lua::policy(L).open_read(path);
-    const std::string text = read_checked(f, path);
+    const lua::CheckedFile f = lua::policy(L).open_read(path);
+    const std::string text = lua::read_checked(f, path);
     push_value(L, json::read(text, path), null_idx);
     return 1;
   });

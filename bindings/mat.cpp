@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include "bindings/modules.hpp"
-#include "kernels/core/descriptive.hpp"
-#include "kernels/core/linalg.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
+#include "platform/core/descriptive.hpp"
+#include "platform/core/linalg.hpp"
 
 namespace smi::bind {
 namespace {
@@ -200,7 +200,7 @@ int mat_dot(lua_State* L) {
   push_mat(L, m * b);
   return 1;
 }
-// Linear algebra (kernels/core/linalg.hpp): arguments are read from Lua first (Lua errors),
+// Linear algebra (platform/core/linalg.hpp): arguments are read from Lua first (Lua errors),
 // the kernel runs under protect (its errors become "mat:solve: A (2x2) is singular: ...").
 
 /// A:solve(b): b a vec or a table of numbers gives a vec; b a mat (n x k) gives a mat.

@@ -3,15 +3,15 @@
 // (smi.dist, smi.kde, smi.model, ...) gets an __index that names the closest members; the smi
 // table itself only for a name that differs from a member by case (smi.Kde): stdlib code probes
 // smi.<field> == nil for optional host fields, which must stay nil. smi._closest exposes the
-// same suggestion logic (kernels/core/closest.hpp) to the stdlib (smi-lua doc NAME, options).
+// same suggestion logic (platform/core/closest.hpp) to the stdlib (smi-lua doc NAME, options).
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "bindings/modules.hpp"
-#include "kernels/core/closest.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/closest.hpp"
 
 namespace smi::bind {
 namespace {

@@ -2,10 +2,10 @@
 // on every run and build (core/rng.hpp).
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::bind {
 namespace {

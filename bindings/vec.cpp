@@ -7,9 +7,9 @@
 #include <unistd.h>
 
 #include "bindings/modules.hpp"
-#include "kernels/core/descriptive.hpp"
 #include "luax/luax.hpp"
 #include "luax/memory.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::bind {
 namespace {

@@ -72,7 +72,7 @@ void push_pure_env(lua_State* L, int src) {
 /// Runs under lua::call: [fn, point] -> [deck text]. The policy bars I/O around the call; the
 /// barrier is lifted before any error goes on (the inner pcall catches it first).
 int deck_trampoline(lua_State* L) {
-  Policy& pol = lua::policy(L);
+  lua::Policy& pol = lua::policy(L);
   const char* before = pol.io_barred;
   pol.io_barred = kBarred;
   const int status = lua_pcall(L, 1, 1, 0);

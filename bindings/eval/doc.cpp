@@ -2,7 +2,7 @@
 // the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
 // "solver" (smi-lua doc allows it for them), so they run anywhere.
 #include "bindings/doc.hpp"
-#include "kernels/eval/evaluator.hpp"
+#include "platform/eval/evaluator.hpp"
 
 namespace smi::bind {
 namespace {

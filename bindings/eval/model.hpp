@@ -9,7 +9,7 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "kernels/eval/evaluator.hpp"
+#include "platform/eval/evaluator.hpp"
 
 namespace smi::bind::eval {
 

@@ -7,11 +7,11 @@
 #include <fmt/format.h>
 
 #include "bindings/eval/model.hpp"
-#include "kernels/eval/ccx_dat.hpp"
-#include "kernels/eval/f06.hpp"
-#include "kernels/eval/text_parsers.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/eval/ccx_dat.hpp"
+#include "platform/eval/f06.hpp"
+#include "platform/eval/text_parsers.hpp"
 
 namespace smi::bind::eval {
 namespace {
@@ -31,8 +31,8 @@ std::string path_arg(lua_State* L) {
 /// A missing file is a parse failure of that run, named as such.
 std::string read_output(lua_State* L, const std::string& p) {
   try {
-    return read_checked(lua::policy(L).open_read(p), p);
-  } catch (const FileError& e) {
+    return lua::read_checked(lua::policy(L).open_read(p), p);
+  } catch (const lua::FileError& e) {
     throw se::ParseError(fmt::format("output file '{}' is missing or unreadable: {}", p, std::strerror(e.err)));
   }
 }
@@ -53,7 +53,7 @@ int h_exists(lua_State* L) {
     try {
       (void)lua::policy(L).open_read(p);  // a denial raises; a readable regular file exists
       exists = true;
-    } catch (const FileError& e) {
+    } catch (const lua::FileError& e) {
       exists = e.err == EISDIR || e.err == EINVAL;  // a folder or another non-regular entry exists too
     }
     return 0;

@@ -1,5 +1,5 @@
 // smi.model.command{...} and smi.model.batch{...}: models backed by an external solver run
-// through the evaluator (host/kernels/eval/evaluator.hpp). This file turns the option table
+// through the evaluator (host/platform/eval/evaluator.hpp). This file turns the option table
 // into a CommandConfig (through the sandbox), calls the Lua output parser for each finished
 // run, shows progress, and reports failures.
 #include <algorithm>
@@ -11,12 +11,12 @@
 #include <unistd.h>
 
 #include "bindings/eval/model.hpp"
-#include "kernels/core/sha256.hpp"
-#include "kernels/eval/folder_lock.hpp"
-#include "kernels/eval/process.hpp"
-#include "kernels/eval/progress_line.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/sha256.hpp"
+#include "platform/eval/folder_lock.hpp"
+#include "platform/eval/process.hpp"
+#include "platform/eval/progress_line.hpp"
 
 namespace smi::bind::eval {
 namespace {
@@ -197,13 +197,13 @@ void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se:
 // arrays, fewer requeues, slower polling, no --detach. Where runs go and what they ask of a
 // cluster (partition, account, qos, time, mem, cpus, sbatch arguments) is the user's: the study
 // may repeat a command-line value (to document it) but not add or change one.
-void apply_executor(const Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
+void apply_executor(const lua::Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
   if (!pol.executor.empty()) c.executor.kind = pol.executor;
   for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
   c.executor.detach = pol.detach;
   const se::ExecutorConfig cli = c.executor;
   const auto refuse = [](const std::string& k, const std::string& v, const std::string& why) {
-    throw SandboxDenied(fmt::format("executor option {} = '{}' comes from the study, but {}. A study's executor table "
+    throw lua::SandboxDenied(fmt::format("executor option {} = '{}' comes from the study, but {}. A study's executor table "
                                     "may only narrow what the command line allows",
                                     k, v, why));
   };
@@ -250,18 +250,18 @@ void apply_executor(const Policy& pol, const SolverOptions& so, se::CommandConfi
 // The program, extra files and template, checked by the sandbox. Extra files and the template
 // are opened here and used through those descriptors (hashed and copied by the evaluator):
 // never re-opened by name.
-void open_solver_inputs(Policy& pol, const SolverOptions& so, bool batch, const char* fname, se::CommandConfig& c) {
+void open_solver_inputs(lua::Policy& pol, const SolverOptions& so, bool batch, const char* fname, se::CommandConfig& c) {
   c.program_name = so.argv[0];
   c.program = pol.check_exec(so.argv[0], fname).string();
   c.args.assign(so.argv.begin() + 1, so.argv.end());
   for (const auto& f : so.files) {
-    CheckedFile cf = pol.open_read(f);
+    lua::CheckedFile cf = pol.open_read(f);
     c.files.push_back(cf.path);
     c.file_fds.push_back(std::make_shared<const pathwalk::Fd>(std::move(cf.fd)));
   }
   if (!so.template_file.empty()) {
-    const CheckedFile tf = pol.open_read(so.template_file);
-    c.deck = std::make_shared<se::DeckTemplate>(read_checked(tf, so.template_file), tf.path);
+    const lua::CheckedFile tf = pol.open_read(so.template_file);
+    c.deck = std::make_shared<se::DeckTemplate>(lua::read_checked(tf, so.template_file), tf.path);
   } else if (!batch && !c.deck_function) {
     c.deck = std::make_shared<se::DeckTemplate>(so.template_text, "(template_string)");
   }
@@ -269,7 +269,7 @@ void open_solver_inputs(Policy& pol, const SolverOptions& so, bool batch, const 
 
 // Where runs and records go: runs/<name> and the store under --out (locked: one process per
 // output folder keeps the work folders unique), and the shared store of --store if any.
-void place_solver_outputs(Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
+void place_solver_outputs(lua::Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
   const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
   c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
   se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
@@ -327,7 +327,7 @@ std::string version_line(const se::CommandConfig& c, const std::vector<std::stri
 }
 
 // Provenance (issue 24): the program this model runs, its hash, declared version and version line.
-void record_program(const Policy& pol, const se::CommandConfig& c, const SolverOptions& so) {
+void record_program(const lua::Policy& pol, const se::CommandConfig& c, const SolverOptions& so) {
   if (!pol.record) return;
   ProgramRun p;
   if (!so.version_args.empty())
@@ -355,7 +355,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
     o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
                    "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
                    "executor", "version_args", "env"});
-  Policy& pol = lua::policy(L);
+  lua::Policy& pol = lua::policy(L);
   se::CommandConfig c;
   SolverOptions so;
   c.batch = batch;
@@ -463,7 +463,7 @@ int model_planned(lua_State* L) {
 namespace {
 
 // A progress line on the terminal (none when quiet or piped), redrawn at most ten times a second.
-se::ProgressFn terminal_progress(const Model& m, const Policy& pol) {
+se::ProgressFn terminal_progress(const Model& m, const lua::Policy& pol) {
   if (pol.quiet || !isatty(STDERR_FILENO)) return {};
   return [&m, shown_at = -1.0](const se::Progress& p, bool final) mutable {
     const double now = se::monotonic_seconds();
@@ -500,7 +500,7 @@ std::string failure_summary(const Model& m, const Eigen::MatrixXd& X, const se::
 // A dry run that lacks dry_missing runs of this evaluation stops the study here: what comes next
 // is computed from these outputs, which a dry run does not have, so planning further would feed
 // NaN to the next step. Prints the plan so far and asks the runtime to exit cleanly (status 0).
-void stop_dry_run(lua_State* L, const Model& m, const Policy& pol, std::size_t dry_missing) {
+void stop_dry_run(lua_State* L, const Model& m, const lua::Policy& pol, std::size_t dry_missing) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
   auto total = [&](const char* k) {
     lua_getfield(L, -1, k);
@@ -523,7 +523,7 @@ void stop_dry_run(lua_State* L, const Model& m, const Policy& pol, std::size_t d
 
 int evaluate_solver(lua_State* L, Model& m) {
   const Eigen::MatrixXd X = design_of(L, 2, m);
-  const Policy& pol = lua::policy(L);
+  const lua::Policy& pol = lua::policy(L);
   const bool batch = m.kind == Model::Batch;
   const char* fname = "smi.model:evaluate";
   lua_getiuservalue(L, 1, 1);  // the parser

@@ -43,8 +43,8 @@
 #include "bindings/improve/lua_callbacks.hpp"
 #include "bindings/improve/model_gradient.hpp"
 #include "bindings/improve/progress_line.hpp"
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

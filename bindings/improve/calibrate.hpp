@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "bindings/improve/calibrate_spec.hpp"
-#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
 #include "kernels/improve/start_agreement.hpp"

@@ -7,9 +7,9 @@
 
 #include "bindings/improve/lua_values.hpp"
 #include "bindings/stats/dist_box.hpp"
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

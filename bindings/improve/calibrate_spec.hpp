@@ -11,8 +11,8 @@
 
 #include "bindings/improve/lua_callbacks.hpp"
 #include "kernels/improve/bootstrap.hpp"
-#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/calibration.hpp"
 #include "kernels/improve/design_bounds.hpp"
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"

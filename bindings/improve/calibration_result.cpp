@@ -7,9 +7,9 @@
 
 #include "bindings/improve/calibrate.hpp"
 #include "bindings/stats/dist_box.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/families.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

@@ -8,9 +8,9 @@
 #include <numeric>
 
 #include "bindings/improve/lua_values.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/improve/decision_matrix.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "bindings/improve/lua_values.hpp"
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

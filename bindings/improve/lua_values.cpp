@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

@@ -6,8 +6,8 @@
 
 #include "bindings/improve/lua_values.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::improve {
 

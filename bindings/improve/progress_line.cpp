@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "kernels/eval/progress_line.hpp"
 #include "luax/policy.hpp"
+#include "platform/eval/progress_line.hpp"
 
 namespace smi::bind::improve {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "kernels/core/descriptive.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::bind::stats {
 

@@ -12,12 +12,12 @@
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "bindings/stats/open_parts.hpp"
-#include "kernels/eval/progress_line.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/upool.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/eval/progress_line.hpp"
 
 namespace smi::bind::stats {
 namespace {

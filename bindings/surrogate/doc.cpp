@@ -4,11 +4,11 @@
 #include "bindings/doc.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
-#include "kernels/core/defaults.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
+#include "platform/core/defaults.hpp"
 
 namespace smi::bind {
 namespace {

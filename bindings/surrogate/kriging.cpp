@@ -134,7 +134,7 @@ int k_save(lua_State* L) {
   return lua::protect(L, "save", [&] {
     std::ostringstream text;
     smi::surrogate::kriging::save(k.model, text, path, {k.inputs, k.output});  // rendered before the file is opened
-    const CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
+    const lua::CheckedFile f = lua::policy(L).open_write(path, O_WRONLY | O_CREAT | O_TRUNC);
     if (!pathwalk::write_all(f.fd.get(), text.str()))
       throw Error(fmt::format("writing '{}' failed: {}", path, std::strerror(errno)));
     return 0;
@@ -144,8 +144,8 @@ int k_save(lua_State* L) {
 int k_load(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
   return lua::protect(L, "smi.kriging.load", [&] {
-    const CheckedFile f = lua::policy(L).open_read(path);
-    std::istringstream text(read_checked(f, path));
+    const lua::CheckedFile f = lua::policy(L).open_read(path);
+    std::istringstream text(lua::read_checked(f, path));
     KrigingBox box;
     smi::surrogate::kriging::ModelNames names;
     box.model = smi::surrogate::kriging::load(text, path, &names);

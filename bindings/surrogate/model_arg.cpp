@@ -8,8 +8,8 @@
 
 #include "bindings/stats/dist_box.hpp"
 #include "bindings/surrogate/kriging_box.hpp"
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

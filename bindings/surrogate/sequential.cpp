@@ -14,10 +14,10 @@
 
 #include "bindings/surrogate/kriging_box.hpp"
 #include "bindings/surrogate/model_arg.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::surrogate {
 namespace {

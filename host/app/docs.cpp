@@ -9,10 +9,9 @@
 
 #include "app/docs.hpp"
 #include "app/runtime.hpp"
-#include "bindings/doc.hpp"
 #include "luax/luax.hpp"
 
-namespace smi::vm {
+namespace smi::app {
 namespace {
 
 const char* const kHostDoc = R"(
@@ -125,11 +124,15 @@ void push_types(lua_State* L) {
   }
 }
 
+using BindingDocs = std::vector<lua::DocText> (*)();
+
 int smi_docs(lua_State* L) {
-  std::vector<bind::DocText> texts;
+  std::vector<lua::DocText> texts;
+  // The bindings' list came with the closure (install_docs), in a userdata upvalue.
+  const auto* source = static_cast<const BindingDocs*>(lua_touserdata(L, lua_upvalueindex(1)));
   const int r = lua::protect(L, "smi._docs", [&] {
-    texts = bind::binding_docs();
-    texts.push_back({"host/app/docs.cpp", bind::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
+    texts = (*source)();
+    texts.push_back({"host/app/docs.cpp", lua::fill(kHostDoc, {{"seed", std::to_string(kDefaultSeed)}})});
     return 0;
   });
   lua_createtable(L, 0, 2);
@@ -151,10 +154,13 @@ int smi_docs(lua_State* L) {
 
 }  // namespace
 
-void install_docs(lua_State* L) {
-  // stack: [smi] -> [smi]
-  lua_pushcfunction(L, smi_docs);
+void install_docs(lua_State* L, BindingDocs binding_docs) {
+  // stack: [smi] -> [smi]. The pointer lives in a full userdata (a function pointer is no
+  // void*): [smi, ud] -> [smi, closure].
+  auto* slot = static_cast<BindingDocs*>(lua_newuserdatauv(L, sizeof(BindingDocs), 0));
+  *slot = binding_docs;
+  lua_pushcclosure(L, smi_docs, 1);
   lua_setfield(L, -2, "_docs");
 }
 
-}  // namespace smi::vm
+}  // namespace smi::app

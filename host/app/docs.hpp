@@ -1,8 +1,13 @@
 #pragma once
 // smi._docs (see docs.cpp): the compiled-in reference texts for stdlib/smi/doc.lua.
+#include <string>
+#include <vector>
 #include <lua.hpp>
 
-namespace smi::vm {
-/// Adds smi._docs to the smi table on top of the stack. Stack: [smi] -> [smi].
-void install_docs(lua_State* L);
-}  // namespace smi::vm
+#include "luax/doc_text.hpp"
+
+namespace smi::app {
+/// Adds smi._docs to the smi table on top of the stack: the texts `binding_docs` returns and
+/// the host functions'. Stack: [smi] -> [smi].
+void install_docs(lua_State* L, std::vector<lua::DocText> (*binding_docs)());
+}  // namespace smi::app

@@ -7,18 +7,18 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "bindings/modules.hpp"
-#include "kernels/core/atomic_file.hpp"
-#include "kernels/core/cancel.hpp"
-#include "kernels/core/printable.hpp"
-#include "kernels/eval/folder_lock.hpp"
 #include "luax/load_guard.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/atomic_file.hpp"
+#include "platform/core/cancel.hpp"
+#include "platform/core/printable.hpp"
+#include "platform/eval/folder_lock.hpp"
 #include "sandbox/sandbox.hpp"
 #include "vm/library_lua.hpp"
 
-namespace smi::vm {
+namespace smi::app {
+using namespace vm;  // the VM parts (limits, watchdog, searchers, libraries) the Runtime assembles
 namespace fs = std::filesystem;
 
 namespace {
@@ -127,11 +127,11 @@ int smi_write_file(lua_State* L) {
 int smi_lock_out(lua_State* L) {
   const char* folder = luaL_optstring(L, 1, nullptr);
   lua::protect(L, "smi.lock_out", [&] {
-    const Policy& pol = lua::policy(L);
+    const lua::Policy& pol = lua::policy(L);
     // The output folder is a write root itself (made and checked by ensure_out_dir); any other
     // folder must lie below a write root.
     const std::string out = pol.ensure_out_dir().string();
-    smi::eval::lock_output_folder(!folder || resolve_path(folder) == out ? out : pol.checked_write_dir(folder));
+    smi::eval::lock_output_folder(!folder || lua::resolve_path(folder) == out ? out : pol.checked_write_dir(folder));
     return 0;
   });
   return 0;
@@ -141,9 +141,9 @@ int smi_lock_out(lua_State* L) {
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
   const Config& cfg = rt->config();
-  const Policy& pol = rt->policy();
+  const lua::Policy& pol = rt->policy();
   luaL_openlibs(L);
-  luaL_requiref(L, "smi", luaopen_smi, 1);  // stack: [rt, smi]
+  luaL_requiref(L, "smi", rt->bindings().open_smi, 1);  // stack: [rt, smi]
   lua_pushinteger(L, static_cast<lua_Integer>(cfg.seed));
   lua_setfield(L, -2, "seed");
   lua_pushboolean(L, cfg.quiet);
@@ -164,7 +164,7 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
-  install_docs(L);  // smi._docs: the reference texts (help, smi-lua doc)
+  install_docs(L, rt->bindings().docs);  // smi._docs: the reference texts (help, smi-lua doc)
   lua_pop(L, 1);
   if (cfg.sandbox) sandbox::install(L);
   return 0;
@@ -219,24 +219,24 @@ void Runtime::build_policy() {
   std::vector<std::string> libs = cfg_.lib_dirs;
   for (const auto& d : split_env_path(std::getenv("SMI_PATH"))) libs.push_back(d);
 
-  policy_.read_roots.push_back(resolve_path(script_dir.string()));
+  policy_.read_roots.push_back(lua::resolve_path(script_dir.string()));
   modules_.roots.push_back(script_dir);
   for (const auto& d : libs) {
-    policy_.read_roots.push_back(resolve_path(d));
+    policy_.read_roots.push_back(lua::resolve_path(d));
     modules_.roots.emplace_back(d);
   }
   // The stdlib folder is a root of the stdlib searcher only (searchers.cpp): scripts may not
   // read it with io.open & co., so SMI_STDLIB_DIR does not widen what a script reads.
   if (!cfg_.stdlib_dir.empty()) modules_.stdlib_dir = cfg_.stdlib_dir;
-  for (const auto& d : cfg_.allow_read) policy_.read_roots.push_back(resolve_path(d));
+  for (const auto& d : cfg_.allow_read) policy_.read_roots.push_back(lua::resolve_path(d));
 
   policy_.out_dir = cfg_.out_dir.empty() ? default_out_dir(cfg_.script) : cfg_.out_dir;
-  policy_.out_root = output_root(policy_.out_dir.string());
+  policy_.out_root = lua::output_root(policy_.out_dir.string());
   policy_.write_roots.push_back(policy_.out_root);
-  for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(resolve_path(d));
+  for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(lua::resolve_path(d));
   // --store is read-only: the evaluator opens it read-only and immutable, and a script may read
   // it but not write it (issue 13 item 5).
-  if (!cfg_.store_path.empty()) policy_.read_roots.push_back(resolve_path(cfg_.store_path));
+  if (!cfg_.store_path.empty()) policy_.read_roots.push_back(lua::resolve_path(cfg_.store_path));
   policy_.exec_allowed = cfg_.allow_exec;
 
   policy_.seed = cfg_.seed;
@@ -262,17 +262,18 @@ void Runtime::build_policy() {
   for (const auto& s : cfg_.slurm_opts) opt("slurm-opt", s);
   if (cfg_.timeout_s > 0) opt("timeout", std::to_string(cfg_.timeout_s));
   if (cfg_.max_memory_mb > 0) opt("max-memory", std::to_string(cfg_.max_memory_mb));
-  if (!cfg_.store_path.empty()) opt("store", resolve_path(cfg_.store_path).string());
+  if (!cfg_.store_path.empty()) opt("store", lua::resolve_path(cfg_.store_path).string());
   if (cfg_.dry_run) opt("dry-run", "true");
-  if (!cfg_.stdlib_dir.empty()) opt("stdlib-dir", resolve_path(cfg_.stdlib_dir).string());
+  if (!cfg_.stdlib_dir.empty()) opt("stdlib-dir", lua::resolve_path(cfg_.stdlib_dir).string());
 }
 
-Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
+Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings_(bindings), L_(nullptr) {
+  if (!bindings_.open_smi || !bindings_.docs) throw Error("Runtime: no bindings handed in (cli/bindings_root.cpp)");
   build_policy();
   // Two versions of a library or an unmet requirement stop the run before any code runs.
   // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too.
   const ProjectLibraries project = project_libraries(fs::current_path());
-  if (!project.tree.empty()) policy_.read_roots.push_back(resolve_path(project.tree.string()));
+  if (!project.tree.empty()) policy_.read_roots.push_back(lua::resolve_path(project.tree.string()));
   libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")), &project);
   libs_.check();
   limits_.timeout_s = cfg_.timeout_s;
@@ -313,7 +314,7 @@ Runtime::Runtime(Config cfg) : cfg_(std::move(cfg)), L_(nullptr) {
   install_searchers(L_, &modules_);
   install_libraries(L_, &libs_);
   if (cfg_.sandbox) {
-    // Last: the globals become a table built from the allow-list (sandbox/environment.cpp).
+    // Last: the globals become a table built from the allow-list (sandbox/sandbox_environment.cpp).
     lua_pushcfunction(L_, [](lua_State* L) -> int {
       sandbox::restrict_globals(L, *static_cast<const std::vector<std::string>*>(lua_touserdata(L, 1)));
       return 0;
@@ -411,7 +412,7 @@ int Runtime::run_file(const std::string& path, const std::vector<std::string>& a
   const bool stdin_script = path == "-";
   if (!stdin_script) {
     try {  // provenance: the script itself (a file that cannot be read fails in the load below)
-      record_.path("script", resolve_path(path).string());
+      record_.path("script", lua::resolve_path(path).string());
     } catch (const std::exception&) {
     }
   }
@@ -451,4 +452,4 @@ int Runtime::require_global(const std::string& spec) {
   return report(status);
 }
 
-}  // namespace smi::vm
+}  // namespace smi::app

@@ -7,16 +7,17 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "kernels/core/defaults.hpp"
-#include "kernels/core/run_record.hpp"
+#include "luax/doc_text.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/defaults.hpp"
+#include "platform/core/run_record.hpp"
 #include "vm/libraries.hpp"
 #include "vm/limits.hpp"
 #include "vm/searchers.hpp"
 #include "vm/watchdog.hpp"
 
-namespace smi::vm {
+namespace smi::app {
 
 using smi::kDefaultSeed;  // core/defaults.hpp
 
@@ -39,19 +40,27 @@ struct Config {
   bool sandbox = true;                // false only in tests of the runtime itself
 };
 
+/// What the runtime takes from the bindings, handed in by the program's composition root
+/// (cli/bindings_root.cpp): app never includes bindings/, so no arrow points back up the layers.
+struct Bindings {
+  lua_CFunction open_smi = nullptr;               // luaopen_smi: the smi module table
+  std::vector<lua::DocText> (*docs)() = nullptr;  // the bindings' reference texts (smi._docs)
+};
+
 /// The default output folder for a script: smi-out/<script name without .lua>.
 std::string default_out_dir(const std::string& script);
 
 class Runtime {
  public:
-  explicit Runtime(Config cfg);
+  Runtime(Config cfg, Bindings bindings);
   ~Runtime();
   Runtime(const Runtime&) = delete;
   Runtime& operator=(const Runtime&) = delete;
 
   lua_State* state() const { return L_; }
   const Config& config() const { return cfg_; }
-  const Policy& policy() const { return policy_; }
+  const lua::Policy& policy() const { return policy_; }
+  const Bindings& bindings() const { return bindings_; }
 
   /// Sets the global `arg` as lua.c does: argv[script_index] at 0, the script's arguments at
   /// 1..n, the interpreter and its options at negative indices.
@@ -71,23 +80,24 @@ class Runtime {
   /// returns the exit status for `status`.
   int report(int status);
   /// True once os.exit was called; the host must stop running chunks.
-  bool exit_requested() const { return limits_.abort == Abort::exit; }
+  bool exit_requested() const { return limits_.abort == vm::Abort::exit; }
 
  private:
   void build_policy();
   Config cfg_;
-  Policy policy_;
-  Limits limits_;
+  Bindings bindings_;
+  lua::Policy policy_;
+  vm::Limits limits_;
   lua::MemoryBudget memory_;  // vec/mat/Kriging bytes under --max-memory
-  Watchdog watchdog_;         // ends a run stuck in C code past --timeout or Ctrl-C
-  ModuleSearch modules_;
+  vm::Watchdog watchdog_;         // ends a run stuck in C code past --timeout or Ctrl-C
+  vm::ModuleSearch modules_;
   lua_State* L_;
-  LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
+  vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
   RunRecord record_;  // what the run read and ran: smi.provenance() (issue 24)
 
  public:
-  const LibrarySet& libraries() const { return libs_; }
+  const vm::LibrarySet& libraries() const { return libs_; }
   const RunRecord& record() const { return record_; }
 };
 
-}  // namespace smi::vm
+}  // namespace smi::app

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <string>
 
-#include "kernels/core/defaults.hpp"
+#include "platform/core/defaults.hpp"
 
 namespace smi::cli {
 namespace {
@@ -36,7 +36,7 @@ bool parse_positive(const std::string& s, double& out) {
 
 /// Applies one valued option; returns a usage error or "".
 std::string apply(Args& a, const std::string& name, const std::string& v) {
-  vm::Config& c = a.cfg;
+  app::Config& c = a.cfg;
   if (name == "--allow-read") c.allow_read.push_back(v);
   else if (name == "--allow-write") c.allow_write.push_back(v);
   else if (name == "--allow-exec") c.allow_exec.push_back(v);

@@ -15,7 +15,7 @@ struct Action {
 };
 
 struct Args {
-  vm::Config cfg;
+  app::Config cfg;
   std::vector<Action> actions;
   bool interactive = false;   // -i
   bool version = false;       // -v

@@ -14,8 +14,9 @@
 #include <vector>
 
 #include "app/runtime.hpp"
+#include "cli/bindings_root.hpp"
 #include "cli/commands.hpp"
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;
@@ -26,7 +27,7 @@ const char* const kDocUsage =
 }
 
 int cmd_doc(const Args& first, int argc, char** argv) {
-  vm::Config cfg = first.cfg;
+  app::Config cfg = first.cfg;
   std::vector<std::string> words;
   std::string html_dir;
   for (int i = first.script_index + 1; i < argc; ++i) {
@@ -58,7 +59,7 @@ int cmd_doc(const Args& first, int argc, char** argv) {
   cfg.script.clear();
   // The examples of smi.model.command/batch use /bin/sh as their solver (bindings/eval/doc.cpp).
   cfg.allow_exec.push_back("/bin/sh");
-  vm::Runtime rt(cfg);
+  app::Runtime rt(cfg, all_bindings());
   lua_State* L = rt.state();
   // require("smi.doc.cli").main(words)
   lua_getglobal(L, "require");

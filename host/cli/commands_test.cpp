@@ -14,8 +14,8 @@
 #include <sys/wait.h>
 
 #include "cli/commands.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/eval/process.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/eval/process.hpp"
 
 namespace smi::cli {
 namespace fs = std::filesystem;

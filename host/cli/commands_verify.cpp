@@ -17,12 +17,12 @@
 #include <variant>
 
 #include "cli/commands.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/core/json.hpp"
-#include "kernels/core/path_walk.hpp"
-#include "kernels/core/printable.hpp"
-#include "kernels/core/run_record.hpp"
-#include "kernels/core/sha256.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/json.hpp"
+#include "platform/core/path_walk.hpp"
+#include "platform/core/printable.hpp"
+#include "platform/core/run_record.hpp"
+#include "platform/core/sha256.hpp"
 #include "vm/build_info.hpp"
 #include "vm/embedded_stdlib.hpp"
 

@@ -11,10 +11,11 @@
 
 #include "app/runtime.hpp"
 #include "cli/args.hpp"
+#include "cli/bindings_root.hpp"
 #include "cli/commands.hpp"
-#include "vm/build_info.hpp"
-#include "kernels/eval/process.hpp"
+#include "platform/eval/process.hpp"
 #include "repl/repl.hpp"
+#include "vm/build_info.hpp"
 
 namespace {
 
@@ -32,7 +33,7 @@ int run(smi::cli::Args& a, int argc, char** argv) {
   // Progress output only makes sense on a terminal.
   if (!::isatty(STDOUT_FILENO) || !::isatty(STDERR_FILENO)) a.cfg.quiet = true;
 
-  smi::vm::Runtime rt(a.cfg);
+  smi::app::Runtime rt(a.cfg, smi::cli::all_bindings());
   rt.set_arg(argc, argv, a.script_index ? a.script_index : argc);
   if (a.warnings) lua_warning(rt.state(), "@on", 0);
   if (a.version) print_version();

@@ -2,7 +2,7 @@
 #include <map>
 #include <mutex>
 #include <set>
-#include "kernels/core/closest.hpp"
+#include "platform/core/closest.hpp"
 
 #include <algorithm>
 #include <cstdlib>

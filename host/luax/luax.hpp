@@ -25,7 +25,7 @@
 #include <string>
 #include <lua.hpp>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::lua {
 

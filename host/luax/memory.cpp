@@ -5,8 +5,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::lua {
 namespace {

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-namespace smi {
+namespace smi::lua {
 namespace fs = std::filesystem;
 
 fs::path resolve_path(const std::string& path) {
@@ -354,7 +354,6 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
       program, resolved.string(), program));
 }
 
-namespace lua {
 namespace {
 const char kPolicyKey = 0;  // its address is the registry key
 }
@@ -393,6 +392,5 @@ void* exit_sentinel() {
   return &tag;
 }
 
-}  // namespace lua
 
-}  // namespace smi
+}  // namespace smi::lua

@@ -9,12 +9,12 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "kernels/core/defaults.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/core/path_walk.hpp"
-#include "kernels/core/run_record.hpp"
+#include "platform/core/defaults.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/path_walk.hpp"
+#include "platform/core/run_record.hpp"
 
-namespace smi {
+namespace smi::lua {
 
 /// A path or program the policy does not allow. The message names the path (as given and as
 /// resolved), the rule, and the flag that would allow it.
@@ -131,7 +131,6 @@ std::filesystem::path output_root(const std::string& path);
 /// True if `path` equals `root` or lies below it (component-wise, both already resolved).
 bool path_within(const std::filesystem::path& path, const std::filesystem::path& root);
 
-namespace lua {
 /// The policy of this state (installed by the runtime). A state without one gets an
 /// unrestricted default, which only kernel-level tests use.
 Policy& policy(lua_State* L);
@@ -144,6 +143,5 @@ void* exit_sentinel();
 /// UTF-8 BOM and a first "#" line as luaL_loadfilex does. Returns the load status; pushes the
 /// chunk or the message.
 int load_text(lua_State* L, const std::string& text, const std::string& chunkname);
-}  // namespace lua
 
-}  // namespace smi
+}  // namespace smi::lua

@@ -49,7 +49,7 @@ bool incomplete(lua_State* L, int status) {
   return len >= n && std::strcmp(msg + len - n, kEof) == 0;
 }
 
-int run(vm::Runtime& rt) {
+int run(app::Runtime& rt) {
   lua_State* L = rt.state();
   LineReader reader(L);
   const char* p1 = reader.interactive() ? kPrompt : "";

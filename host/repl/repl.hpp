@@ -7,7 +7,7 @@
 namespace smi::repl {
 
 /// Runs until end of input (Ctrl-D) or os.exit; returns the exit status (0, or os.exit's code).
-int run(vm::Runtime& rt);
+int run(app::Runtime& rt);
 
 /// True if a load status/message means "the chunk is not finished yet" (lua.c's incomplete()).
 bool incomplete(lua_State* L, int status);

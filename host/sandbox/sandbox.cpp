@@ -85,7 +85,7 @@ int os_exit(lua_State* L) {
     code = lua_toboolean(L, 1) ? 0 : 1;
   else
     code = static_cast<int>(luaL_optinteger(L, 1, 0));
-  if (const Policy& pol = lua::policy(L); pol.request_exit) pol.request_exit(code);
+  if (const lua::Policy& pol = lua::policy(L); pol.request_exit) pol.request_exit(code);
   lua_pushlightuserdata(L, lua::exit_sentinel());
   return lua_error(L);
 }

@@ -7,10 +7,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "kernels/core/path_walk.hpp"
+#include "platform/core/path_walk.hpp"
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/sha256.hpp"  // the evaluation store's SHA-256 (one implementation in the tree)
+#include "platform/core/errors.hpp"
+#include "platform/core/sha256.hpp"  // the evaluation store's SHA-256 (one implementation in the tree)
 
 namespace smi::vm {
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "kernels/core/path_walk.hpp"
+#include "platform/core/path_walk.hpp"
 #include <sstream>
 
 namespace smi::vm {

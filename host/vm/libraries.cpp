@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <map>
 
-#include "kernels/core/errors.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/errors.hpp"
 
 #ifndef SMI_VERSION
 #define SMI_VERSION "0.0.0"
@@ -148,13 +148,13 @@ LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& given, const Pro
     set.roots_.push_back({project->tree.string(), lock ? "smi-lock.json's tree" : "the project's tree"});
   const auto make = [&](const fs::path& folder, const LibraryRoot& root) {
     Library lib;
-    lib.folder = resolve_path(folder.string());
+    lib.folder = lua::resolve_path(folder.string());
     lib.manifest = read_manifest(lib.folder / kManifestName);
     lib.root = root;
     return lib;
   };
   const auto seen = [&](const fs::path& folder) {
-    const fs::path f = resolve_path(folder.string());
+    const fs::path f = lua::resolve_path(folder.string());
     for (const Library& l : set.libs_)
       if (l.folder == f) return true;
     return false;

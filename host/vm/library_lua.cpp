@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "kernels/core/sha256.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/sha256.hpp"
 #include "vm/provenance_lua.hpp"
 #include "vm/searchers.hpp"
 
@@ -41,17 +41,17 @@ int library_searcher(lua_State* L) {
       cands.push_back(lib->folder / rel_lua);
       cands.push_back(lib->folder / rel / "init.lua");
     }
-    const Policy& pol = lua::policy(L);
+    const lua::Policy& pol = lua::policy(L);
     for (const fs::path& c : cands) {
       try {
         // opened through the policy like io.open: a module reached through a symlink out of
         // the library folders is refused, and the file read is the file checked
-        const CheckedFile f = pol.open_read(c.string());
+        const lua::CheckedFile f = pol.open_read(c.string());
         if (pol.record) pol.record->file("lua", f.path, f.fd.get());  // provenance: every module loaded
-        text = read_checked(f, c.string());
+        text = lua::read_checked(f, c.string());
         found = c.string();
         return 0;
-      } catch (const FileError&) {
+      } catch (const lua::FileError&) {
         tried += (tried.empty() ? "" : "\n\t") + ("no file '" + c.string() + "'");
       }
     }

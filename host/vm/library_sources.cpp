@@ -14,8 +14,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/sha256.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/sha256.hpp"
 #include "vm/git_commit.hpp"
 #include "vm/tar_gz.hpp"
 

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "kernels/core/cancel.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/cancel.hpp"
 
 namespace smi::vm {
 namespace {

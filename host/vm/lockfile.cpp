@@ -5,9 +5,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/json.hpp"
-#include "kernels/core/sha256.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/json.hpp"
+#include "platform/core/sha256.hpp"
 #include "vm/folder_hash.hpp"
 #include "vm/manifest.hpp"
 #include "vm/semver.hpp"

@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "kernels/core/path_walk.hpp"
+#include "platform/core/path_walk.hpp"
 
 #include <cctype>
 #include <cstdlib>
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <lua.hpp>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::vm {
 namespace {

@@ -3,9 +3,9 @@
 #include <cstring>
 #include <string>
 
-#include "kernels/core/sha256.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/sha256.hpp"
 #include "vm/build_info.hpp"
 #include "vm/embedded_stdlib.hpp"
 #include "vm/library_lua.hpp"
@@ -75,7 +75,7 @@ int smi_provenance(lua_State* L) {
     return luaL_argerror(L, 1, "expected an options table like {files = false}");
   }
   const LibrarySet& set = libs_of(L);
-  const Policy& pol = lua::policy(L);
+  const lua::Policy& pol = lua::policy(L);
   // Hash everything first (C++ work that may throw), then build the table.
   std::map<std::string, InputFile> read;
   std::vector<ProgramRun> programs;
@@ -87,7 +87,7 @@ int smi_provenance(lua_State* L) {
       programs = pol.record->programs();
     }
     if (!pol.script_path.empty()) {
-      const auto it = read.find(resolve_path(pol.script_path).string());
+      const auto it = read.find(lua::resolve_path(pol.script_path).string());
       script_hash = it != read.end() ? it->second.digest.hash : "sha256:" + sha256_file(pol.script_path);
     }
     return 0;
@@ -110,7 +110,7 @@ int smi_provenance(lua_State* L) {
   }
   if (!pol.script_path.empty()) {
     lua_newtable(L);
-    set_string(L, "path", resolve_path(pol.script_path).string());  // absolute: verify runs from anywhere
+    set_string(L, "path", lua::resolve_path(pol.script_path).string());  // absolute: verify runs from anywhere
     set_string(L, "hash", script_hash);
     lua_setfield(L, -2, "script");
   }
@@ -148,7 +148,7 @@ int smi_provenance(lua_State* L) {
 /// (a seq an earlier call returned), for smi.study's per-step inputs.
 int smi_inputs(lua_State* L) {
   const auto since = static_cast<std::uint64_t>(luaL_optinteger(L, 1, 0));
-  const Policy& pol = lua::policy(L);
+  const lua::Policy& pol = lua::policy(L);
   std::map<std::string, InputFile> read;
   std::uint64_t seq = 0;
   if (pol.record) {
@@ -190,7 +190,7 @@ int smi_digest(lua_State* L) {
       if (program) {
         d = digest_path(lua::policy(L).check_exec(path, "smi._digest").string());
       } else {
-        const CheckedFile f = lua::policy(L).open_read_unrecorded(path);
+        const lua::CheckedFile f = lua::policy(L).open_read_unrecorded(path);
         d = digest_fd(f.fd.get(), path);
       }
     } catch (const Error& e) {  // missing, unreadable or refused: a difference, not a failure
@@ -212,7 +212,7 @@ int smi_digest(lua_State* L) {
 int smi_not_input(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
   lua::protect(L, "smi._not_input", [&] {
-    if (RunRecord* r = lua::policy(L).record) r->exclude(resolve_path(path).string());
+    if (RunRecord* r = lua::policy(L).record) r->exclude(lua::resolve_path(path).string());
     return 0;
   });
   return 0;

@@ -11,7 +11,7 @@
 // smi._digest(path), smi._sha256(text).
 #include <lua.hpp>
 
-#include "kernels/core/run_record.hpp"
+#include "platform/core/run_record.hpp"
 #include "vm/libraries.hpp"
 
 namespace smi::vm {

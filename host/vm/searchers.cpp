@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "kernels/core/errors.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/errors.hpp"
 #include "vm/embedded_stdlib.hpp"
 
 namespace smi::vm {
@@ -47,10 +47,10 @@ std::optional<Found> find_in(const fs::path& dir, const fs::path& rel, std::stri
   rel_lua += ".lua";
   for (const fs::path& cand : {dir / rel_lua, dir / rel / "init.lua"}) {
     try {
-      const CheckedFile f = open(cand.string());
+      const lua::CheckedFile f = open(cand.string());
       if (RunRecord* r = record) r->file("lua", f.path, f.fd.get());  // provenance: every module loaded
-      return Found{cand.string(), read_checked(f, cand.string())};
-    } catch (const FileError&) {
+      return Found{cand.string(), lua::read_checked(f, cand.string())};
+    } catch (const lua::FileError&) {
       tried += (tried.empty() ? "" : "\n\t") + ("no file '" + cand.string() + "'");
     }
   }
@@ -77,9 +77,9 @@ int stdlib_searcher(lua_State* L) {
     std::optional<Found> found;
     lua::protect(L, "require", [&] {
       const fs::path rel = module_relpath(name);
-      const std::vector<fs::path> roots{resolve_path(ms.stdlib_dir.string())};
+      const std::vector<fs::path> roots{lua::resolve_path(ms.stdlib_dir.string())};
       found = find_in(ms.stdlib_dir, rel, tried, lua::policy(L).record, [&](const std::string& p) {
-        return open_read_within(p, roots, "the stdlib is loaded only from inside --stdlib-dir " + roots[0].string());
+        return lua::open_read_within(p, roots, "the stdlib is loaded only from inside --stdlib-dir " + roots[0].string());
       });
       return 0;
     });
@@ -112,7 +112,7 @@ int path_searcher(lua_State* L) {
   std::optional<Found> found;
   lua::protect(L, "require", [&] {
     const fs::path rel = module_relpath(name);
-    const Policy& pol = lua::policy(L);
+    const lua::Policy& pol = lua::policy(L);
     for (const fs::path& root : ms.candidate_roots(name)) {
       found = find_in(root, rel, tried, pol.record, [&](const std::string& p) { return pol.open_read(p); });
       if (found) break;

@@ -2,7 +2,7 @@
 
 #include <cctype>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::vm {
 namespace {

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::vm {
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "kernels/core/cancel.hpp"
+#include "platform/core/cancel.hpp"
 
 namespace smi::vm {
 

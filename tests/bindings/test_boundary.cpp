@@ -7,8 +7,10 @@
 #include <string>
 
 #include "app/runtime.hpp"
-#include "kernels/core/descriptive.hpp"
+#include "bindings/doc.hpp"
+#include "bindings/modules.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace {
 
@@ -66,7 +68,7 @@ int raw_call(lua_State* L) {
 }
 
 struct Fixture {
-  smi::vm::Runtime rt{smi::vm::Config{}};
+  smi::app::Runtime rt{smi::app::Config{}, {luaopen_smi, smi::bind::binding_docs}};
   lua_State* L = rt.state();
   Fixture() {
     lua_register(L, "kernel_quantile", kernel_quantile);
@@ -149,7 +151,7 @@ TEST_CASE_METHOD(Fixture, "no C++ destructor is skipped when a Lua error unwinds
 }
 
 TEST_CASE("the runtime reports a kernel error with the script's location and exits 1") {
-  smi::vm::Runtime rt{smi::vm::Config{}};
+  smi::app::Runtime rt{smi::app::Config{}, {luaopen_smi, smi::bind::binding_docs}};
   lua_register(rt.state(), "kernel_quantile", kernel_quantile);
   CHECK(rt.run_string("kernel_quantile(2)", "=study") == 1);
   CHECK(rt.run_string("kernel_quantile(1)", "=study") == 0);
@@ -160,7 +162,7 @@ TEST_CASE("the runtime reports a kernel error with the script's location and exi
 TEST_CASE("a boxed C++ object is destroyed by __gc and by __close, exactly once") {
   g_alive = 0;
   {
-    smi::vm::Runtime rt{smi::vm::Config{}};
+    smi::app::Runtime rt{smi::app::Config{}, {luaopen_smi, smi::bind::binding_docs}};
     lua_State* L = rt.state();
     static const luaL_Reg no_methods[] = {{nullptr, nullptr}};
     smi::lua::register_type<Counted>(L, "test.Counted", no_methods);

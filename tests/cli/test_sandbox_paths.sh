@@ -5,7 +5,7 @@
 # normalised the rest as text and opened the *name*): a missing folder then "..", an over-long
 # component, a dangling symlink in the output folder, a hard link, a symlink swapped between
 # check and open. The fixed runtime walks each path component by component through
-# descriptors and opens through the folder it checked (host/kernels/core/path_walk.hpp).
+# descriptors and opens through the folder it checked (host/platform/core/path_walk.hpp).
 source "$(dirname "$0")/lib.sh"
 
 mkdir -p study out outside stdlib/smi

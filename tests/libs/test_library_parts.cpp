@@ -10,7 +10,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 #include "vm/folder_hash.hpp"
 #include "vm/git_commit.hpp"
 #include "vm/libraries.hpp"

@@ -61,7 +61,7 @@ T.case("csv: a bad number names the file, line and column", function()
 end)
 
 T.case("csv: a quoted header with the separator reads as the solver-output parser reads it", function()
-  -- the same text as tests/kernels/eval/test_text_parsers.cpp's RFC 4180 case (csv_column)
+  -- the same text as tests/platform/eval/test_text_parsers.cpp's RFC 4180 case (csv_column)
   local p = smi.out("quoted_header.csv")
   local f = assert(io.open(p, "wb"))
   f:write('\xEF\xBB\xBF"load, N",freq\r\n1200,29.6\r\n"1500","33.6"\r\n')

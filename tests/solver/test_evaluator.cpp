@@ -8,8 +8,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "kernels/eval/evaluator.hpp"
-#include "kernels/eval/text_parsers.hpp"
+#include "platform/eval/evaluator.hpp"
+#include "platform/eval/text_parsers.hpp"
 
 using namespace smi::eval;
 namespace fs = std::filesystem;

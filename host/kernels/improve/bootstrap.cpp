@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "kernels/core/descriptive.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
+#include "platform/core/descriptive.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::improve {
 

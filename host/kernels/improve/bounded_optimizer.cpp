@@ -9,9 +9,9 @@
 #include <limits>
 #include <nlopt.hpp>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
-#include "kernels/core/thread_pool.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::improve {
 

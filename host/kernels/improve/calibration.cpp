@@ -8,9 +8,9 @@
 #include <new>
 #include <tuple>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/improve/calibration_progress.hpp"
 #include "kernels/improve/overlap_start.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

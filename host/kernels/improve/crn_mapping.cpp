@@ -7,10 +7,10 @@
 #include <numeric>
 #include <vector>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/families.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::improve {
 

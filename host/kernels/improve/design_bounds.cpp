@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/core/normal.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::improve {
 

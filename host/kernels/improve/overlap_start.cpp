@@ -9,8 +9,8 @@
 #include <tuple>
 #include <vector>
 
-#include "kernels/core/descriptive.hpp"
 #include "kernels/improve/input_derivatives.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::improve {
 

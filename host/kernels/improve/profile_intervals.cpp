@@ -6,9 +6,9 @@
 #include <cmath>
 #include <map>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
 #include "kernels/stats/special.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::improve {
 

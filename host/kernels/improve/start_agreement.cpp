@@ -7,7 +7,7 @@
 #include <limits>
 #include <numeric>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/core/descriptive.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
+#include "platform/core/descriptive.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::improve {
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
 #include "kernels/stats/pair_sums.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::stats {
 namespace {

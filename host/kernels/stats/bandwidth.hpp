@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/core/descriptive.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <utility>
 
-#include "kernels/core/rng.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::stats {
 

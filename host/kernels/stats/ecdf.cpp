@@ -4,8 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/descriptive.hpp"
-#include "kernels/core/errors.hpp"
+#include "platform/core/descriptive.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::stats {
 

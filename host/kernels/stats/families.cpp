@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/special.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::stats {
 namespace {

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/special.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::stats {
 namespace {

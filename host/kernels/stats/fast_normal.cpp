@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "kernels/core/normal.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::stats::detail {
 

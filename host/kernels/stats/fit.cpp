@@ -5,10 +5,10 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/nelder_mead.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::stats {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

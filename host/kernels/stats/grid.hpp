@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <initializer_list>
 
-#include "kernels/core/defaults.hpp"
-#include "kernels/core/descriptive.hpp"
+#include "platform/core/defaults.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
-#include "kernels/stats/special.hpp"
 #include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/special.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::stats {
 

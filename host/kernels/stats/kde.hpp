@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/core/defaults.hpp"
-#include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
 #include "kernels/stats/grid.hpp"
+#include "platform/core/defaults.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

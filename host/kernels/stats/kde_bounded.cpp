@@ -3,10 +3,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/metrics.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::stats {
 namespace {

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
-#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/fast_normal.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/kde_uniform_grid.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::stats {
 namespace {

@@ -5,9 +5,9 @@
 #include <limits>
 #include <vector>
 
-#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/fast_normal.hpp"
 #include "kernels/stats/kde.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::stats::detail {
 namespace {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "kernels/core/descriptive.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats::detail {
 

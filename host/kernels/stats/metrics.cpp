@@ -5,10 +5,10 @@
 #include <fmt/format.h>
 #include <limits>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/ecdf.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/quadrature.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::stats {
 namespace {

@@ -7,10 +7,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
 #include "kernels/stats/grid.hpp"
 #include "kernels/stats/pdf_overlap.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

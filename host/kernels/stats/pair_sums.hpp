@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "kernels/core/descriptive.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats::detail {
 

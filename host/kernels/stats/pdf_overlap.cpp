@@ -4,8 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/kde.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::stats {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "kernels/core/normal.hpp"
+#include "platform/core/normal.hpp"
 
 namespace smi::stats {
 namespace {

@@ -10,12 +10,12 @@
 #include <thread>
 #include <tuple>
 
-#include "kernels/core/cancel.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
-#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/quadrature.hpp"
 #include "kernels/stats/upool_asymptotic.hpp"
+#include "platform/core/cancel.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::stats {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/defaults.hpp"
-#include "kernels/core/descriptive.hpp"
 #include "kernels/stats/distribution.hpp"
+#include "platform/core/defaults.hpp"
+#include "platform/core/descriptive.hpp"
 
 namespace smi::stats {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::kriging {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/surrogate/fast_exp.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::kriging {
 

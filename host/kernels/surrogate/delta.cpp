@@ -6,12 +6,12 @@
 #include <numeric>
 #include <vector>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/grid.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::surrogate::delta {
 namespace {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/defaults.hpp"
 #include "kernels/surrogate/correlation.hpp"
 #include "kernels/surrogate/regression.hpp"
+#include "platform/core/defaults.hpp"
 
 namespace smi::surrogate::kriging {
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::kriging::detail {
 namespace {

@@ -1,6 +1,6 @@
 // Multistart L-BFGS on ln psi in log-parameters.
-#include "kernels/core/cancel.hpp"
 #include "kernels/surrogate/ml_search.hpp"
+#include "platform/core/cancel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <numeric>
 #include <vector>
 
-#include "kernels/core/thread_pool.hpp"
 #include "kernels/surrogate/doe.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::surrogate::kriging::detail {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::polyfit {
 namespace {

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
-#include "kernels/core/thread_pool.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::surrogate::propagate {
 

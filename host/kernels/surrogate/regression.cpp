@@ -1,7 +1,7 @@
 // Polynomial trend bases in DACE's column order.
 #include "kernels/surrogate/regression.hpp"
 
-#include "kernels/core/errors.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::kriging {
 

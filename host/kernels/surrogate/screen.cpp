@@ -5,12 +5,12 @@
 #include <cmath>
 #include <numeric>
 
-#include "kernels/core/descriptive.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/grid.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
+#include "platform/core/descriptive.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::screen {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/defaults.hpp"
 #include "kernels/surrogate/propagate.hpp"
+#include "platform/core/defaults.hpp"
 
 namespace smi::surrogate::screen {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/surrogate/doe.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
 
 namespace smi::surrogate::screen {
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/surrogate/correlation.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::surrogate::kriging {
 

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/core/rng.hpp"
+#include "platform/core/rng.hpp"
 #include "solve.hpp"
 
 namespace {

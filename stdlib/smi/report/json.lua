@@ -1,5 +1,5 @@
 --- smi.report.json: results.json for reports and studies, a thin layer over smi.json (the one
--- JSON codec, host/kernels/core/json.hpp). What it adds is the results-file rule:
+-- JSON codec, host/platform/core/json.hpp). What it adds is the results-file rule:
 --   * non-finite numbers are kept, in the codec's documented encoding: +/-inf as 1e999/-1e999
 --     (valid JSON that every IEEE reader reads as inf), NaN as null, which decode reads back as NaN
 --   * indent is a string per level ("  "); root names the value in error paths ("value")

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
+#include "platform/core/errors.hpp"
 
 using namespace smi::improve;
 

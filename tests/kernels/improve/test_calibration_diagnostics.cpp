@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/improve/bootstrap.hpp"
 #include "kernels/improve/design_bounds.hpp"
 #include "kernels/improve/identifiability.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::improve;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/improve/calibration.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::improve;
 

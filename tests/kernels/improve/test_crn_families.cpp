@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/normal.hpp"
 #include "kernels/improve/crn_mapping.hpp"
 #include "kernels/stats/families.hpp"
+#include "platform/core/normal.hpp"
 
 using namespace smi::improve;
 

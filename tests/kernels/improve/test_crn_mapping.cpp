@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/normal.hpp"
 #include "kernels/improve/crn_mapping.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/normal.hpp"
 
 using namespace smi::improve;
 

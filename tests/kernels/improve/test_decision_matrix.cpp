@@ -1,8 +1,8 @@
 // Weighted decision matrix (spec §6) against spec §8.5.
 #include <catch2/catch.hpp>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/improve/decision_matrix.hpp"
+#include "platform/core/errors.hpp"
 
 using namespace smi::improve;
 

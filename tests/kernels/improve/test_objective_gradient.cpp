@@ -6,12 +6,12 @@
 
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/input_derivatives.hpp"
 #include "kernels/improve/overlap_start.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/stats/bandwidth.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::improve;
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/improve/profile_intervals.hpp"
 #include "kernels/stats/special.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::improve;
 

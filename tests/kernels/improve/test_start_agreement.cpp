@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/start_agreement.hpp"
+#include "platform/core/errors.hpp"
 
 using namespace smi::improve;
 

@@ -3,11 +3,11 @@
 // worker threads, instead of running on (49 s past --timeout 3 before).
 #include <catch2/catch.hpp>
 
-#include "kernels/core/cancel.hpp"
-#include "kernels/core/errors.hpp"
-#include "kernels/core/thread_pool.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/upool.hpp"
+#include "platform/core/cancel.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/thread_pool.hpp"
 
 using namespace smi;
 

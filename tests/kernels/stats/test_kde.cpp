@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/normal.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
+#include "platform/core/normal.hpp"
+#include "platform/core/rng.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

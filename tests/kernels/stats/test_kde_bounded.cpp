@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde_bounded.hpp"
+#include "platform/core/rng.hpp"
 
 using Catch::Matchers::WithinAbs;
 

@@ -2,11 +2,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/normal.hpp"
 #include "kernels/stats/ecdf.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/quadrature.hpp"
+#include "platform/core/normal.hpp"
 
 using Catch::Matchers::WithinAbs;
 

@@ -2,10 +2,10 @@
 // the Kriging likelihood search and block prediction throw smi::Interrupted with the reason.
 #include <catch2/catch.hpp>
 
-#include "kernels/core/cancel.hpp"
-#include "kernels/core/errors.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
+#include "platform/core/cancel.hpp"
+#include "platform/core/errors.hpp"
 
 using namespace smi;
 

@@ -3,11 +3,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/surrogate/fused_mean.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/propagate.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::surrogate::kriging;
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/surrogate/likelihood.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::surrogate::kriging;
 

@@ -6,8 +6,8 @@
 #include <iterator>
 #include <cstdio>
 
-#include "kernels/core/rng.hpp"
 #include "kernels/surrogate/kriging.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::surrogate::kriging;
 

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <memory>
 
-#include "kernels/core/normal.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/surrogate/delta.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
+#include "platform/core/normal.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi;
 

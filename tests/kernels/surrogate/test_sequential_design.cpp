@@ -5,10 +5,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "kernels/core/errors.hpp"
-#include "kernels/core/rng.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
+#include "platform/core/errors.hpp"
+#include "platform/core/rng.hpp"
 
 using namespace smi::surrogate::kriging;
 
