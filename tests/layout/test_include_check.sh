@@ -29,6 +29,7 @@ plant host/sandbox/sandbox_files.cpp '#include "vm/limits.hpp"'   # the old vm <
 plant host/repl/printer.cpp '#include "stats/kde.hpp"'    # the old, unprefixed spelling
 mkdir -p "$work/tree/tests/kernels/stats"
 plant host/app/runtime.cpp '#include "bindings/modules.hpp"'   # the old arrow back up the tree
+plant host/cli/commands_doc.cpp '#include "bindings/doc.hpp"'  # a second composition root
 printf '// fixture\n#include <vector>\n#include "app/runtime.hpp"\n' >"$work/tree/tests/kernels/stats/test_planted.cpp"
 
 if "$cmake" -DROOT="$work/tree" -P "$check" >"$work/planted.log" 2>&1; then
@@ -46,9 +47,10 @@ expect 'host/sandbox/sandbox_files.cpp:1: #include "vm/limits.hpp" -- sandbox se
 expect 'host/repl/printer.cpp:1: #include "stats/kde.hpp" -- every project include names its layer first'
 expect 'tests/kernels/stats/test_planted.cpp:3: #include "app/runtime.hpp" -- platform and kernels see only the areas they link'
 expect 'host/app/runtime.cpp:1: #include "bindings/modules.hpp" -- app sees platform, kernels, luax, vm, sandbox and app; never bindings'
-expect '9 forbidden include(s)'
+expect 'host/cli/commands_doc.cpp:1: #include "bindings/doc.hpp" -- in host/, only cli/bindings_root.cpp (the composition root) includes bindings/'
+expect '10 forbidden include(s)'
 n=$(grep -c ' -- ' "$work/planted.log")
-[[ $n -eq 9 ]] || { cat "$work/planted.log"; fail "expected 9 reports, got $n"; }
+[[ $n -eq 10 ]] || { cat "$work/planted.log"; fail "expected 10 reports, got $n"; }
 
 # 3. A layer table with a cycle is refused (vm would see app, which sees vm).
 sed 's/^set(SEES_vm \${_kernels} luax)$/set(SEES_vm ${_kernels} luax app)/' "$check" >"$work/cyclic.cmake"
@@ -56,4 +58,4 @@ cp "$src/cmake/source_lines.cmake" "$work/"  # the modified copy includes its he
 grep -q 'luax app)' "$work/cyclic.cmake" || fail "could not make the cyclic table (SEES_vm changed?)"
 if "$cmake" -DROOT="$src" -P "$work/cyclic.cmake" >"$work/cyclic.log" 2>&1; then fail "a cyclic layer table passed"; fi
 grep -q 'vm sees app, which is not below it' "$work/cyclic.log" || { cat "$work/cyclic.log"; fail "no cycle report"; }
-echo "ok: include check passes the tree and reports 9 planted forbidden includes and a cyclic table"
+echo "ok: include check passes the tree and reports 10 planted forbidden includes and a cyclic table"
