@@ -118,6 +118,8 @@ std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State
     }
   }
   lua_pop(L, 1);
+  // by name (sbatch's list kept in its order): which option a refusal names is the same every run
+  std::stable_sort(exec_opts.begin(), exec_opts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return exec_opts;
 }
 

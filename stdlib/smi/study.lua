@@ -25,6 +25,7 @@
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
+local sorted_keys = inputs.sorted_keys
 
 local doc = require "smi.doc"
 doc.add[==[
@@ -284,7 +285,9 @@ function Study:_why_not_current(name, saved, live_hash)
       return f and ("step '%s' read %s"):format(name, f)
     end)()
     if not why then
-      for dep, h in pairs(s.inputs.results or {}) do
+      local recorded = s.inputs.results or {}
+      for _, dep in ipairs(sorted_keys(recorded)) do -- name order: the reason given is the same every run
+        local h = recorded[dep]
         local now = live_hash[dep] or (saved.steps[dep] and saved.steps[dep].result_hash)
         if live_hash[dep] == nil then
           local w = self:_why_not_current(dep, saved, live_hash)
@@ -539,7 +542,7 @@ end
 function Study:_check_kept(selected, saved)
   for _, st in ipairs(self.steps) do
     local rec = selected[st.name] and saved.steps[st.name]
-    for dep in pairs(rec and rec.inputs and rec.inputs.results or {}) do
+    for _, dep in ipairs(sorted_keys(rec and rec.inputs and rec.inputs.results)) do -- the same error every run
       if not selected[dep] and saved.steps[dep] then
         local why = self:_why_not_current(dep, saved, self.live_hash)
         if why then
@@ -590,7 +593,8 @@ function Study:_provenance(saved)
   local p = provenance()
   if not p then return nil end
   p.files = p.files or {}
-  for _, s in pairs(saved.steps or {}) do
+  for _, name in ipairs(sorted_keys(saved.steps)) do -- a path two steps recorded: the same one wins every run
+    local s = saved.steps[name]
     for path, d in pairs(s.inputs and s.inputs.files or {}) do
       if p.files[path] == nil then p.files[path] = d end
     end
