@@ -10,7 +10,8 @@
 #   2. a smi.study with a report whose steps return 8 values JSON cannot hold, 8 Krigings and
 #      8-key tables, then the error a partial run gives after all 8 of its data files changed;
 #   3. messages that name one culprit of several (smi.json, unknown options, a model's columns,
-#      smi.improve fields and revision clashes, smi.options suggestions, the figure check).
+#      a solver model's constants/env/executor, smi.improve fields and revision clashes,
+#      smi.options suggestions, the figure check).
 # Removed before comparing, as legitimately run-dependent (nothing else is):
 #   results.json  "seconds": N, "wall_seconds": N          (step timings)
 #   report        "Generated YYYY-MM-DD HH:MM UTC"           (the date)
@@ -176,6 +177,13 @@ local m = smi.model.lua{ name = "m", inputs = { "a" }, outputs = { "y" }, fn = f
 local X = many("not_an_input_", smi.vec{ 1 })
 X.a = smi.vec{ 1 }
 say("model column", pcall(m.evaluate, m, X))
+-- a solver model's constants, env and executor tables
+for _, field in ipairs({ "constants", "env", "executor" }) do
+  local decl = { name = "c", inputs = { "x" }, outputs = { "y" }, command = { "/bin/true" }, template_string = "{{x}}",
+                 deck = "in.txt", parse = function() return {} end }
+  decl[field] = many(field .. "_", true)
+  say("solver " .. field, pcall(smi.model.command, decl))
+end
 -- smi.improve: a declaration's unknown fields
 say("improve field", pcall(require("smi.improve.declare").check, many("unknown_field_", 1)))
 -- smi.options: a misspelt option equally close to several
