@@ -70,8 +70,8 @@ options:
   quiet = nil          -- no progress lines (default: smi.quiet)
   seed = smi.seed      -- recorded in results.json
   volatile = nil       -- result keys that differ between identical runs (timings, counts of reused
-                       -- solver runs), e.g. {"wall_seconds"}: left out of the result hash that
-                       -- decides whether later steps are stale (every step; steps add their own)
+                       -- solver runs), e.g. {"wall_seconds"}: left out, at any depth, of the result
+                       -- hash that decides whether later steps are stale (every step; steps add their own)
   report = nil         -- {title =, subtitle =, ...}: creates ctx.report (smi.report), written at the end
 returns: a study with the methods smi.study:step, :run, :load
 errors: no name ("expects {name = \"...\", out = folder}")
@@ -405,17 +405,22 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
 end
 
 -- The hash of a step's saved result that later steps record when they read it: every key but the
--- volatile ones (timings and the like, which differ between identical runs and would make every
--- later step stale after any rerun).
+-- volatile ones, at any depth (timings and the like, which differ between identical runs and would
+-- make every later step stale after any rerun; a timing inside a list of records counts too).
+local function without(v, skip)
+  if type(v) ~= "table" then return v end
+  local c = {}
+  for k, x in pairs(v) do if not skip[k] then c[k] = without(x, skip) end end
+  return c
+end
+
 function Study:_result_hash(name, result)
   local skip = {}
   for _, k in ipairs(self.volatile) do skip[k] = true end
   local st = self.by_name[name]
   for _, k in ipairs(st and st.opts.volatile or {}) do skip[k] = true end
   if type(result) ~= "table" or next(skip) == nil then return inputs.hash(result) end
-  local kept = {}
-  for k, v in pairs(result) do if not skip[k] then kept[k] = v end end
-  return inputs.hash(kept)
+  return inputs.hash(without(result, skip))
 end
 
 -- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what
