@@ -57,9 +57,10 @@ options:
   nonfinite = "refuse"  -- or "encode": inf as 1e999, -inf as -1e999, NaN as null
   skip = false          -- leave out what JSON cannot hold; their paths are the second result
   root = "$"            -- the name of the value in error paths
-returns: a string (and, with skip, a list of the paths left out)
+returns: a string (and, with skip, a list of the paths left out, in key order)
 errors: a value JSON cannot hold (a function, a userdata other than vec, NaN or infinity unless
-  nonfinite = "encode", a table mixing keys), named by its path in the value; a cycle
+  nonfinite = "encode", a table mixing keys), named by its path in the value (the first in key
+  order, the same every run); a cycle
 example:
   print(smi.json.encode({name = "E", values = {1, 2.5}}))
 

@@ -144,6 +144,7 @@ class ToJson {
     // An array when the keys are exactly 1..n (an empty table too).
     const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L_, idx));
     std::vector<Key> keys;
+    std::string bad_key;
     bool array = true;
     lua_pushnil(L_);
     while (lua_next(L_, idx)) {
@@ -158,11 +159,12 @@ class ToJson {
       } else if (lua_type(L_, -1) == LUA_TNUMBER) {
         const lua_Number v = lua_tonumber(L_, -1);
         keys.push_back({lua_isinteger(L_, -1) ? std::to_string(lua_tointeger(L_, -1)) : number_text(v), false, v});
-      } else {
-        throw Error(fmt::format("value at {} has a key of type {}; JSON object keys are strings", where,
-                                luaL_typename(L_, -1)));
+      } else if (bad_key.empty() || std::strcmp(luaL_typename(L_, -1), bad_key.c_str()) < 0) {
+        bad_key = luaL_typename(L_, -1);  // the error names the same type every run, whatever the traversal order
       }
     }
+    if (!bad_key.empty())
+      throw Error(fmt::format("value at {} has a key of type {}; JSON object keys are strings", where, bad_key));
     if (array) {
       json::Array a;
       a.reserve(static_cast<std::size_t>(n));
@@ -174,6 +176,12 @@ class ToJson {
       }
       out = std::move(a);
     } else {
+      // Values converted in key order (the writer's), not the table's traversal order, which
+      // changes from process to process: the list `skip` fills and the error naming the first
+      // value JSON cannot hold are then the same every run.
+      std::stable_sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+        return a.text != b.text ? a.text < b.text : a.is_string < b.is_string;
+      });
       json::Object o;
       for (const Key& k : keys) {
         push_key(k);

@@ -4,6 +4,7 @@
 // table itself only for a name that differs from a member by case (smi.Kde): stdlib code probes
 // smi.<field> == nil for optional host fields, which must stay nil. smi._closest exposes the
 // same suggestion logic (platform/core/closest.hpp) to the stdlib (smi-lua doc NAME, options).
+#include <algorithm>
 #include <map>
 #include <set>
 #include <string>
@@ -28,6 +29,7 @@ std::vector<std::string> keys_of(lua_State* L, int idx) {
     }
     lua_pop(L, 1);
   }
+  std::sort(out.begin(), out.end());  // closest() breaks ties in this order: the same suggestion every run
   return out;
 }
 

@@ -1,8 +1,11 @@
 // The smi.model type: m:evaluate(X), m:plan(X), m.inputs, m.outputs, m.name, m.kind, and the
 // conversions shared by every kind of model (design matrix in, Y and info out).
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
@@ -117,18 +120,21 @@ Eigen::MatrixXd design_of(lua_State* L, int idx, const Model& m) {
   if (lua_type(L, idx) == LUA_TTABLE && !lua::test_vec(L, idx) && !lua::test_mat(L, idx) &&
       lua_getfield(L, idx, m.inputs[0].c_str()) != LUA_TNIL) {
     lua_pop(L, 1);
-    // Named columns: catch typos in the names first.
+    // Named columns: catch typos in the names first, in name order (of several, the one named
+    // is then the same every run: the table's traversal order changes from process to process).
+    std::vector<std::string> keys;
     lua_pushnil(L);
     while (lua_next(L, idx)) {
       lua_pop(L, 1);
-      if (lua_type(L, -1) == LUA_TSTRING) {
-        const std::string k = lua_tostring(L, -1);
-        bool known = false;
-        for (const auto& in : m.inputs) known = known || in == k;
-        if (!known)
-          luaL_error(L, "X has a column '%s' that is not an input of model '%s' (inputs: %s)", k.c_str(), m.name.c_str(),
-                     joined(m.inputs).c_str());
-      }
+      if (lua_type(L, -1) == LUA_TSTRING) keys.emplace_back(lua_tostring(L, -1));
+    }
+    std::sort(keys.begin(), keys.end());
+    for (const std::string& k : keys) {
+      bool known = false;
+      for (const auto& in : m.inputs) known = known || in == k;
+      if (!known)
+        luaL_error(L, "X has a column '%s' that is not an input of model '%s' (inputs: %s)", k.c_str(), m.name.c_str(),
+                   joined(m.inputs).c_str());
     }
     Eigen::MatrixXd X;
     for (Eigen::Index j = 0; j < d; ++j) {

@@ -94,15 +94,34 @@ std::vector<std::string> read_command(lua_State* L, lua::Options& o, bool batch,
   return argv;
 }
 
+// The keys of the table at the top, which must all be strings (else the error "fname: what"),
+// sorted: the entries are checked in name order, so that of several mistakes the one named is
+// the same every run (a table's traversal order changes from process to process).
+std::vector<std::string> sorted_names(lua_State* L, const char* fname, const char* what) {
+  std::vector<std::string> keys;
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) != LUA_TSTRING) luaL_error(L, "%s: %s", fname, what);
+    keys.emplace_back(lua_tostring(L, -1));
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+/// Pushes t[k] (raw) for the table at the top.
+void push_entry(lua_State* L, const std::string& k) {
+  lua_pushlstring(L, k.data(), k.size());
+  lua_rawget(L, -2);
+}
+
 // executor = {kind = "local", throttle = 4, ...}: may only narrow --executor/--slurm-opt (apply_executor).
 std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State* L, lua::Options& o, const char* fname) {
   std::vector<std::pair<std::string, std::string>> exec_opts;
   if (const int t = o.push("executor"); t != LUA_TNIL) {
     if (t != LUA_TTABLE) luaL_error(L, "%s: option 'executor' must be a table {kind = \"slurm\", partition = ..., ...}, got %s", fname, luaL_typename(L, -1));
-    lua_pushnil(L);
-    while (lua_next(L, -2)) {
-      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: executor option keys must be names", fname);
-      const std::string k = lua_tostring(L, -2);
+    for (const std::string& k : sorted_names(L, fname, "executor option keys must be names")) {
+      push_entry(L, k);
       // Which programs run as the scheduler's tools is the user's call, not the study's.
       if (k == "bin_dir") luaL_error(L, "%s: executor option 'bin_dir' may only be given on the command line (--slurm-opt bin_dir=...)", fname);
       if (lua_type(L, -1) == LUA_TTABLE && k == "sbatch") {
@@ -129,10 +148,8 @@ std::vector<std::pair<std::string, std::string>> read_env(lua_State* L, lua::Opt
   std::vector<std::pair<std::string, std::string>> env;
   if (const int t = o.push("env"); t != LUA_TNIL) {
     if (t != LUA_TTABLE) luaL_error(L, "%s: option 'env' must be a table {NAME = \"value\"}, got %s", fname, luaL_typename(L, -1));
-    lua_pushnil(L);
-    while (lua_next(L, -2)) {
-      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: env keys must be variable names", fname);
-      const std::string k = lua_tostring(L, -2);
+    for (const std::string& k : sorted_names(L, fname, "env keys must be variable names")) {
+      push_entry(L, k);
       if (lua_type(L, -1) != LUA_TSTRING && lua_type(L, -1) != LUA_TNUMBER)
         luaL_error(L, "%s: env.%s must be a string or a number, got %s", fname, k.c_str(), luaL_typename(L, -1));
       size_t n = 0;
@@ -154,10 +171,8 @@ std::vector<std::pair<std::string, std::string>> read_env(lua_State* L, lua::Opt
 void read_constants(lua_State* L, lua::Options& o, const char* fname, se::CommandConfig& c) {
   if (o.push("constants") != LUA_TNIL) {
     if (!lua_istable(L, -1)) luaL_error(L, "%s: option 'constants' must be a table {name = value}", fname);
-    lua_pushnil(L);
-    while (lua_next(L, -2)) {
-      if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: constants must have string keys", fname);
-      const std::string k = lua_tostring(L, -2);
+    for (const std::string& k : sorted_names(L, fname, "constants must have string keys")) {
+      push_entry(L, k);
       if (lua_type(L, -1) == LUA_TNUMBER) c.constants[k] = se::DeckValue::num(lua_tonumber(L, -1));
       else if (lua_type(L, -1) == LUA_TSTRING) c.constants[k] = se::DeckValue::str(lua_tostring(L, -1));
       else luaL_error(L, "%s: constant '%s' must be a number or a string, got %s", fname, k.c_str(), luaL_typename(L, -1));

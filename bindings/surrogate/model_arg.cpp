@@ -30,15 +30,21 @@ Eigen::MatrixXd read_outputs(lua_State* L, Eigen::Index n, std::vector<std::stri
   } else if (lua_istable(L, top) && lua_rawlen(L, top) > 0) {
     cols.emplace_back("y", lua::to_vector(L, top, "model result"));
   } else if (lua_istable(L, top)) {
+    // read in name order: of several outputs that are not vectors the one named is the same every
+    // run (the table's traversal order changes from process to process)
+    std::vector<std::string> keys;
     lua_pushnil(L);
     while (lua_next(L, top)) {
-      if (lua_type(L, -2) == LUA_TSTRING) {
-        const std::string key = lua_tostring(L, -2);
-        cols.emplace_back(key, lua::to_vector(L, lua_gettop(L), key.c_str()));
-      }
+      if (lua_type(L, -2) == LUA_TSTRING) keys.emplace_back(lua_tostring(L, -2));
       lua_pop(L, 1);
     }
-    std::sort(cols.begin(), cols.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    std::sort(keys.begin(), keys.end());
+    for (const std::string& key : keys) {
+      lua_pushlstring(L, key.data(), key.size());
+      lua_rawget(L, top);
+      cols.emplace_back(key, lua::to_vector(L, lua_gettop(L), key.c_str()));
+      lua_pop(L, 1);
+    }
   } else {
     throw InvalidArgument(std::string("the model returned a ") + luaL_typename(L, top) +
                           "; expected a vec, a mat or a table {name = vec}");
@@ -85,18 +91,26 @@ ModelArg kriging_table(lua_State* L, int idx, const char* fname, ModelArg m) {
   std::vector<std::pair<std::string, KrigingBox*>> parts;
   lua_newtable(L);
   const int held = lua_gettop(L);
+  std::string bad;  // of several bad entries, the first by name: the same every run
+  bool any_bad = false;
   lua_pushnil(L);
   while (lua_next(L, idx)) {
     KrigingBox* k = test_kriging(L, -1);
-    if (lua_type(L, -2) != LUA_TSTRING || !k)
-      luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname,
-                 lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string");
+    if (lua_type(L, -2) != LUA_TSTRING || !k) {
+      const std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "not a string";
+      if (!any_bad || key < bad) bad = key;
+      any_bad = true;
+      lua_pop(L, 1);
+      continue;
+    }
     parts.emplace_back(lua_tostring(L, -2), k);
     lua_pushvalue(L, -2);
     lua_pushvalue(L, -2);
     lua_rawset(L, held);
     lua_pop(L, 1);
   }
+  if (any_bad)
+    luaL_error(L, "%s: model table must map output names to smi.kriging models (key %s)", fname, bad.c_str());
   lua_replace(L, idx);
   if (parts.empty()) luaL_error(L, "%s: model table is empty", fname);
   std::sort(parts.begin(), parts.end(), [](auto& a, auto& b) { return a.first < b.first; });

@@ -70,18 +70,29 @@ void read_rmse_targets(lua_State* L, int rmse_idx, const std::vector<std::string
   so.rmse_target = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(outputs.size()), std::numeric_limits<double>::quiet_NaN());
   std::string names;
   for (const std::string& n : outputs) names += (names.empty() ? "" : ", ") + n;
+  // Read first, checked in key order: of several mistakes the one named is the same every run
+  // (the table's traversal order changes from process to process).
+  struct Entry {
+    std::string key;
+    bool named;
+    double v;
+  };
+  std::vector<Entry> entries;
   lua_pushnil(L);
   while (lua_next(L, rmse_idx)) {
     const bool named = lua_type(L, -2) == LUA_TSTRING;
-    const std::string key = named ? lua_tostring(L, -2) : luaL_typename(L, -2);
-    const auto it = named ? std::find(outputs.begin(), outputs.end(), key) : outputs.end();
-    if (it == outputs.end())
-      throw InvalidArgument("rmse: '" + key + "' is not an output of the model (its outputs: " + names + ")");
-    const double v = lua_type(L, -1) == LUA_TNUMBER ? lua_tonumber(L, -1) : std::numeric_limits<double>::quiet_NaN();
-    if (!(v > 0) || !std::isfinite(v))
-      throw InvalidArgument("rmse." + key + " must be a positive finite number (the LOO RMSE target in the output's units)");
-    so.rmse_target(static_cast<Eigen::Index>(it - outputs.begin())) = v;
+    entries.push_back({named ? lua_tostring(L, -2) : luaL_typename(L, -2), named,
+                       lua_type(L, -1) == LUA_TNUMBER ? lua_tonumber(L, -1) : std::numeric_limits<double>::quiet_NaN()});
     lua_pop(L, 1);
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  for (const Entry& e : entries) {
+    const auto it = e.named ? std::find(outputs.begin(), outputs.end(), e.key) : outputs.end();
+    if (it == outputs.end())
+      throw InvalidArgument("rmse: '" + e.key + "' is not an output of the model (its outputs: " + names + ")");
+    if (!(e.v > 0) || !std::isfinite(e.v))
+      throw InvalidArgument("rmse." + e.key + " must be a positive finite number (the LOO RMSE target in the output's units)");
+    so.rmse_target(static_cast<Eigen::Index>(it - outputs.begin())) = e.v;
   }
 }
 

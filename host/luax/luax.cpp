@@ -257,27 +257,43 @@ void record_known_options(const std::string& fname, const std::vector<std::strin
 void Options::check_known(std::initializer_list<const char*> known) const {
   if (fname_) record_known_options(fname_, std::vector<std::string>(known.begin(), known.end()));
   if (!idx_) return;
-  lua_pushnil(L_);
-  while (lua_next(L_, idx_)) {
-    lua_pop(L_, 1);  // keep the key
-    if (lua_type(L_, -1) != LUA_TSTRING) continue;  // positional entries are the caller's business
-    const char* key = lua_tostring(L_, -1);
-    bool ok = false;
-    const char* best = nullptr;
-    std::size_t best_d = 1000;
-    for (const char* k : known) {
-      if (std::strcmp(k, key) == 0) ok = true;
-      const std::size_t d = smi::name_distance(k, key);
-      if (d < best_d) best_d = d, best = k;
+  // The keys in name order: of several unknown options the one named is the same every run
+  // (the table's traversal order changes from process to process). The message is built with
+  // the C++ objects in a scope of their own, and raised after it.
+  {
+    std::vector<std::string> keys;
+    lua_pushnil(L_);
+    while (lua_next(L_, idx_)) {
+      lua_pop(L_, 1);  // keep the key
+      if (lua_type(L_, -1) == LUA_TSTRING) keys.emplace_back(lua_tostring(L_, -1));  // positional: the caller's
     }
-    if (!ok) {
-      std::string list;
-      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      if (best && best_d <= 2)
-        luaL_error(L_, "%s: unknown option '%s' (did you mean '%s'?)", fname_, key, best);
-      luaL_error(L_, "%s: unknown option '%s'; known options: %s", fname_, key, list.c_str());
+    std::sort(keys.begin(), keys.end());
+    std::string msg;
+    for (const std::string& key : keys) {
+      bool ok = false;
+      const char* best = nullptr;
+      std::size_t best_d = 1000;
+      for (const char* k : known) {
+        if (key == k) ok = true;
+        const std::size_t d = smi::name_distance(k, key);
+        if (d < best_d) best_d = d, best = k;
+      }
+      if (ok) continue;
+      if (best && best_d <= 2) {
+        msg = std::string(fname_ ? fname_ : "options") + ": unknown option '" + key + "' (did you mean '" + best + "'?)";
+      } else {
+        std::string list;
+        for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+        msg = std::string(fname_ ? fname_ : "options") + ": unknown option '" + key + "'; known options: " + list;
+      }
+      break;
     }
+    if (msg.empty()) return;
+    luaL_where(L_, 1);
+    lua_pushlstring(L_, msg.data(), msg.size());
+    lua_concat(L_, 2);
   }
+  lua_error(L_);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -10,10 +10,13 @@
 
 #include "platform/core/path_walk.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <lua.hpp>
 
 #include "platform/core/errors.hpp"
@@ -146,10 +149,16 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
   else lua_remove(L, -2);                  // [returned]
 
   static const char* const kKnown[] = {"name", "version", "description", "requires", "sources", "license", "authors", "homepage"};
+  // In name order: of several unknown fields the one named is the same every run (the table's
+  // traversal order changes from process to process).
+  std::vector<std::string> keys;
   lua_pushnil(L);
   while (lua_next(L, -2)) {
     lua_pop(L, 1);
-    const std::string key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(a non-string key)";
+    keys.push_back(lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(a non-string key)");
+  }
+  std::sort(keys.begin(), keys.end());
+  for (const std::string& key : keys) {
     bool known = false;
     for (const char* k : kKnown) known = known || key == k;
     if (!known) {

@@ -154,10 +154,11 @@ function M.run(declaration, argv, run_opts)
   local seed = smi.seed or 20200214
   local MAX_TRIALS = 1 + opt.max_refinements
   local PRIOR = require("smi.improve.prior_file").load(opt.prior)
-  -- wall time and solver-run counts differ between identical runs (reused runs count 0): left out
-  -- of the steps' result hashes, so a rerun does not mark the later steps stale
+  -- wall time and solver-run counts differ between identical runs (reused runs count 0), and so
+  -- does a refinement candidate's run time: left out of the steps' result hashes, so a rerun does
+  -- not mark the later steps stale
   local s = study.new{ name = D.name, seed = seed, results = run_opts.results, out = run_opts.out,
-    volatile = { "wall_seconds", "solver_runs" },
+    volatile = { "wall_seconds", "solver_runs", "run_seconds" },
     report = { title = D.title or D.name, subtitle = (D.subtitle or "") .. (opt.quick and " (quick run)" or ""),
                author = D.author or "smi.improve" } }
   local E = { D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR, max_trials = MAX_TRIALS }

@@ -224,7 +224,8 @@ local function suggest(by, name)
     local p = 0
     while p < #n and p < #name and n:sub(p + 1, p + 1) == name:sub(p + 1, p + 1) do p = p + 1 end
     local dist = math.max(#n, #name) - p
-    if p >= 2 and (bestd == nil or dist < bestd) then best, bestd = n, dist end
+    -- equally close: the first in name order (pairs() order changes from run to run)
+    if p >= 2 and (bestd == nil or dist < bestd or (dist == bestd and n < best)) then best, bestd = n, dist end
   end
   return best
 end

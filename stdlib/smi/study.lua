@@ -25,6 +25,7 @@
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
+local sorted_keys = inputs.sorted_keys
 
 local doc = require "smi.doc"
 doc.add[==[
@@ -69,8 +70,8 @@ options:
   quiet = nil          -- no progress lines (default: smi.quiet)
   seed = smi.seed      -- recorded in results.json
   volatile = nil       -- result keys that differ between identical runs (timings, counts of reused
-                       -- solver runs), e.g. {"wall_seconds"}: left out of the result hash that
-                       -- decides whether later steps are stale (every step; steps add their own)
+                       -- solver runs), e.g. {"wall_seconds"}: left out, at any depth, of the result
+                       -- hash that decides whether later steps are stale (every step; steps add their own)
   report = nil         -- {title =, subtitle =, ...}: creates ctx.report (smi.report), written at the end
 returns: a study with the methods smi.study:step, :run, :load
 errors: no name ("expects {name = \"...\", out = folder}")
@@ -284,7 +285,9 @@ function Study:_why_not_current(name, saved, live_hash)
       return f and ("step '%s' read %s"):format(name, f)
     end)()
     if not why then
-      for dep, h in pairs(s.inputs.results or {}) do
+      local recorded = s.inputs.results or {}
+      for _, dep in ipairs(sorted_keys(recorded)) do -- name order: the reason given is the same every run
+        local h = recorded[dep]
         local now = live_hash[dep] or (saved.steps[dep] and saved.steps[dep].result_hash)
         if live_hash[dep] == nil then
           local w = self:_why_not_current(dep, saved, live_hash)
@@ -402,17 +405,22 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
 end
 
 -- The hash of a step's saved result that later steps record when they read it: every key but the
--- volatile ones (timings and the like, which differ between identical runs and would make every
--- later step stale after any rerun).
+-- volatile ones, at any depth (timings and the like, which differ between identical runs and would
+-- make every later step stale after any rerun; a timing inside a list of records counts too).
+local function without(v, skip)
+  if type(v) ~= "table" then return v end
+  local c = {}
+  for k, x in pairs(v) do if not skip[k] then c[k] = without(x, skip) end end
+  return c
+end
+
 function Study:_result_hash(name, result)
   local skip = {}
   for _, k in ipairs(self.volatile) do skip[k] = true end
   local st = self.by_name[name]
   for _, k in ipairs(st and st.opts.volatile or {}) do skip[k] = true end
   if type(result) ~= "table" or next(skip) == nil then return inputs.hash(result) end
-  local kept = {}
-  for k, v in pairs(result) do if not skip[k] then kept[k] = v end end
-  return inputs.hash(kept)
+  return inputs.hash(without(result, skip))
 end
 
 -- Runs step st (the k-th of nsel selected) and saves its result: all of it in `live`, what
@@ -539,7 +547,7 @@ end
 function Study:_check_kept(selected, saved)
   for _, st in ipairs(self.steps) do
     local rec = selected[st.name] and saved.steps[st.name]
-    for dep in pairs(rec and rec.inputs and rec.inputs.results or {}) do
+    for _, dep in ipairs(sorted_keys(rec and rec.inputs and rec.inputs.results)) do -- the same error every run
       if not selected[dep] and saved.steps[dep] then
         local why = self:_why_not_current(dep, saved, self.live_hash)
         if why then
@@ -590,7 +598,8 @@ function Study:_provenance(saved)
   local p = provenance()
   if not p then return nil end
   p.files = p.files or {}
-  for _, s in pairs(saved.steps or {}) do
+  for _, name in ipairs(sorted_keys(saved.steps)) do -- a path two steps recorded: the same one wins every run
+    local s = saved.steps[name]
     for path, d in pairs(s.inputs and s.inputs.files or {}) do
       if p.files[path] == nil then p.files[path] = d end
     end

@@ -16,6 +16,15 @@ local M = {}
 
 local host = type(smi) == "table" and type(smi._inputs) == "function"
 
+--- The keys of t (nil: none), sorted: a loop whose first hit becomes a message walks them so,
+-- since pairs() order changes from process to process (Lua seeds its string hashes per state).
+function M.sorted_keys(t)
+  local keys = {}
+  for k in pairs(t or {}) do keys[#keys + 1] = k end
+  table.sort(keys)
+  return keys
+end
+
 --- True when the host records inputs (smi-lua); outside it every step counts as current.
 function M.available() return host end
 
@@ -93,7 +102,8 @@ end
 
 --- Why the recorded files differ from the files now (nil when they hash the same).
 function M.files_change(files)
-  for path, rec in pairs(files or {}) do
+  for _, path in ipairs(M.sorted_keys(files)) do -- the first change named is the same every run
+    local rec = files[path]
     if host then
       local now, why = smi._digest(path, rec.kind)
       if not now then return ("file %s, which is no longer readable (%s)"):format(path, tostring(why)) end

@@ -204,6 +204,26 @@ T.case("volatile keys (timings) do not make later steps stale", function()
   T.eq(read_json(results_path("study_volatile")).steps.b.stale, nil, "not marked")
 end)
 
+T.case("a volatile key deeper in the result (a timing per candidate) does not change its hash", function()
+  -- smi.improve's refinement step records each candidate's run time inside its decision matrix:
+  -- it changed the step's result_hash on every run, so its readers were stale after any rerun.
+  local function mk(t)
+    local s = study.new{ name = "study_volatile_deep", out = dir, results = results_path("study_volatile_deep"),
+                         quiet = true, volatile = { "run_seconds" } }
+    s:step("a", function() return { x = 1, candidates = { { name = "c1", run_seconds = t }, { name = "c2", run_seconds = 2 * t } } } end)
+    s:step("b", function(ctx) return { y = ctx.results.a.x + 1 } end)
+    return s
+  end
+  mk(0.25):run()
+  local h1 = read_json(results_path("study_volatile_deep")).steps.a.result_hash
+  local r = mk(0.5):run{ only = "a" } -- the same numbers, other timings
+  local d = read_json(results_path("study_volatile_deep"))
+  T.eq(d.steps.a.result.candidates[2].run_seconds, 1.0, "the timing is still saved")
+  T.eq(d.steps.a.result_hash, h1, "the hash leaves it out")
+  T.eq(r.b.y, 2, "b still current")
+  T.eq(d.steps.b.stale, nil, "not marked")
+end)
+
 T.case("values left out of results.json are listed in name order, whatever the table order", function()
   -- Twelve functions under hashed keys: their traversal order varies from run to run (Lua seeds
   -- its string hashes per state), the listed order must not.

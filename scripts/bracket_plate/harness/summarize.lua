@@ -68,7 +68,15 @@ for _, r in ipairs(rows) do
   end
 end
 print("\nconfusion (truth -> what the last trial applied):")
-for truth, t in pairs(confusion) do
-  for applied, n in pairs(t) do print(("  %-13s -> %-32s %d"):format(truth, applied, n)) end
+local function sorted(t) -- name order: pairs() order changes from run to run
+  local k = {}
+  for n in pairs(t) do k[#k + 1] = n end
+  table.sort(k)
+  return k
+end
+for _, truth in ipairs(sorted(confusion)) do
+  for _, applied in ipairs(sorted(confusion[truth])) do
+    print(("  %-13s -> %-32s %d"):format(truth, applied, confusion[truth][applied]))
+  end
 end
 if check and not ok_all then os.exit(1) end

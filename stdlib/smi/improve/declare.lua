@@ -36,16 +36,21 @@ end
 
 --- Every key of t must be in known; else an error naming it and the closest known key.
 local function only(t, known, where)
-  for k in pairs(t) do
-    if type(k) == "string" and not known[k] then
-      local best, bd = nil, math.huge
-      for name in pairs(known) do
-        local d = distance(k, name)
-        if d < bd then best, bd = name, d end
-      end
+  -- in name order, so that of several unknown fields (and of equally close known ones) the one
+  -- named is the same every run (pairs() order changes from process to process)
+  local keys = {}
+  for k in pairs(t) do if type(k) == "string" then keys[#keys + 1] = k end end
+  table.sort(keys)
+  for _, k in ipairs(keys) do
+    if not known[k] then
       local names = {}
       for name in pairs(known) do names[#names + 1] = name end
       table.sort(names)
+      local best, bd = nil, math.huge
+      for _, name in ipairs(names) do
+        local d = distance(k, name)
+        if d < bd then best, bd = name, d end
+      end
       fail(where, "unknown field '%s'%s (fields: %s)", k,
         bd <= math.max(2, #k // 3) and (" (did you mean '" .. best .. "'?)") or "", table.concat(names, ", "))
     end

@@ -17,6 +17,13 @@ local function copy(t)
 end
 M.copy = copy
 
+local function sorted(t)
+  local keys = {}
+  for k in pairs(t) do keys[#keys + 1] = k end
+  table.sort(keys)
+  return keys
+end
+
 --- The initial model over the given unknowns (the declared pool, or the screening rule's pick).
 function M.initial(D, unknowns)
   local specs = {}
@@ -36,13 +43,14 @@ local function candidate(D, name)
 end
 
 -- What two revisions both set (a form switch, an unknown, a fixed value), or nil.
+-- (Keys in name order: of several clashes the one named is the same every run.)
 local function clash(a, b)
-  for k in pairs(b.form) do if a.form[k] ~= nil then return ("both set the form switch '%s'"):format(k) end end
+  for _, k in ipairs(sorted(b.form)) do if a.form[k] ~= nil then return ("both set the form switch '%s'"):format(k) end end
   local set = {}
   for _, n in ipairs(a.unknowns) do set[n] = true end
   for n in pairs(a.fixed) do set[n] = true end
   for _, n in ipairs(b.unknowns) do if set[n] then return ("both set '%s'"):format(n) end end
-  for n in pairs(b.fixed) do if set[n] then return ("both set '%s'"):format(n) end end
+  for _, n in ipairs(sorted(b.fixed)) do if set[n] then return ("both set '%s'"):format(n) end end
   return nil
 end
 

@@ -492,7 +492,10 @@ local function refinement_step(E, k)
     end
     local next_model = revise.apply(D, base, chosen)
     if drop then
-      for name, why in pairs(drop) do table.insert(next_model.dropped, 1, { name = name, why = why }) end
+      local names = {}
+      for name in pairs(drop) do names[#names + 1] = name end
+      table.sort(names, function(a, b) return a > b end) -- each goes first: the list ends in name order, every run
+      for _, name in ipairs(names) do table.insert(next_model.dropped, 1, { name = name, why = drop[name] }) end
     end
     local out = { failed_responses = failed, matrix = dm, chosen = chosen, model = next_model, rank = 1,
                   why = why_chosen(E, dm, jc, jr) }

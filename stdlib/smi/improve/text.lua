@@ -34,7 +34,10 @@ function M.weak_inputs(no)
   if not d then return nil end
   local l = {}
   for name, w in pairs(d.loadings) do if name:match("%.mean$") then l[#l + 1] = { name:gsub("%.mean$", ""), w } end end
-  table.sort(l, function(a, b) return math.abs(a[2]) > math.abs(b[2]) end)
+  table.sort(l, function(a, b) -- equal moves in name order (l comes in pairs() order, which varies)
+    if math.abs(a[2]) ~= math.abs(b[2]) then return math.abs(a[2]) > math.abs(b[2]) end
+    return a[1] < b[1]
+  end)
   local parts = {}
   for i = 1, math.min(3, #l) do parts[i] = ("%s %+.2f"):format(l[i][1], l[i][2]) end
   return table.concat(parts, ", ")

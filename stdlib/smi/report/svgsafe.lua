@@ -65,7 +65,11 @@ local function walk(el)
     return ("element <%s> is not allowed in a figure (no scripts, embedded pages, images, links or animation)")
       :format(el.name)
   end
-  for name, value in pairs(el.attrs) do
+  local names = {} -- in name order: of several refused attributes the one named is the same every run
+  for name in pairs(el.attrs) do names[#names + 1] = name end
+  table.sort(names)
+  for _, name in ipairs(names) do
+    local value = el.attrs[name]
     if name:lower():match("^on") then return ("event handler %s on <%s> is not allowed"):format(name, el.name) end
     if not M.attributes[name] and not name:match("^data%-[%w%-]+$") then
       return ("attribute %s on <%s> is not allowed in a figure"):format(name, el.name)
