@@ -13,6 +13,7 @@
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 
@@ -89,7 +90,7 @@ int doe_lhs(lua_State* L) {
   lua::Options o(L, 3, "smi.doe.lhs");
   o.check_known({"seed", "criterion", "p", "iterations", "centered"});
   smi::surrogate::doe::LhsOptions lo;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   lo.criterion = o.string("criterion", "maximin");
   lo.p = o.number("p", lo.p);
   lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
