@@ -100,7 +100,7 @@ int doe_lhs(lua_State* L) {
     const double nd = static_cast<double>(n) * static_cast<double>(space.size());
     lua::require_room(L, 3 * nd + (lo.criterion == "none" ? 0.0 : static_cast<double>(n) * static_cast<double>(n)),
                       sizeof(double), "the design");
-    lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
+    lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo, lua::cancel_token(L)), space));
     return 1;
   });
 }

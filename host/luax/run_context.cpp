@@ -23,6 +23,12 @@ void set_run_context(lua_State* L, RunContext* ctx) {
   lua_rawsetp(L, LUA_REGISTRYINDEX, &kContextKey);
 }
 
+const cancel::Token& cancel_token(lua_State* L) {
+  static const cancel::Token never;  // outside a run nothing stops a kernel
+  const RunContext& ctx = run_context(L);
+  return ctx.cancel ? *ctx.cancel : never;
+}
+
 void warn(lua_State* L, std::string_view source, std::string_view text) { run_context(L).warnings.warn(source, text); }
 
 void check_stop_now(lua_State* L) {

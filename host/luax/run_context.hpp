@@ -17,6 +17,9 @@ RunContext& run_context(lua_State* L);
 /// Stores `ctx` (not owned; must outlive the state) in the registry.
 void set_run_context(lua_State* L, RunContext* ctx);
 
+/// The run's cancellation token, for a kernel's `stop` argument (one no one sets outside a run).
+const cancel::Token& cancel_token(lua_State* L);
+
 /// Warns through the run's sink: collected for smi.warnings(), printed unless the run is quiet.
 void warn(lua_State* L, std::string_view source, std::string_view text);
 
