@@ -45,11 +45,6 @@ int protect(lua_State* L, const char* fname, F&& body) {
   char msg[2048];  // trivially destructible: nothing to unwind when luaL_error throws
   try {
     return body();
-  } catch (const Interrupted& e) {
-    error_message(msg, sizeof msg, fname, e.what());
-    // The run's token said stop: the installed hook (vm/limits) fires at the next instruction
-    // and raises again, so a pcall around this call does not run on.
-    if (lua_Hook h = lua_gethook(L)) lua_sethook(L, h, LUA_MASKCOUNT, 1);
   } catch (const std::exception& e) {
     error_message(msg, sizeof msg, fname, e.what());
   }
