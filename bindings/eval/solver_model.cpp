@@ -574,7 +574,12 @@ int evaluate_solver(lua_State* L, Model& m) {
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored
   lua::protect(L, fname, [&] {
     if (ctx.dry_run) dry_missing = print_dry_plan(L, m, X);
-    r = m.ev->evaluate(X, parse, parse_batch, progress, !ctx.dry_run);
+    try {
+      r = m.ev->evaluate(X, parse, parse_batch, progress, !ctx.dry_run);
+    } catch (const Interrupted&) {
+      lua::check_stop_now(L);  // the hook raises the token's reason again at the next instruction
+      throw;
+    }
     summary = failure_summary(m, X, r);
     return 0;
   });
