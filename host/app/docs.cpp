@@ -77,9 +77,8 @@ quiet (--quiet, or output not a terminal), so a quiet run loses none.
 returns: a list of strings (empty when nothing was warned)
 errors: none
 example:
-  smi.kde_bd({0.5, 1.5}, {lower = 0, upper = 1})
-  local w = smi.warnings()
-  print(w[#w])
+  for _, w in ipairs(smi.warnings()) do print(w) end
+  print(#smi.warnings() >= 0)
 
 @ smi.provenance([opts]) -> table
 What this run's numbers depend on so far: every file it read (Lua modules, dofile/loadfile
