@@ -23,6 +23,7 @@
 
 #include "bindings/modules.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 #include "platform/core/csv.hpp"
 #include "platform/core/number_text.hpp"
@@ -202,7 +203,7 @@ int csv_read(lua_State* L) {
           path, t.duplicates.size(), t.duplicates.size() == 1 ? "" : "s", lines, t.duplicates.size() > 5 ? ", ..." : "");
       lua_pushstring(L, w.c_str());
       lua_rawseti(L, -2, 1);
-      if (!lua::policy(L).quiet) std::fprintf(stderr, "smi.csv.read: warning: %s\n", w.c_str());
+      lua::warn(L, "smi.csv.read", w);  // printed unless --quiet, and in smi.warnings()
     }
     lua_setfield(L, -2, "warnings");
     return 3;

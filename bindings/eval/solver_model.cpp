@@ -13,6 +13,7 @@
 #include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "luax/run_context.hpp"
 #include "platform/core/sha256.hpp"
 #include "platform/eval/folder_lock.hpp"
 #include "platform/eval/process.hpp"
@@ -212,10 +213,10 @@ void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se:
 // arrays, fewer requeues, slower polling, no --detach. Where runs go and what they ask of a
 // cluster (partition, account, qos, time, mem, cpus, sbatch arguments) is the user's: the study
 // may repeat a command-line value (to document it) but not add or change one.
-void apply_executor(const lua::Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
-  if (!pol.executor.empty()) c.executor.kind = pol.executor;
-  for (const auto& kv : pol.slurm_opts) c.executor.set(kv);
-  c.executor.detach = pol.detach;
+void apply_executor(const RunContext& ctx, const SolverOptions& so, se::CommandConfig& c) {
+  if (!ctx.executor.empty()) c.executor.kind = ctx.executor;
+  for (const auto& kv : ctx.slurm_opts) c.executor.set(kv);
+  c.executor.detach = ctx.detach;
   const se::ExecutorConfig cli = c.executor;
   const auto refuse = [](const std::string& k, const std::string& v, const std::string& why) {
     throw lua::SandboxDenied(fmt::format("executor option {} = '{}' comes from the study, but {}. A study's executor table "
@@ -284,7 +285,7 @@ void open_solver_inputs(lua::Policy& pol, const SolverOptions& so, bool batch, c
 
 // Where runs and records go: runs/<name> and the store under --out (locked: one process per
 // output folder keeps the work folders unique), and the shared store of --store if any.
-void place_solver_outputs(lua::Policy& pol, const SolverOptions& so, se::CommandConfig& c) {
+void place_solver_outputs(lua::Policy& pol, const RunContext& ctx, const SolverOptions& so, se::CommandConfig& c) {
   const fs::path out = pol.out_dir.empty() ? fs::path("smi-out") : pol.out_dir;
   c.runs_dir = pol.checked_write_dir((out / "runs" / c.name).string());
   se::lock_output_folder(pol.out_dir.empty() ? pol.checked_write_dir(out.string()) : pol.ensure_out_dir().string());
@@ -295,8 +296,8 @@ void place_solver_outputs(lua::Policy& pol, const SolverOptions& so, se::Command
   if (const fs::path folder = fs::path(store).parent_path(); !so.store.empty() && !folder.empty())
     pol.checked_write_dir(folder.string());
   c.store_path = pol.checked_write_file(store);
-  if (!pol.store_path.empty()) {
-    const std::string shared = pol.checked_read_file(pol.store_path);
+  if (!ctx.store_path.empty()) {
+    const std::string shared = pol.checked_read_file(ctx.store_path);
     if (shared != c.store_path) c.shared_store_path = shared;
   }
 }
@@ -342,11 +343,11 @@ std::string version_line(const se::CommandConfig& c, const std::vector<std::stri
 }
 
 // Provenance (issue 24): the program this model runs, its hash, declared version and version line.
-void record_program(const lua::Policy& pol, const se::CommandConfig& c, const SolverOptions& so) {
+void record_program(const lua::Policy& pol, bool dry_run, const se::CommandConfig& c, const SolverOptions& so) {
   if (!pol.record) return;
   ProgramRun p;
   if (!so.version_args.empty())
-    p.version_line = pol.dry_run ? "(not asked: --dry-run launches nothing)" : version_line(c, so.version_args);
+    p.version_line = dry_run ? "(not asked: --dry-run launches nothing)" : version_line(c, so.version_args);
   p.name = c.program_name;
   p.path = c.program;
   try {
@@ -371,6 +372,7 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
                    "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
                    "executor", "version_args", "env"});
   lua::Policy& pol = lua::policy(L);
+  const RunContext& ctx = lua::run_context(L);
   se::CommandConfig c;
   SolverOptions so;
   c.batch = batch;
@@ -400,12 +402,12 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   read_deck(L, o, batch, fname, c, so);
   lua::protect(L, fname, [&] {
     c.on_failure = se::parse_on_failure(so.on_failure);
-    apply_executor(pol, so, c);
+    apply_executor(ctx, so, c);
     c.env_names = pol.allow_env;
-    if (!pol.script_path.empty()) c.script_hash = "sha256:" + sha256_file(pol.script_path);
+    if (!ctx.script_path.empty()) c.script_hash = "sha256:" + sha256_file(ctx.script_path);
     open_solver_inputs(pol, so, batch, fname, c);
-    place_solver_outputs(pol, so, c);
-    record_program(pol, c, so);
+    place_solver_outputs(pol, ctx, so, c);
+    record_program(pol, ctx.dry_run, c, so);
     return 0;
   });
   return c;
@@ -478,8 +480,8 @@ int model_planned(lua_State* L) {
 namespace {
 
 // A progress line on the terminal (none when quiet or piped), redrawn at most ten times a second.
-se::ProgressFn terminal_progress(const Model& m, const lua::Policy& pol) {
-  if (pol.quiet || !isatty(STDERR_FILENO)) return {};
+se::ProgressFn terminal_progress(const Model& m, const RunContext& ctx) {
+  if (!ctx.progress.live) return {};
   return [&m, shown_at = -1.0](const se::Progress& p, bool final) mutable {
     const double now = se::monotonic_seconds();
     if (!final && now - shown_at < 0.1) return;  // a terminal line ten times a second is plenty
@@ -515,7 +517,7 @@ std::string failure_summary(const Model& m, const Eigen::MatrixXd& X, const se::
 // A dry run that lacks dry_missing runs of this evaluation stops the study here: what comes next
 // is computed from these outputs, which a dry run does not have, so planning further would feed
 // NaN to the next step. Prints the plan so far and asks the runtime to exit cleanly (status 0).
-void stop_dry_run(lua_State* L, const Model& m, const lua::Policy& pol, std::size_t dry_missing) {
+void stop_dry_run(lua_State* L, const Model& m, std::size_t dry_missing) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &kPlannedKey);
   auto total = [&](const char* k) {
     lua_getfield(L, -1, k);
@@ -531,14 +533,14 @@ void stop_dry_run(lua_State* L, const Model& m, const lua::Policy& pol, std::siz
               m.name.c_str(), dry_missing, runs, runs == 1 ? "" : "s", points, points == 1 ? "" : "s", reused,
               eta < 0 ? "unknown (no stored timing)" : se::format_duration(eta).c_str());
   std::fflush(stdout);
-  pol.request_exit(0);  // the next Lua instruction ends the run quietly, exit status 0
+  lua::stop_run(L, cancel::Reason::exit, 0);  // the next Lua instruction ends the run quietly, exit status 0
 }
 
 }  // namespace
 
 int evaluate_solver(lua_State* L, Model& m) {
   const Eigen::MatrixXd X = design_of(L, 2, m);
-  const lua::Policy& pol = lua::policy(L);
+  const RunContext& ctx = lua::run_context(L);
   const bool batch = m.kind == Model::Batch;
   const char* fname = "smi.model:evaluate";
   lua_getiuservalue(L, 1, 1);  // the parser
@@ -575,19 +577,24 @@ int evaluate_solver(lua_State* L, Model& m) {
     return Eigen::MatrixXd(Eigen::Map<const Eigen::MatrixXd>(v.data(), static_cast<Eigen::Index>(n),
                                                              static_cast<Eigen::Index>(m.outputs.size())));
   };
-  const se::ProgressFn progress = terminal_progress(m, pol);
+  const se::ProgressFn progress = terminal_progress(m, ctx);
 
   // While we wait on solvers no Lua runs, so the runtime's hook cannot see Ctrl-C, --timeout,
-  // the memory ceiling or os.exit: we ask the runtime through the policy instead.
-  m.ev->set_stop_check([stop = pol.stop_reason]() -> std::string { return stop ? stop() : ""; });
+  // the memory ceiling or os.exit: the evaluator reads the run's token itself between runs.
+  m.ev->set_cancel(ctx.cancel);
 
   const DeckFunctionScope decks(L, 1, m);
   se::EvalResult r;
   std::string summary;
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored
   lua::protect(L, fname, [&] {
-    if (pol.dry_run) dry_missing = print_dry_plan(L, m, X);
-    r = m.ev->evaluate(X, parse, parse_batch, progress, !pol.dry_run);
+    if (ctx.dry_run) dry_missing = print_dry_plan(L, m, X);
+    try {
+      r = m.ev->evaluate(X, parse, parse_batch, progress, !ctx.dry_run);
+    } catch (const Interrupted&) {
+      lua::check_stop_now(L);  // the hook raises the token's reason again at the next instruction
+      throw;
+    }
     summary = failure_summary(m, X, r);
     return 0;
   });
@@ -595,9 +602,9 @@ int evaluate_solver(lua_State* L, Model& m) {
     std::string msg = summary + "\n  the remaining points were not run; pass on_failure = 'skip' or 'retry' to go on past failures";
     return luaL_error(L, "%s: %s", fname, msg.c_str());
   }
-  if (!summary.empty() && !pol.quiet) std::fprintf(stderr, "smi.model: %s\n", summary.c_str());
+  if (!summary.empty() && !ctx.quiet) std::fprintf(stderr, "smi.model: %s\n", summary.c_str());
   push_results(L, m, r);
-  if (dry_missing > 0 && pol.request_exit) stop_dry_run(L, m, pol, dry_missing);
+  if (dry_missing > 0 && ctx.cancel) stop_dry_run(L, m, dry_missing);
   return 2;
 }
 

@@ -8,6 +8,7 @@
 #include "bindings/improve/lua_values.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 #include "platform/core/errors.hpp"
 
@@ -576,7 +577,7 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
                  "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals",
                  "hops", "hop_step", "model_differences", "model_step"});
   CalibrateSpec s;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   s.optimizer = read_optimizer(o, seed);
 
   const bool has_objective = o.has("objective"), has_model = o.has("model");

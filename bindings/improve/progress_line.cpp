@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "luax/policy.hpp"
+#include "luax/run_context.hpp"
 #include "platform/eval/progress_line.hpp"
 
 namespace smi::bind::improve {
@@ -26,7 +27,7 @@ std::string format_progress_row(const smi::improve::ProgressRow& r) {
 }
 
 smi::improve::ProgressLine terminal_progress_line(lua_State* L, bool wanted) {
-  if (!wanted || lua::policy(L).quiet || !isatty(STDERR_FILENO)) return {};
+  if (!wanted || !lua::run_context(L).progress.live) return {};
   return [](const smi::improve::ProgressRow& r) { smi::eval::show_progress(stderr, format_progress_row(r), r.final); };
 }
 

@@ -9,6 +9,7 @@
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/kde_bounded.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 
 namespace smi::bind::stats {
@@ -63,7 +64,7 @@ smi::stats::BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
   b.compare = o.string("compare", b.compare);
   b.bandwidth = o.string("bandwidth", b.bandwidth);
   b.deterministic = o.boolean("deterministic", b.deterministic);
-  b.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  b.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   b.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", b.grid_nodes));
   return b;
 }
@@ -98,8 +99,11 @@ int kde_bd(lua_State* L) {
     if (!(lo < hi)) throw InvalidArgument(fmt::format("lower ({}) must be < upper ({}): swap them", lo, hi));
     int outside = 0;
     const auto r = smi::stats::kde_bounded(x, lo, hi, bounded_options(L, o), &outside);
-    if (outside > 0 && !lua::policy(L).quiet)
-      std::fprintf(stderr, "smi.kde_bd: warning: %d data point(s) lie outside [%g, %g]\n", outside, lo, hi);
+    if (outside > 0) {
+      char w[160];
+      std::snprintf(w, sizeof w, "%d data point(s) lie outside [%g, %g]", outside, lo, hi);
+      lua::warn(L, "smi.kde_bd", w);  // the run's warning channel: result and terminal, never behind --quiet
+    }
     return push_bounded(L, r, outside);
   });
 }

@@ -16,6 +16,7 @@
 #include "kernels/stats/metrics.hpp"
 #include "kernels/stats/upool.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 #include "platform/eval/progress_line.hpp"
 
@@ -62,7 +63,7 @@ smi::stats::Grid resolve_grid(const std::optional<smi::stats::Grid>& g, const sm
 }
 
 /// PR (l1 = true) or intersection of a and b: exact between the pdf crossings without grid
-/// options; on the grid when one is given (with a warning on stderr, and the exact integral
+/// options; on the grid when one is given (with a warning through the run's sink, and the exact integral
 /// over the grid's range, when the grid does not resolve a pdf).
 double overlap(lua_State* L, const char* fname, bool l1) {
   const auto a = dist_or_kde(L, 1, fname, "a");
@@ -76,7 +77,7 @@ double overlap(lua_State* L, const char* fname, bool l1) {
       return 0;
     }
     const smi::stats::GridComparison c = smi::stats::compare_on_grid(*a, *b, resolve_grid(g, *a, *b));
-    for (const auto& w : c.warnings) std::fprintf(stderr, "%s: warning: %s\n", fname, w.c_str());
+    for (const auto& w : c.warnings) lua::warn(L, fname, w);  // printed unless --quiet, and in smi.warnings()
     v = l1 ? c.pr : c.intersection;
     return 0;
   });
@@ -131,7 +132,7 @@ int m_loglik(lua_State* L) {
 /// second, from whichever worker finished a chunk; silent with --quiet or when stderr is not a
 /// terminal.
 std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replications) {
-  if (lua::policy(L).quiet || !isatty(STDERR_FILENO)) return {};
+  if (!lua::run_context(L).progress.live) return {};
   struct Line {
     std::mutex mu;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last{};

@@ -13,6 +13,7 @@
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 
@@ -89,7 +90,7 @@ int doe_lhs(lua_State* L) {
   lua::Options o(L, 3, "smi.doe.lhs");
   o.check_known({"seed", "criterion", "p", "iterations", "centered"});
   smi::surrogate::doe::LhsOptions lo;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   lo.criterion = o.string("criterion", "maximin");
   lo.p = o.number("p", lo.p);
   lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
@@ -99,7 +100,7 @@ int doe_lhs(lua_State* L) {
     const double nd = static_cast<double>(n) * static_cast<double>(space.size());
     lua::require_room(L, 3 * nd + (lo.criterion == "none" ? 0.0 : static_cast<double>(n) * static_cast<double>(n)),
                       sizeof(double), "the design");
-    lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo), space));
+    lua::push_mat(L, map_space(smi::surrogate::doe::lhs(n, static_cast<Eigen::Index>(space.size()), seed, lo, lua::cancel_token(L)), space));
     return 1;
   });
 }

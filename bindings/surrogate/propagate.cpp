@@ -4,6 +4,7 @@
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
 
@@ -21,7 +22,7 @@ int propagate_call(lua_State* L) {
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   const lua_Integer n = o.integer("n", 10000);
   if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   return lua::protect(L, fname, [&] {
     // The sample (and its uniforms while drawn) and the outputs, before any of it exists.
     lua::require_room(L, static_cast<double>(n) * (2.0 * static_cast<double>(inputs.size()) + 1), sizeof(double),

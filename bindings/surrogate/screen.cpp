@@ -16,6 +16,7 @@
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 
 namespace smi::bind::surrogate {
@@ -129,7 +130,7 @@ int screen_call(lua_State* L) {
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   smi::surrogate::screen::Options so;
   so.n = static_cast<Eigen::Index>(o.integer("n", so.n));
-  so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   so.fix = o.string("fix", "mean");
   so.sobol = o.boolean("sobol", so.sobol);
   so.bootstrap = static_cast<int>(o.integer("bootstrap", so.bootstrap));

@@ -16,6 +16,7 @@
 #include "bindings/surrogate/model_arg.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
 #include "luax/luax.hpp"
+#include "luax/run_context.hpp"
 #include "luax/policy.hpp"
 #include "platform/core/errors.hpp"
 
@@ -50,7 +51,7 @@ SequentialArgs read_sequential_args(lua_State* L, lua::Options& o, const ModelAr
   a.so.batch = static_cast<Eigen::Index>(o.integer("batch", static_cast<lua_Integer>(a.so.batch)));
   a.so.max_points = static_cast<Eigen::Index>(o.integer("max", static_cast<lua_Integer>(a.so.max_points)));
   a.so.q2_target = o.number("q2", a.so.q2_target);
-  a.so.fit.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
+  a.so.fit.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
   a.trend = o.string("trend", a.trend);
   a.corr = o.string("corr", a.corr);
   if (o.has("inputs")) {

@@ -1,8 +1,8 @@
 // smi._docs(): hands the compiled-in reference texts of the C++ side to stdlib/smi/doc.lua,
 // with the methods table of every smi userdata type (found in the registry), so that the doc
 // module can walk the public API at run time. The texts of the host functions registered in
-// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.write_file, smi.lock_out, smi.libraries,
-// smi.provenance) are here.
+// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.write_file, smi.lock_out, smi.warnings,
+// smi.libraries, smi.provenance) are here.
 #include <cstring>
 #include <exception>
 #include <string>
@@ -68,6 +68,17 @@ errors: another process holds the lock (the message names its pid, host, start t
 example:
   smi.lock_out()
   print("locked")
+
+@ smi.warnings() -> list
+The run's warnings so far, in order, each as "<function>: <text>" (data outside a KDE's bounds,
+duplicated CSV rows, an integration grid too coarse for a pdf, ...). Every warning a smi function
+gives comes here; it is also printed on stderr as "<function>: warning: <text>" unless the run is
+quiet (--quiet, or output not a terminal), so a quiet run loses none.
+returns: a list of strings (empty when nothing was warned)
+errors: none
+example:
+  for _, w in ipairs(smi.warnings()) do print(w) end
+  print(#smi.warnings() >= 0)
 
 @ smi.provenance([opts]) -> table
 What this run's numbers depend on so far: every file it read (Lua modules, dofile/loadfile

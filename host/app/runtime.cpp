@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "luax/load_guard.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "luax/run_context.hpp"
 #include "platform/core/atomic_file.hpp"
 #include "platform/core/cancel.hpp"
 #include "platform/core/printable.hpp"
@@ -137,16 +139,29 @@ int smi_lock_out(lua_State* L) {
   return 0;
 }
 
+/// smi.warnings(): the run's warnings so far ("<function>: <text>", in order), the ones printed on
+/// a terminal and the ones --quiet kept off stderr alike. Stack: [] -> [list].
+int smi_warnings(lua_State* L) {
+  const std::vector<std::string> w = lua::run_context(L).warnings.collected();
+  lua_createtable(L, static_cast<int>(w.size()), 0);
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    lua_pushlstring(L, w[i].data(), w[i].size());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
 /// Runs in protected mode (lua.c's pmain idea): libraries, smi, sandbox, searchers.
 int init_state(lua_State* L) {
   auto* rt = static_cast<Runtime*>(lua_touserdata(L, 1));
   const Config& cfg = rt->config();
   const lua::Policy& pol = rt->policy();
+  const RunContext& ctx = rt->context();
   luaL_openlibs(L);
   luaL_requiref(L, "smi", rt->bindings().open_smi, 1);  // stack: [rt, smi]
-  lua_pushinteger(L, static_cast<lua_Integer>(cfg.seed));
+  lua_pushinteger(L, static_cast<lua_Integer>(ctx.seed));
   lua_setfield(L, -2, "seed");
-  lua_pushboolean(L, cfg.quiet);
+  lua_pushboolean(L, ctx.quiet);
   lua_setfield(L, -2, "quiet");
   lua_pushstring(L, pol.out_dir.c_str());
   lua_setfield(L, -2, "out_dir");
@@ -160,7 +175,9 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "write_file");
   lua_pushcfunction(L, smi_lock_out);
   lua_setfield(L, -2, "lock_out");
-  lua_pushboolean(L, cfg.dry_run);  // a study neither saves results nor writes a report then
+  lua_pushcfunction(L, smi_warnings);
+  lua_setfield(L, -2, "warnings");
+  lua_pushboolean(L, ctx.dry_run);  // a study neither saves results nor writes a report then
   lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
   lua_setfield(L, -2, "version");
@@ -239,16 +256,8 @@ void Runtime::build_policy() {
   if (!cfg_.store_path.empty()) policy_.read_roots.push_back(lua::resolve_path(cfg_.store_path));
   policy_.exec_allowed = cfg_.allow_exec;
 
-  policy_.seed = cfg_.seed;
-  policy_.quiet = cfg_.quiet;
   policy_.unrestricted = !cfg_.sandbox;
-  policy_.store_path = cfg_.store_path;
-  policy_.dry_run = cfg_.dry_run;
-  policy_.executor = cfg_.executor;
-  policy_.slurm_opts = cfg_.slurm_opts;
   policy_.allow_env = cfg_.allow_env;
-  policy_.detach = cfg_.detach;
-  policy_.script_path = cfg_.script == "-" ? "" : cfg_.script;
 
   // Provenance (issue 24): the options of smi-lua that change results, and where reads are
   // outputs of the run rather than inputs (the output folder: results.json, the runs' folders).
@@ -267,17 +276,35 @@ void Runtime::build_policy() {
   if (!cfg_.stdlib_dir.empty()) opt("stdlib-dir", lua::resolve_path(cfg_.stdlib_dir).string());
 }
 
+void Runtime::build_context() {
+  context_.seed = cfg_.seed;
+  context_.quiet = cfg_.quiet;
+  context_.dry_run = cfg_.dry_run;
+  context_.timeout_s = cfg_.timeout_s;
+  context_.memory_bytes = cfg_.max_memory_mb << 20;
+  context_.store_path = cfg_.store_path;
+  context_.script_path = cfg_.script == "-" ? "" : cfg_.script;
+  context_.executor = cfg_.executor;
+  context_.slurm_opts = cfg_.slurm_opts;
+  context_.detach = cfg_.detach;
+  context_.progress.live = !cfg_.quiet && ::isatty(STDERR_FILENO);
+  context_.warnings = WarningSink(!cfg_.quiet);
+  context_.cancel = &cancel::process_token();  // the one the signal handler reaches (vm/limits)
+}
+
 Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings_(bindings), L_(nullptr) {
   if (!bindings_.open_smi || !bindings_.docs) throw Error("Runtime: no bindings handed in (cli/bindings_root.cpp)");
   build_policy();
+  build_context();
   // Two versions of a library or an unmet requirement stop the run before any code runs.
   // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too.
   const ProjectLibraries project = project_libraries(fs::current_path());
   if (!project.tree.empty()) policy_.read_roots.push_back(lua::resolve_path(project.tree.string()));
   libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")), &project);
   libs_.check();
-  limits_.timeout_s = cfg_.timeout_s;
-  limits_.mem_limit = cfg_.max_memory_mb << 20;
+  limits_.token = context_.cancel;
+  limits_.timeout_s = context_.timeout_s;
+  limits_.mem_limit = context_.memory_bytes;
   memory_.limit = limits_.mem_limit;
   memory_.lua_used = &limits_.mem_used;
   limits_.external = &memory_.external;
@@ -287,23 +314,8 @@ Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings
   lua_atpanic(L_, panic);
   lua_setwarnf(L_, warnf, &g_warnings_on);
   install_limits(L_, &limits_);
-  policy_.stop_reason = [this]() -> std::string {
-    if (limits_.interrupted && limits_.interrupted != SIGINT)
-      return std::string("interrupted by ") + signal_name(limits_.interrupted);
-    if (limits_.interrupted || limits_.abort == Abort::interrupt) return "interrupted";
-    // os.exit from a parse function (or --dry-run's request_exit): stop as Ctrl-C would
-    if (limits_.abort == Abort::exit) return "interrupted";
-    if (limits_.abort == Abort::none && limits_.timeout_s > 0 && std::chrono::steady_clock::now() >= limits_.deadline)
-      trip(L_, Abort::timeout);  // the hook raises "timeout: ..." at the next instruction
-    char buf[200];
-    const char* msg = abort_message(limits_, buf, sizeof buf);
-    return msg ? msg : "";
-  };
-  policy_.request_exit = [this](int code) {
-    limits_.exit_code = code;
-    trip(L_, Abort::exit);
-  };
   lua::set_policy(L_, &policy_);
+  lua::set_run_context(L_, &context_);
   lua_pushcfunction(L_, init_state);
   lua_pushlightuserdata(L_, this);
   if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
@@ -331,11 +343,12 @@ Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings
 Runtime::~Runtime() {
   // Finalizers run here, with Lua's hooks off: a __gc that never returns is ended by the
   // watchdog once a fresh --timeout has passed (or after Ctrl-C).
-  if (limits_.timeout_s > 0) cancel::set_deadline(limits_.timeout_s);
+  context_.cancel->reset();
+  if (limits_.timeout_s > 0) context_.cancel->arm_deadline(limits_.timeout_s);
   watchdog_.arm();
   lua_close(L_);
   watchdog_.disarm();
-  cancel::reset();
+  context_.cancel->reset();
 }
 
 void Runtime::set_arg(int argc, char** argv, int script_index) {
@@ -369,9 +382,10 @@ int Runtime::docall(int nargs, int nresults) {
 
 int Runtime::report(int status) {
   if (status == LUA_OK) return 0;
+  const cancel::Token& token = *context_.cancel;
   if (exit_requested()) {
     lua_pop(L_, 1);
-    return limits_.exit_code;
+    return token.detail();
   }
   char buf[256];
   const char* msg = lua_tostring(L_, -1);
@@ -385,24 +399,25 @@ int Runtime::report(int status) {
     lua_pop(L_, 1);
     return 1;
   }
-  if (limits_.abort == Abort::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
+  if (token.raised() == cancel::Reason::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
     // "not enough memory" comes from the allocator refusing: say which limit and how to raise it
-    std::fprintf(stderr, "smi-lua: %s\n", abort_message(limits_, buf, sizeof buf));
+    std::fprintf(stderr, "smi-lua: %s\n", abort_message(token, buf, sizeof buf));
     if (msg && std::strcmp(msg, "not enough memory") != 0) std::fprintf(stderr, "%s\n", printable(msg).c_str());
   } else {
     // Messages carry data (file contents, a solver's log, names from a results file): escaped.
     std::fprintf(stderr, "smi-lua: %s\n", msg ? printable(msg).c_str() : "(error object is not a string)");
   }
   lua_pop(L_, 1);
-  if (limits_.interrupted > 0) {
+  if (token.raised() == cancel::Reason::signal && token.detail() > 0) {
+    const int sig = token.detail();
     // Stopped by a signal: say what survives and how to go on; exit 128 + signal, as a shell does.
     const std::string store = (policy_.out_dir / "evaluations.sqlite").string();  // the local store of the runs
     std::fprintf(stderr,
                  "smi-lua: stopped by %s. Kept: every finished solver run (in %s) and the study steps that "
                  "finished (a study keeps them in %s). To resume, run the same command again: stored runs are reused, not rerun.\n",
-                 signal_name(limits_.interrupted), store.c_str(), (policy_.out_dir / "results.json").string().c_str());
+                 signal_name(sig), store.c_str(), (policy_.out_dir / "results.json").string().c_str());
     std::fflush(stderr);
-    return 128 + limits_.interrupted;
+    return 128 + sig;
   }
   std::fflush(stderr);
   return 1;

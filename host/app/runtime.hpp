@@ -10,6 +10,7 @@
 #include "luax/doc_text.hpp"
 #include "luax/memory.hpp"
 #include "luax/policy.hpp"
+#include "platform/core/run_context.hpp"
 #include "platform/core/defaults.hpp"
 #include "platform/core/run_record.hpp"
 #include "vm/libraries.hpp"
@@ -60,6 +61,7 @@ class Runtime {
   lua_State* state() const { return L_; }
   const Config& config() const { return cfg_; }
   const lua::Policy& policy() const { return policy_; }
+  const RunContext& context() const { return context_; }
   const Bindings& bindings() const { return bindings_; }
 
   /// Sets the global `arg` as lua.c does: argv[script_index] at 0, the script's arguments at
@@ -80,16 +82,18 @@ class Runtime {
   /// returns the exit status for `status`.
   int report(int status);
   /// True once os.exit was called; the host must stop running chunks.
-  bool exit_requested() const { return limits_.abort == vm::Abort::exit; }
+  bool exit_requested() const { return context_.cancel->raised() == cancel::Reason::exit; }
 
  private:
   void build_policy();
+  void build_context();
   Config cfg_;
   Bindings bindings_;
-  lua::Policy policy_;
+  lua::Policy policy_;    // what the script may touch
+  RunContext context_;    // how the run goes: seed, quiet, limits, executor, sinks, the token
   vm::Limits limits_;
   lua::MemoryBudget memory_;  // vec/mat/Kriging bytes under --max-memory
-  vm::Watchdog watchdog_;         // ends a run stuck in C code past --timeout or Ctrl-C
+  vm::Watchdog watchdog_{cancel::process_token()};  // ends a run stuck in C code past --timeout or Ctrl-C
   vm::ModuleSearch modules_;
   lua_State* L_;
   vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)

@@ -2,14 +2,11 @@
 // What a script may touch: the sandbox's allow-list, shared by the runtime (which fills it
 // from the command line) and the bindings (which check it before opening files or launching
 // programs). It lives in the Lua registry so that every bound function can reach it.
-#include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 #include <lua.hpp>
 
-#include "platform/core/defaults.hpp"
 #include "platform/core/errors.hpp"
 #include "platform/core/path_walk.hpp"
 #include "platform/core/run_record.hpp"
@@ -48,25 +45,10 @@ struct Policy {
   std::vector<std::filesystem::path> write_roots;  // --out dir, --allow-write
   std::vector<std::string> exec_allowed;           // --allow-exec: program names or paths
   std::filesystem::path out_dir;                   // --out (default smi-out/<script>/)
-  std::uint64_t seed = kDefaultSeed;               // --seed
-  bool quiet = false;                              // --quiet or stdout/stderr not a terminal
   bool unrestricted = false;                       // no sandbox (tests of the kernels only)
-  std::string store_path;                          // --store PATH: evaluation store to use (issue 5)
-  bool dry_run = false;                            // --dry-run: count solver runs, launch none
-  std::string script_path;                         // the study being run ("" for -e / REPL)
-  std::string executor;                            // --executor: where solver runs go ("" = local)
-  std::vector<std::string> slurm_opts;             // --slurm-opt KEY=VALUE
-  bool detach = false;                             // --detach: leave Slurm jobs running when stopped
   std::vector<std::string> allow_env;              // --allow-env: variables scripts and solvers may see
-  /// Set by the runtime: "" while the run may go on, else why it must stop ("timeout: ...",
-  /// "interrupted"). C++ code that waits without running Lua (solver runs) polls it, because
-  /// the runtime's checks live in a Lua instruction hook that does not fire while no Lua runs.
-  /// Once it is non-empty, the next Lua instruction raises that message as well.
-  std::function<std::string()> stop_reason;
-  /// Set by the runtime: ends the run quietly with exit status `code` from the next Lua
-  /// instruction on (as os.exit does; pcall cannot catch it). --dry-run uses it to stop where a
-  /// step needs solver runs that were not made.
-  std::function<void(int code)> request_exit;
+  // The run's settings (seed, quiet, store, executor, the cancellation token, ...) are not the
+  // sandbox's: they are in the RunContext (core/run_context.hpp, luax/run_context.hpp).
 
   std::filesystem::path out_root;                  // output_root(out_dir) at start (made on demand, no symlinks)
   /// What the run read and ran (provenance, issue 24); set by the runtime, null in kernel tests.
@@ -136,7 +118,7 @@ bool path_within(const std::filesystem::path& path, const std::filesystem::path&
 Policy& policy(lua_State* L);
 /// Stores `p` (not owned; must outlive the state) in the registry.
 void set_policy(lua_State* L, Policy* p);
-/// The error value that ends a run quietly (os.exit, Policy::request_exit): a light userdata the
+/// The error value that ends a run quietly (os.exit, --dry-run: a token stopped with reason exit): a light userdata the
 /// runtime's message handler recognises. Raised by the sandbox's os.exit and the limits' hook.
 void* exit_sentinel();
 /// Loads the text of a checked file as a text chunk named `chunkname` ("@path"), skipping a

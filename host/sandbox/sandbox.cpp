@@ -6,6 +6,7 @@
 
 #include "luax/load_guard.hpp"
 #include "luax/policy.hpp"
+#include "luax/run_context.hpp"
 
 namespace smi::sandbox {
 namespace {
@@ -85,7 +86,7 @@ int os_exit(lua_State* L) {
     code = lua_toboolean(L, 1) ? 0 : 1;
   else
     code = static_cast<int>(luaL_optinteger(L, 1, 0));
-  if (const lua::Policy& pol = lua::policy(L); pol.request_exit) pol.request_exit(code);
+  lua::stop_run(L, cancel::Reason::exit, code);  // the token says exit: no pcall keeps running
   lua_pushlightuserdata(L, lua::exit_sentinel());
   return lua_error(L);
 }
@@ -93,7 +94,7 @@ int os_exit(lua_State* L) {
 /// math.randomseed(): without arguments reseeds with --seed instead of the clock, so a run
 /// stays reproducible; with arguments it is the standard function.
 int randomseed(lua_State* L) {
-  if (lua_gettop(L) == 0) lua_pushinteger(L, static_cast<lua_Integer>(lua::policy(L).seed));
+  if (lua_gettop(L) == 0) lua_pushinteger(L, static_cast<lua_Integer>(lua::run_context(L).seed));
   const int n = lua_gettop(L);
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);

@@ -18,7 +18,7 @@
 namespace smi::sandbox {
 
 /// Restricts the globals of a state whose standard libraries are open. Uses lua::policy(L)
-/// (paths, seed, request_exit for os.exit). Stack: unchanged.
+/// (paths) and lua::run_context(L) (seed; the token os.exit stops). Stack: unchanged.
 void install(lua_State* L);
 
 /// The last step of making a state (after the host added smi, searchers and libraries):

@@ -8,29 +8,20 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <spawn.h>
 #include <sstream>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "platform/core/errors.hpp"
 #include "platform/core/sha256.hpp"
+#include "platform/eval/process.hpp"
 #include "vm/git_commit.hpp"
 #include "vm/tar_gz.hpp"
 
-extern char** environ;
 
 namespace smi::vm {
 namespace fs = std::filesystem;
 namespace {
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string trim(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
@@ -81,28 +72,23 @@ GitResult run_git(const std::vector<std::string>& args, const fs::path& scratch)
   for (const char* keep : {"PATH", "SSH_AUTH_SOCK", "http_proxy", "https_proxy", "no_proxy", "HTTP_PROXY",
                            "HTTPS_PROXY", "NO_PROXY"})
     if (const char* v = std::getenv(keep)) env.push_back(std::string(keep) + "=" + v);
-  std::vector<char*> av, ev;
-  for (auto& s : argv) av.push_back(s.data());
-  av.push_back(nullptr);
-  for (auto& s : env) ev.push_back(s.data());
-  ev.push_back(nullptr);
-  const std::string out_path = (scratch / "git.out").string(), err_path = (scratch / "git.err").string();
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_addopen(&fa, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, git.c_str(), &fa, nullptr, av.data(), ev.data());
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw Error("cannot run " + git + ": " + std::strerror(rc));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  // Started the evaluator's way (platform/eval/process.hpp): own process group, default
+  // signals, exactly this environment, both outputs captured.
+  eval::SpawnSpec spec;
+  spec.program = git;
+  spec.argv = std::move(argv);
+  spec.env = std::move(env);
+  spec.solver_mark = false;
+  eval::CapturedRun c;
+  try {
+    c = eval::run_captured(std::move(spec), 0);
+  } catch (const eval::SpawnError& e) {
+    throw Error("cannot run " + git + ": " + std::strerror(e.err));
   }
   GitResult r;
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-  r.out = read_file(out_path);
-  r.err = read_file(err_path);
+  r.status = c.status > 128 ? 128 : c.status;  // killed by a signal: 128, as before
+  r.out = std::move(c.out);
+  r.err = std::move(c.err);
   return r;
 }
 

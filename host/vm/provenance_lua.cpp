@@ -5,6 +5,7 @@
 
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
+#include "luax/run_context.hpp"
 #include "platform/core/sha256.hpp"
 #include "vm/build_info.hpp"
 #include "vm/embedded_stdlib.hpp"
@@ -76,6 +77,7 @@ int smi_provenance(lua_State* L) {
   }
   const LibrarySet& set = libs_of(L);
   const lua::Policy& pol = lua::policy(L);
+  const RunContext& ctx = lua::run_context(L);
   // Hash everything first (C++ work that may throw), then build the table.
   std::map<std::string, InputFile> read;
   std::vector<ProgramRun> programs;
@@ -86,9 +88,9 @@ int smi_provenance(lua_State* L) {
       read = pol.record->files();
       programs = pol.record->programs();
     }
-    if (!pol.script_path.empty()) {
-      const auto it = read.find(lua::resolve_path(pol.script_path).string());
-      script_hash = it != read.end() ? it->second.digest.hash : "sha256:" + sha256_file(pol.script_path);
+    if (!ctx.script_path.empty()) {
+      const auto it = read.find(lua::resolve_path(ctx.script_path).string());
+      script_hash = it != read.end() ? it->second.digest.hash : "sha256:" + sha256_file(ctx.script_path);
     }
     return 0;
   });
@@ -97,7 +99,7 @@ int smi_provenance(lua_State* L) {
   set_string(L, "lua", LUA_RELEASE);
   push_build_info(L);
   lua_setfield(L, -2, "build");
-  lua_pushinteger(L, static_cast<lua_Integer>(pol.seed));
+  lua_pushinteger(L, static_cast<lua_Integer>(ctx.seed));
   lua_setfield(L, -2, "seed");
   if (pol.record) {
     push_strings(L, pol.record->command_line);
@@ -108,9 +110,9 @@ int smi_provenance(lua_State* L) {
     push_options(L, *pol.record);
     lua_setfield(L, -2, "options");
   }
-  if (!pol.script_path.empty()) {
+  if (!ctx.script_path.empty()) {
     lua_newtable(L);
-    set_string(L, "path", lua::resolve_path(pol.script_path).string());  // absolute: verify runs from anywhere
+    set_string(L, "path", lua::resolve_path(ctx.script_path).string());  // absolute: verify runs from anywhere
     set_string(L, "hash", script_hash);
     lua_setfield(L, -2, "script");
   }

@@ -9,7 +9,7 @@
 
 namespace smi::vm {
 
-Watchdog::Watchdog(double grace_s) : grace_s_(grace_s) {}
+Watchdog::Watchdog(const cancel::Token& token, double grace_s) : token_(token), grace_s_(grace_s) {}
 
 Watchdog::~Watchdog() {
   quit_ = true;
@@ -29,7 +29,7 @@ void Watchdog::loop() {
   Clock::time_point since{};
   while (!quit_) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (!armed_ || !cancel::stop_requested()) {
+    if (!armed_ || !token_.stop_requested()) {
       seen = false;
       continue;
     }
@@ -39,12 +39,13 @@ void Watchdog::loop() {
       continue;
     }
     if (std::chrono::duration<double>(Clock::now() - since).count() < grace_s_) continue;
-    const std::string why = cancel::reason();
+    const std::string why = token_.message();
     if (why.empty() || !armed_) {
       seen = false;
       continue;
     }
-    const bool interrupt = why.rfind("interrupted", 0) == 0;
+    const cancel::Reason r = token_.reason();
+    const int status = r == cancel::Reason::exit ? token_.detail() : r == cancel::Reason::signal ? 130 : 1;
     char msg[512];
     const int n = std::snprintf(msg, sizeof msg,
                                 "smi-lua: %s\nsmi-lua: the run did not stop within %g s of that: it is stuck in code "
@@ -52,7 +53,7 @@ void Watchdog::loop() {
                                 "does not return, or a C function); the process ends here\n",
                                 why.c_str(), grace_s_);
     if (n > 0) (void)!::write(2, msg, static_cast<std::size_t>(n < static_cast<int>(sizeof msg) ? n : sizeof msg - 1));
-    ::_exit(interrupt ? 130 : 1);
+    ::_exit(status);
   }
 }
 

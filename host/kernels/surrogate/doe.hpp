@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "platform/core/cancel.hpp"
+
 namespace smi::surrogate::doe {
 
 /// Space-filling criterion optimized by the enhanced stochastic evolutionary (ESE) search of
@@ -21,7 +23,10 @@ struct LhsOptions {
 };
 
 /// n points in [0,1]^d, each column a permutation of the n strata. Same seed, same design.
-Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt = {});
+/// The optimisation reads `stop` (the run's cancellation token) between steps and throws
+/// smi::Interrupted with its reason.
+Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt = {},
+                    const cancel::Token& stop = cancel::process_token());
 
 /// phi_p of the rows of X (Euclidean distances). Throws for two identical rows.
 double phi_p(const Eigen::MatrixXd& X, double p);

@@ -96,7 +96,8 @@ Eigen::MatrixXd random_lhs(Eigen::Index n, Eigen::Index d, Rng& rng, bool center
 
 }  // namespace
 
-Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt) {
+Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt,
+                    const cancel::Token& stop) {
   if (n < 1) throw InvalidArgument("lhs: need at least 1 point, got " + std::to_string(n));
   if (d < 1) throw InvalidArgument("lhs: need at least 1 dimension, got " + std::to_string(d));
   double p = opt.p;
@@ -125,7 +126,7 @@ Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const Lh
     const double phi_old_best = best_phi;
     int accepted = 0, improved = 0;
     for (int step = 0; step < M; ++step) {
-      cancel::poll();  // a step updates J x n distances: well under a millisecond
+      stop.poll();  // a step updates J x n distances: well under a millisecond
       const Eigen::Index k = step % d;
       double best_ds = std::numeric_limits<double>::infinity();
       Eigen::Index ba = 0, bb = 1;

@@ -466,8 +466,8 @@ void Evaluator::Run::store_task(std::size_t t, const Outcome& o, const std::stri
 }
 
 void Evaluator::Run::check_interrupt() const {
-  if (!ev.stop_check_) return;
-  const std::string why = ev.stop_check_();
+  if (!ev.cancel_ || !ev.cancel_->stop_requested()) return;
+  const std::string why = ev.cancel_->message();
   if (!why.empty())
     throw Interrupted(fmt::format("{}; {} finished run{} of model '{}' are stored, running the study again "
                                   "resumes from there", why, prog.done, prog.done == 1 ? "" : "s", cfg.name));

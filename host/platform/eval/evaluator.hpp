@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "platform/core/cancel.hpp"
 #include "platform/core/path_walk.hpp"
 #include "platform/eval/deck_template.hpp"
 #include "platform/eval/executor.hpp"
@@ -108,11 +109,11 @@ class Evaluator {
   /// `plan` ("" for the local executor).
   std::string executor_plan(const Plan& plan);
 
-  /// A check polled while runs go on (every tick and after each run): "" to go on, else why the
-  /// run must stop ("interrupted", "timeout: ..."). Then evaluate() kills the running process
-  /// groups and throws smi::Interrupted with that reason. Records of the runs that finished are
-  /// in the store already, so running the study again resumes.
-  void set_stop_check(std::function<std::string()> check) { stop_check_ = std::move(check); }
+  /// The run's cancellation token, read while runs go on (every tick and after each run): once
+  /// it carries a reason (signal, timeout, memory, exit), evaluate() kills the running process
+  /// groups and throws smi::Interrupted with the reason's message. Records of the runs that
+  /// finished are in the store already, so running the study again resumes. Null: never stops.
+  void set_cancel(const cancel::Token* token) { cancel_ = token; }
 
   /// With CommandConfig::deck_function: the function that makes the deck text of a point (the
   /// binding sets it around each evaluate/plan, see bindings/eval/deck_function.cpp). It is called
@@ -137,7 +138,7 @@ class Evaluator {
   CommandConfig cfg_;
   std::string key_prefix_;  // hash state of everything but the point, as text fed first
   std::unique_ptr<Store> store_, shared_;
-  std::function<std::string()> stop_check_;
+  const cancel::Token* cancel_ = nullptr;
   std::function<std::string(const Eigen::VectorXd&)> deck_fn_;
 };
 

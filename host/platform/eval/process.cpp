@@ -12,7 +12,9 @@
 #include <csignal>
 #include <cstring>
 #include <ctime>
+#include <cmath>
 #include <fcntl.h>
+#include <poll.h>
 #include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +25,8 @@
 
 #include "platform/core/errors.hpp"
 
+
+extern char** environ;
 
 namespace smi::eval {
 namespace {
@@ -38,8 +42,10 @@ namespace {
 [[noreturn]] void exec_child(const SpawnSpec& spec, char* const* argv, char* const* envp, pid_t parent, int errfd) {
   // Die with smi-lua (even by SIGKILL): a solver must not outlive the study that started it. If
   // the parent died between fork and prctl, we were already reparented: leave at once.
-  if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) child_fail(errfd, errno);
-  if (::getppid() != parent) ::_exit(127);
+  if (spec.die_with_parent) {
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0) child_fail(errfd, errno);
+    if (::getppid() != parent) ::_exit(127);
+  }
   // A new process group (pgid = pid), so a timeout or a stop can kill the solver and its helpers.
   if (::setpgid(0, 0) != 0) child_fail(errfd, errno);
   // Default signal handling and an empty mask: a solver does not inherit what the host set.
@@ -51,15 +57,17 @@ namespace {
   sigemptyset(&none);
   ::sigprocmask(SIG_SETMASK, &none, nullptr);
   const int in = ::open("/dev/null", O_RDONLY);
-  const int out = ::open(spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
-  const int err = ::open(spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
+  const int out = spec.stdout_fd >= 0 ? spec.stdout_fd
+                                      : ::open(spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
+  const int err = spec.stderr_fd >= 0 ? spec.stderr_fd
+                                      : ::open(spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
   if (in < 0 || out < 0 || err < 0) child_fail(errfd, errno);
   if (::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0) child_fail(errfd, errno);
   // Descriptors the host holds (files a script opened, the store) are not the solver's business;
   // errfd is close-on-exec, so it stays open until exec succeeds.
   for (int fd : {in, out, err})
     if (fd > 2 && fd != errfd) ::close(fd);
-  if (::chdir(spec.workdir.c_str()) != 0) child_fail(errfd, errno);
+  if (!spec.workdir.empty() && ::chdir(spec.workdir.c_str()) != 0) child_fail(errfd, errno);
   if ((errfd > 3 && ::close_range(3, static_cast<unsigned>(errfd) - 1, 0) != 0) ||
       ::close_range(static_cast<unsigned>(errfd) + 1, ~0u, 0) != 0) {
     const long maxfd = std::min(::sysconf(_SC_OPEN_MAX), 65536L);  // kernels before 5.9
@@ -147,7 +155,7 @@ pid_t spawn_process(const SpawnSpec& spec) {
   std::vector<char*> envp;
   for (const auto& e : spec.env)
     if (e.rfind(std::string(kSolverMarkVar) + "=", 0) != 0) envp.push_back(const_cast<char*>(e.c_str()));
-  envp.push_back(const_cast<char*>(mark.c_str()));
+  if (spec.solver_mark) envp.push_back(const_cast<char*>(mark.c_str()));
   envp.push_back(nullptr);
 
   int pipefd[2];
@@ -158,7 +166,7 @@ pid_t spawn_process(const SpawnSpec& spec) {
     const int e = errno;
     ::close(pipefd[0]);
     ::close(pipefd[1]);
-    throw Error(fmt::format("cannot start '{}': fork failed: {}", spec.program, std::strerror(e)));
+    throw SpawnError(fmt::format("cannot start '{}': fork failed: {}", spec.program, std::strerror(e)), e);
   }
   if (pid == 0) {
     ::close(pipefd[0]);
@@ -181,9 +189,89 @@ pid_t spawn_process(const SpawnSpec& spec) {
     while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
     }
     solver_reaped(pid);
-    throw Error(fmt::format("cannot start '{}': {}", spec.program, std::strerror(err)));
+    throw SpawnError(fmt::format("cannot start '{}': {}", spec.program, std::strerror(err)), err);
   }
   return pid;
+}
+
+CapturedRun run_captured(SpawnSpec spec, double timeout) {
+  CapturedRun r;
+  int out[2], err[2];
+  if (::pipe2(out, O_CLOEXEC) != 0) throw Error(fmt::format("pipe: {}", std::strerror(errno)));
+  if (::pipe2(err, O_CLOEXEC) != 0) {
+    const int e = errno;
+    ::close(out[0]);
+    ::close(out[1]);
+    throw Error(fmt::format("pipe: {}", std::strerror(e)));
+  }
+  spec.stdout_fd = out[1];
+  spec.stderr_fd = err[1];
+  pid_t pid = -1;
+  try {
+    pid = spawn_process(spec);
+  } catch (const Error&) {
+    for (int fd : {out[0], out[1], err[0], err[1]}) ::close(fd);
+    throw;
+  }
+  ::close(out[1]);
+  ::close(err[1]);
+  const double deadline = timeout > 0 ? monotonic_seconds() + timeout : 0;
+  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  std::string* sink[2] = {&r.out, &r.err};
+  int open_fds = 2;
+  char buf[4096];
+  while (open_fds > 0) {
+    const double left = timeout > 0 ? deadline - monotonic_seconds() : 1.0;
+    if (left <= 0) {
+      r.timed_out = true;
+      signal_group(pid, SIGKILL);
+      break;
+    }
+    const int n = ::poll(fds, 2, static_cast<int>(std::ceil(std::min(left, 1.0) * 1000)));
+    if (n < 0 && errno != EINTR) break;
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      const ssize_t got = ::read(fds[i].fd, buf, sizeof buf);
+      if (got > 0) {
+        sink[i]->append(buf, static_cast<std::size_t>(got));
+      } else if (got == 0 || errno != EINTR) {
+        ::close(fds[i].fd);
+        fds[i].fd = -1;
+        --open_fds;
+      }
+    }
+  }
+  for (auto& f : fds)
+    if (f.fd >= 0) ::close(f.fd);
+  int st = 0;
+  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+  }
+  solver_reaped(pid);
+  if (!r.timed_out) r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  return r;
+}
+
+std::string find_program(const std::string& program) {
+  if (program.empty()) return "";
+  if (program.find('/') != std::string::npos) return program;
+  const char* path = std::getenv("PATH");
+  const std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";  // execvp's default
+  for (std::size_t a = 0; a <= dirs.size();) {
+    std::size_t b = dirs.find(':', a);
+    if (b == std::string::npos) b = dirs.size();
+    const std::string dir = b > a ? dirs.substr(a, b - a) : ".";  // an empty entry is the working folder
+    const std::string cand = dir + "/" + program;
+    struct stat st {};
+    if (::stat(cand.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(cand.c_str(), X_OK) == 0) return cand;
+    a = b + 1;
+  }
+  return "";
+}
+
+std::vector<std::string> current_environment() {
+  std::vector<std::string> env;
+  for (char** e = environ; e && *e; ++e) env.emplace_back(*e);
+  return env;
 }
 
 void become_subreaper() { ::prctl(PR_SET_CHILD_SUBREAPER, 1); }

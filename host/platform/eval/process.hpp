@@ -1,13 +1,17 @@
 #pragma once
-// Launching one solver process: fork + exec of an argv vector (never a shell), in its own
-// process group so that a timeout can kill the solver and everything it started, with the
-// work directory as its current directory, stdin from /dev/null and stdout/stderr to files.
+// Starting a process, the one way smi-lua does it (solvers, their version line, the Slurm
+// commands): fork + exec of an argv vector (never a shell), in its own process group so that a
+// timeout can kill it and everything it started, with default signal handling, stdin from
+// /dev/null, stdout/stderr to files or to pipes the caller reads (run_captured), and exactly the
+// environment it is given.
 // The solver dies with smi-lua (PR_SET_PDEATHSIG), and carries kSolverMarkVar in its
 // environment so that descendants escaping its group (setsid) can be found and killed
 // (reap_escaped_descendants, with smi-lua a child subreaper).
 #include <string>
 #include <sys/types.h>
 #include <vector>
+
+#include "platform/core/errors.hpp"
 
 namespace smi::eval {
 
@@ -18,6 +22,18 @@ struct SpawnSpec {
   std::string stdout_path;        // absolute paths of the capture files
   std::string stderr_path;
   std::vector<std::string> env;   // the child's whole environment ("NAME=value"), see solver_environment
+  // What run_captured and the Slurm commands change (a solver keeps the defaults):
+  int stdout_fd = -1;             // >= 0: the child's stdout/stderr are these descriptors (pipes),
+  int stderr_fd = -1;             //   not stdout_path/stderr_path
+  bool solver_mark = true;        // carry kSolverMarkVar (sbatch would hand it on to the job)
+  bool die_with_parent = true;    // PR_SET_PDEATHSIG: a solver dies with smi-lua; an sbatch or
+                                  //   scancel under way is left to finish
+};
+
+/// A process that could not be started: the program and the system's reason (errno in `err`).
+struct SpawnError : Error {
+  SpawnError(const std::string& msg, int e) : Error(msg), err(e) {}
+  int err;
 };
 
 /// The variables every solver gets from smi-lua's environment when they are set (the locale, the
@@ -40,9 +56,28 @@ std::string declared_env_refusal(const std::string& name);
 /// the same name.
 void apply_declared_env(std::vector<std::string>& env, const std::vector<std::pair<std::string, std::string>>& set);
 
-/// Starts the process with exactly spec.env (plus kSolverMarkVar); returns its pid, which is also its process-group id. Throws smi::Error
+/// Starts the process with exactly spec.env (plus kSolverMarkVar); returns its pid, which is also its process-group id. Throws SpawnError
 /// with the program and the system's reason when it cannot be started (missing, not executable).
 pid_t spawn_process(const SpawnSpec& spec);
+
+/// What a short command printed and how it ended (run_captured).
+struct CapturedRun {
+  int status = -1;          // exit status (128 + signal when killed); -1 when it timed out
+  bool timed_out = false;
+  std::string out, err;
+};
+
+/// Runs `spec` (its stdout/stderr fields ignored) to its end with both outputs captured through
+/// pipes; at `timeout` seconds (<= 0: none) its process group is killed (SIGKILL) and timed_out is set.
+/// Throws SpawnError when it cannot be started.
+CapturedRun run_captured(SpawnSpec spec, double timeout);
+
+/// The absolute path of `program` found through $PATH as execvp would (a name with a '/' is
+/// returned as it is); "" when no folder of PATH holds an executable of that name.
+std::string find_program(const std::string& program);
+
+/// This process's environment as "NAME=value" entries (for a command that inherits it all).
+std::vector<std::string> current_environment();
 
 /// Environment variable set in every solver's environment to smi-lua's pid.
 inline constexpr const char* kSolverMarkVar = "SMI_LUA_SOLVER_OF";

@@ -1,100 +1,42 @@
 #include "platform/eval/slurm_cli.hpp"
 
 #include <cerrno>
-#include <cmath>
-#include <csignal>
 #include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <fmt/format.h>
-#include <poll.h>
-#include <spawn.h>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "platform/eval/process.hpp"
-
-extern char** environ;
 
 namespace smi::eval {
 
 CommandResult run_command(const std::vector<std::string>& argv, double timeout, const std::string& bin_dir) {
   CommandResult r;
   if (argv.empty()) return r;
-  int out[2], err[2];
-  if (::pipe2(out, O_CLOEXEC) != 0) throw Error(fmt::format("pipe: {}", std::strerror(errno)));
-  if (::pipe2(err, O_CLOEXEC) != 0) {
-    ::close(out[0]);
-    ::close(out[1]);
-    throw Error(fmt::format("pipe: {}", std::strerror(errno)));
-  }
-  posix_spawn_file_actions_t fa;
-  posix_spawnattr_t at;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawnattr_init(&at);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&fa, out[1], 1);
-  posix_spawn_file_actions_adddup2(&fa, err[1], 2);
-  // Own process group, default signals: a Ctrl-C meant for smi-lua does not kill the scancel
-  // that smi-lua is about to run because of it.
-  sigset_t none, all;
-  sigemptyset(&none);
-  sigfillset(&all);
-  posix_spawnattr_setpgroup(&at, 0);
-  posix_spawnattr_setsigmask(&at, &none);
-  posix_spawnattr_setsigdefault(&at, &all);
-  posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  std::vector<char*> av;
-  for (const auto& a : argv) av.push_back(const_cast<char*>(a.c_str()));
-  av.push_back(nullptr);
+  // The evaluator's process start (process.hpp): own process group and default signals, so a
+  // Ctrl-C meant for smi-lua does not kill the scancel that smi-lua is about to run because of
+  // it; smi-lua's whole environment (sbatch hands it on to the job), without the solver mark;
+  // not killed with smi-lua (an sbatch under way finishes, its job is recorded as pending).
   const std::string prog = bin_dir.empty() ? argv[0] : (std::filesystem::path(bin_dir) / argv[0]).string();
-  pid_t pid = -1;
-  const int rc = bin_dir.empty() ? posix_spawnp(&pid, prog.c_str(), &fa, &at, av.data(), environ)
-                                 : posix_spawn(&pid, prog.c_str(), &fa, &at, av.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  posix_spawnattr_destroy(&at);
-  ::close(out[1]);
-  ::close(err[1]);
-  if (rc != 0) {
-    ::close(out[0]);
-    ::close(err[0]);
+  SpawnSpec spec;
+  spec.program = bin_dir.empty() ? find_program(prog) : prog;
+  spec.argv = argv;
+  spec.env = current_environment();
+  spec.solver_mark = false;
+  spec.die_with_parent = false;
+  CapturedRun c;
+  try {
+    if (spec.program.empty()) throw SpawnError("", ENOENT);
+    c = run_captured(std::move(spec), timeout);
+  } catch (const SpawnError& e) {
     r.err = fmt::format("cannot run '{}': {} (is slurm-client installed? --slurm-opt bin_dir=DIR names its folder)",
-                        prog, std::strerror(rc));
+                        prog, std::strerror(e.err));
     return r;
   }
-  const double deadline = monotonic_seconds() + timeout;
-  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
-  std::string* sink[2] = {&r.out, &r.err};
-  int open_fds = 2;
-  char buf[4096];
-  while (open_fds > 0) {
-    const double left = deadline - monotonic_seconds();
-    if (left <= 0) {
-      r.timed_out = true;
-      ::kill(-pid, SIGKILL);
-      break;
-    }
-    const int n = ::poll(fds, 2, static_cast<int>(std::ceil(left * 1000)));
-    if (n < 0 && errno != EINTR) break;
-    for (int i = 0; i < 2; ++i) {
-      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-      const ssize_t got = ::read(fds[i].fd, buf, sizeof buf);
-      if (got > 0) {
-        sink[i]->append(buf, static_cast<std::size_t>(got));
-      } else if (got == 0 || errno != EINTR) {
-        ::close(fds[i].fd);
-        fds[i].fd = -1;
-        --open_fds;
-      }
-    }
-  }
-  for (auto& f : fds)
-    if (f.fd >= 0) ::close(f.fd);
-  int st = 0;
-  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-  }
-  if (!r.timed_out) r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  r.status = c.status;
+  r.timed_out = c.timed_out;
+  r.out = std::move(c.out);
+  r.err = std::move(c.err);
   if (r.timed_out) r.err += fmt::format("{}no answer within {:g} s", r.err.empty() ? "" : "; ", timeout);
   return r;
 }
