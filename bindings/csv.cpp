@@ -71,7 +71,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   const std::string hint = csv::sniff(raw, sep);
   if (recs[0].fields.size() == 1 && !hint.empty())
     throw Error(fmt::format("{}:{}: {} (the header '{}' reads as one column name)", file, recs[0].line, hint,
-                            csv::trim(recs[0].fields[0]).substr(0, 60)));
+                            csv::trim(recs[0].fields[0]).substr(0, 60)));  // literal: the excerpt a message quotes
   Table t;
   t.header = header_names(recs[0], file);
   const std::size_t ncol = t.header.size();

@@ -127,7 +127,7 @@ class ToJson {
   void push_key(const Key& k) {
     if (k.is_string)
       lua_pushlstring(L_, k.text.data(), k.text.size());
-    else if (std::floor(k.num) == k.num && std::fabs(k.num) < 9.0e15)
+    else if (std::floor(k.num) == k.num && std::fabs(k.num) < 9.0e15)  // literal: integers exact in a double (below 2^53)
       lua_pushinteger(L_, static_cast<lua_Integer>(k.num));
     else
       lua_pushnumber(L_, k.num);
@@ -244,7 +244,7 @@ EncodeOptions encode_options(lua_State* L, int idx, const char* fname, int defau
   else o.check_known({"indent", "nonfinite", "root"});
   EncodeOptions e;
   const lua_Integer n = o.integer("indent", default_indent);
-  luaL_argcheck(L, n >= 0 && n <= 16, idx, "indent must be 0..16");
+  luaL_argcheck(L, n >= 0 && n <= 16, idx, "indent must be 0..16");  // literal: the largest indent
   e.write.indent = static_cast<int>(n);
   const std::string nf = o.string("nonfinite", "refuse");
   if (nf == "encode") e.write.non_finite = json::NonFinite::Encode;

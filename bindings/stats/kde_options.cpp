@@ -37,8 +37,8 @@ const Schema<KdeArgs>& kde_schema() {
        choice<KdeArgs>("method", &KdeArgs::method, Names<KdeMethod>{{"auto", KdeMethod::Auto}, {"exact", KdeMethod::Exact}, {"binned", KdeMethod::Binned}},
               "\"exact\" sums, \"binned\" (linear binning, then exact Gaussian weights\n"
               "over the bins; no FFT), or \"auto\" (binned for large data x points)"),
-       number<KdeArgs>("tol", &KdeArgs::binned_tol, open(0, 0.1), "the binned path's error bound relative to the kernel peak, in (0, 0.1)"),
-       integer<KdeArgs>("threads", &KdeArgs::threads, between(1, 64), "worker threads for large evaluations (results identical for any count)")});
+       number<KdeArgs>("tol", &KdeArgs::binned_tol, open(0, 0.1), "the binned path's error bound relative to the kernel peak, in (0, 0.1)"),  // literal: the range of tol
+       integer<KdeArgs>("threads", &KdeArgs::threads, between(1, 64), "worker threads for large evaluations (results identical for any count)")});  // literal: the range of threads
   return s;
 }
 

@@ -2,6 +2,7 @@
 // defaults are read from stats/upool.hpp, the grid's from stats/grid.hpp.
 #include "bindings/doc.hpp"
 #include "kernels/stats/grid.hpp"
+#include "kernels/stats/metrics.hpp"
 #include "kernels/stats/upool.hpp"
 
 namespace smi::bind {
@@ -46,7 +47,7 @@ example:
 The log-likelihood of data under dist; densities below floor are floored (and counted), so a
 datum outside a KDE's reach gives a finite, very low value instead of -inf.
 options:
-  floor = 1e-300   -- the smallest density used
+  floor = ${floor}   -- the smallest density used
 returns: the sum of log densities, and the number of floored data
 errors: data not numbers; dist not a distribution
 example:
@@ -61,7 +62,7 @@ groups and one dist per group, or one datum per dist.
 options:
   data = (required)        -- a vec/table, or a list of them (groups)
   predicted = (required)   -- a dist, or a list of dists (one per group or per datum)
-  confidence = 0.95        -- the confidence of the threshold, in (0, 1)
+  confidence = ${confidence}        -- the confidence of the threshold, in (0, 1)
   replications = ${replications}  -- Monte Carlo sets of n uniforms for the threshold
   seed = ${seed}           -- the Monte Carlo seed
 returns: a verdict table {metric =, threshold =, p =, pass =, confidence =, n =, u = vec, text =};
@@ -117,6 +118,8 @@ DocText doc_stats_metric() {
   const smi::stats::Grid g;
   return {"bindings/stats/metric_doc.cpp",
           fill(kText, {{"nodes", num(static_cast<double>(g.n))},
+                       {"floor", num(smi::stats::kLoglikFloor)},
+                       {"confidence", num(smi::stats::kDefaultUpoolConfidence)},
                        {"replications", num(static_cast<double>(s.replications))},
                        {"seed", num(static_cast<double>(s.seed))}})};
 }

@@ -120,7 +120,7 @@ int m_loglik(lua_State* L) {
   o.check_known({"floor"});
   return lua::protect(L, "smi.metric.loglik", [&] {
     int floored = 0;
-    lua_pushnumber(L, smi::stats::loglik(x, *d, o.number("floor", 1e-300), &floored));
+    lua_pushnumber(L, smi::stats::loglik(x, *d, o.number("floor", smi::stats::kLoglikFloor), &floored));
     lua_pushinteger(L, floored);
     return 2;
   });
@@ -140,12 +140,12 @@ std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replic
   return [line, n, replications](double done) {
     std::lock_guard<std::mutex> lock(line->mu);
     const auto now = std::chrono::steady_clock::now();
-    if (done < 1.0 && now - line->last < std::chrono::milliseconds(100)) return;
+    if (done < 1.0 && now - line->last < std::chrono::milliseconds(100)) return;  // literal: progress line refresh (ms) and percent
     line->last = now;
     const double elapsed = std::chrono::duration<double>(now - line->start).count();
     smi::eval::show_progress(stderr,
                              fmt::format("u-pooling H0 Monte Carlo, n = {}: {} sets, {:.0f} %, ETA {}", n, replications,
-                                         100.0 * done, smi::eval::format_duration(elapsed * (1.0 - done) / done)),
+                                         100.0 * done, smi::eval::format_duration(elapsed * (1.0 - done) / done)),  // literal: percent
                              done >= 1.0);
   };
 }
@@ -159,7 +159,7 @@ smi::stats::UpoolMcSettings mc_settings(lua_State* L, const lua::Options& o, lua
 }
 
 double check_confidence_arg(lua_State* L, int idx, const char* fname) {
-  if (lua_isnoneornil(L, idx)) return 0.95;
+  if (lua_isnoneornil(L, idx)) return smi::stats::kDefaultUpoolConfidence;
   const double c = luaL_checknumber(L, idx);
   if (!(c > 0.0 && c < 1.0)) luaL_error(L, "%s: confidence must be in (0, 1), e.g. 0.95; got %f", fname, c);
   return c;

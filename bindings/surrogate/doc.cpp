@@ -5,6 +5,7 @@
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
+#include "kernels/surrogate/propagate.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
@@ -171,7 +172,7 @@ options:
   model = (required)   -- an smi.kriging, a table of them by output name, a function(X) returning
                        -- {name = vec}, or an smi.model.* model
   inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
-  n = 10000            -- sample size, 1..2^28
+  n = ${propagate_n}            -- sample size, 1..2^28
   seed = smi.seed      -- the sample's seed
   order = nil          -- the input order for a function model (names)
 returns: outputs {name = vec} and the input matrix X (rows = points)
@@ -228,6 +229,7 @@ DocText doc_surrogate() {
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"criterion", lo.criterion},
+                       {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
                        {"p", num(lo.p)},
                        {"iterations", num(lo.iterations)},
                        {"centered", b(lo.centered)},

@@ -28,7 +28,7 @@ std::vector<Dim> read_space(lua_State* L, int idx, const char* fname) {
   std::vector<Dim> space;
   if (lua_isinteger(L, idx)) {
     const lua_Integer d = lua_tointeger(L, idx);
-    if (d < 1 || d > 10000) luaL_error(L, "%s: dimension must be in 1..10000, got %d", fname, static_cast<int>(d));
+    if (d < 1 || d > 10000) luaL_error(L, "%s: dimension must be in 1..10000, got %d", fname, static_cast<int>(d));  // literal: the largest dimension
     space.resize(static_cast<std::size_t>(d));
     return space;
   }
@@ -79,7 +79,7 @@ Eigen::MatrixXd map_space(const Eigen::MatrixXd& U, const std::vector<Dim>& spac
 Eigen::Index check_n(lua_State* L, int arg, const char* fname) {
   if (!lua_isinteger(L, arg)) luaL_error(L, "%s: n must be an integer number of points", fname);
   const lua_Integer n = lua_tointeger(L, arg);
-  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
+  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
   return static_cast<Eigen::Index>(n);
 }
 

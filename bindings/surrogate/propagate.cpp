@@ -19,8 +19,8 @@ int propagate_call(lua_State* L) {
   lua::Options o(L, 1, fname);
   o.check_known({"model", "inputs", "n", "seed", "order"});
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
-  const lua_Integer n = o.integer("n", 10000);
-  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
+  const lua_Integer n = o.integer("n", smi::surrogate::propagate::kDefaultSampleSize);
+  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
   const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::policy(L).seed)));
   return lua::protect(L, fname, [&] {
     // The sample (and its uniforms while drawn) and the outputs, before any of it exists.

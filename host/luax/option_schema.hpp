@@ -246,6 +246,14 @@ Option<S> choice(const char* key, Acc acc, std::vector<std::pair<std::string, E>
           {}};
 }
 
+/// A member read from a string by `parse` (which throws its own message for a bad name) and
+/// shown by `name` (the kernel's own pair, e.g. improve::parse_method / method_name).
+template <class S, class Acc, class Parse, class Show>
+Option<S> parsed(const char* key, Acc acc, Parse parse, Show name, const char* doc) {
+  return {key, doc, [=](lua_State* L, int v, S& s) { std::invoke(acc, s) = parse(schema_detail::to_string(L, v, key)); },
+          [=](const S& s) { return schema_detail::show_string(name(std::invoke(acc, s))); }, {}};
+}
+
 template <class S, class Acc>
 Option<S> boolean(const char* key, Acc acc, const char* doc) {
   return {key, doc, [=](lua_State* L, int v, S& s) { std::invoke(acc, s) = schema_detail::to_boolean(L, v, key); },
