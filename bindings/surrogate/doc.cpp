@@ -2,6 +2,7 @@
 // are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp,
 // screen_surrogate.hpp, sequential_design.hpp) and core/defaults.hpp.
 #include "bindings/doc.hpp"
+#include "bindings/surrogate/doe_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
@@ -24,11 +25,7 @@ full factorials. space is a dimension count (the unit cube) or one entry per inp
 An optimized Latin hypercube of n points (ESE optimisation of maximin or phi_p), the same design
 for the same seed.
 options:
-  seed = smi.seed                  -- the design's seed
-  criterion = "${criterion}"       -- "maximin", "phip" or "none" (a random LHS)
-  p = ${p}                         -- the exponent of phi_p
-  iterations = ${iterations}       -- ESE outer iterations; 0 = automatic by size
-  centered = ${centered}           -- points at the cell centres instead of uniform in the cell
+${lhs_options}
 returns: an n x d mat
 errors: n not an integer in 1..2^28; a bad space entry (named by index, e.g. "space[2] = {1, 0}
   needs finite lo < hi"); an unknown criterion or option
@@ -39,7 +36,7 @@ example:
 @ smi.doe.sobol(n, space [, opts]) -> mat
 The first n points of the Sobol sequence (Joe-Kuo directions, up to smi.doe.sobol_max_dim inputs).
 options:
-  skip = 0        -- points of the sequence skipped first
+${sobol_options}
 returns: an n x d mat
 errors: n out of range; more inputs than smi.doe.sobol_max_dim; a bad space entry
 example:
@@ -221,18 +218,15 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const smi::surrogate::doe::LhsOptions lo;
   const smi::surrogate::kriging::FitOptions fo;
   const smi::surrogate::screen::Options so;
   const smi::surrogate::screen::SurrogateOptions sso;
   const smi::surrogate::kriging::SequentialOptions seq;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
-          fill(kText, {{"criterion", lo.criterion},
+          fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
+                       {"sobol_options", surrogate::sobol_schema().doc()},
                        {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
-                       {"p", num(lo.p)},
-                       {"iterations", num(lo.iterations)},
-                       {"centered", b(lo.centered)},
                        {"method", fo.method},
                        {"nugget", num(fo.nugget)},
                        {"starts", num(fo.starts)},

@@ -20,6 +20,11 @@ struct LhsOptions {
   bool centered = false;              // points at cell centres instead of uniform in the cell
 };
 
+/// smi.doe.sobol's option: points of the sequence skipped first.
+struct SobolOptions {
+  Eigen::Index skip = 0;
+};
+
 /// n points in [0,1]^d, each column a permutation of the n strata. Same seed, same design.
 Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt = {});
 
