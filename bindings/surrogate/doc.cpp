@@ -3,6 +3,7 @@
 // screen_surrogate.hpp, sequential_design.hpp) and core/defaults.hpp.
 #include "bindings/doc.hpp"
 #include "bindings/surrogate/doe_options.hpp"
+#include "bindings/surrogate/kriging_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
@@ -60,20 +61,7 @@ Fits a Kriging model to the points X (rows) and responses y: regression trend pl
 process, theta by maximum likelihood on the analytic gradient with a seeded multistart and
 data-scaled bounds, or DACE's boxmin.
 options:
-  trend = "constant"       -- "constant", "linear" or "quadratic"
-  corr = "gauss"           -- "gauss", "exp", "matern32" or "matern52"
-  theta = nil              -- fixed correlation parameters (a number or one per input): no search
-  method = "${method}"     -- "ml" or "boxmin" (DACE's pattern search)
-  theta0 = nil             -- boxmin's start (a number or one per input)
-  lower = nil              -- bounds of theta (default: scaled to the data)
-  upper = nil              -- upper bounds of theta
-  nugget = ${nugget}       -- a relative nugget, or true to estimate it (noisy responses)
-  starts = ${starts}       -- local searches of the multistart; 0 = automatic by size
-  seed = ${seed}           -- the multistart's candidate points
-  normalize = ${normalize} -- DACE's normalisation of inputs and response
-  inputs = nil             -- input names (for smi.propagate, smi.screen and smi.calibrate)
-  output = "y"             -- the response's name
-  threads = ${threads}     -- worker threads
+${kriging_fit_options}
 returns: a model (smi.kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
   inputs, output, warnings, evaluations
 errors: X and y of different lengths; fewer points than trend terms; two identical points; an
@@ -126,8 +114,7 @@ example:
 @ smi.kriging:predict(X [, opts]) -> mean, mse
 Predictions at the rows of X, on both cores for large X.
 options:
-  mse = true      -- also return the mean squared error (false: the mean only, faster)
-  threads = ${predict_threads}     -- worker threads
+${kriging_predict_options}
 returns: a vec of means and (with mse) a vec of MSEs
 errors: X with a different number of columns than the model's inputs
 example:
@@ -218,21 +205,16 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const smi::surrogate::kriging::FitOptions fo;
   const smi::surrogate::screen::Options so;
   const smi::surrogate::screen::SurrogateOptions sso;
   const smi::surrogate::kriging::SequentialOptions seq;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
+                       {"kriging_fit_options", surrogate::kriging_fit_schema().doc()},
+                       {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},
                        {"sobol_options", surrogate::sobol_schema().doc()},
                        {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
-                       {"method", fo.method},
-                       {"nugget", num(fo.nugget)},
-                       {"starts", num(fo.starts)},
-                       {"seed", num(static_cast<double>(fo.seed))},
-                       {"normalize", b(fo.normalize)},
-                       {"threads", num(fo.threads)},
                        {"n", num(static_cast<double>(so.n))},
                        {"fix", so.fix},
                        {"sobol", b(so.sobol)},
@@ -246,8 +228,7 @@ DocText doc_surrogate() {
                        {"classes", num(static_cast<double>(sso.delta_classes))},
                        {"seq_batch", num(static_cast<double>(seq.batch))},
                        {"seq_max", num(static_cast<double>(seq.max_points))},
-                       {"seq_q2", num(seq.q2_target)},
-                       {"predict_threads", num(kDefaultThreads)}})};
+                       {"seq_q2", num(seq.q2_target)}})};
 }
 
 }  // namespace smi::bind
