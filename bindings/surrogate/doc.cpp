@@ -4,6 +4,7 @@
 #include "bindings/doc.hpp"
 #include "bindings/surrogate/doe_options.hpp"
 #include "bindings/surrogate/kriging_options.hpp"
+#include "bindings/surrogate/screen_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
@@ -172,25 +173,7 @@ Variance-based screening: the PDF-area index of each input (paper eq. 3 and 7: t
 the output's PDF with the input varying and with it fixed), beside Sobol first-order and total
 indices with bootstrap intervals.
 options:
-  model = (required)     -- as smi.propagate
-  inputs = (required)    -- as smi.propagate
-  n = ${n}               -- Monte Carlo size
-  seed = smi.seed        -- the sample's seed
-  fix = "${fix}"         -- the value an input is fixed at: "mean" or "median"
-  sobol = ${sobol}       -- also compute Sobol S1 and ST
-  bootstrap = ${bootstrap}  -- resamples for the Sobol intervals (0 = none)
-  level = ${level}       -- the intervals' level
-  grid = ${grid}         -- grid nodes of the PDF areas
-  output = nil           -- with several outputs: the one to rank (default: all, by name)
-  order = nil            -- as smi.propagate
-  method = "full"        -- "full" (eq. 3 on the model) or "surrogate": a ridge-regularised quadratic
-                         -- (or linear) fit from `runs` model runs, checked by leave-one-out Q2, then
-                         -- eq. 3 on the surrogate at no model cost
-  runs = ${runs}             -- surrogate: model runs of its Latin hypercube
-  basis = "${basis}"    -- surrogate: "quadratic" (main effects and squares) or "linear"
-  q2_min = ${q2_min}           -- surrogate: a leave-one-out Q2 below this warns (add runs or use "full")
-  delta = ${delta}           -- surrogate: also Borgonovo's given-data delta from the same runs
-  classes = ${classes}            -- surrogate: delta's conditioning classes (0: SALib's rule by run count)
+${screen_options}
 returns: rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi} sorted by rank, with fields
   output, n, variance, warnings, by_input; tostring() prints the table. Several outputs and no
   `output`: a table of rankings by output name
@@ -205,27 +188,14 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const smi::surrogate::screen::Options so;
-  const smi::surrogate::screen::SurrogateOptions sso;
   const smi::surrogate::kriging::SequentialOptions seq;
-  auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
+                       {"screen_options", surrogate::screen_schema().doc()},
                        {"kriging_fit_options", surrogate::kriging_fit_schema().doc()},
                        {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},
                        {"sobol_options", surrogate::sobol_schema().doc()},
                        {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
-                       {"n", num(static_cast<double>(so.n))},
-                       {"fix", so.fix},
-                       {"sobol", b(so.sobol)},
-                       {"bootstrap", num(so.bootstrap)},
-                       {"level", num(so.level)},
-                       {"grid", num(static_cast<double>(so.grid))},
-                       {"runs", num(static_cast<double>(sso.runs))},
-                       {"basis", smi::surrogate::polyfit::basis_name(sso.basis)},
-                       {"q2_min", num(sso.q2_min)},
-                       {"delta", b(sso.delta)},
-                       {"classes", num(static_cast<double>(sso.delta_classes))},
                        {"seq_batch", num(static_cast<double>(seq.batch))},
                        {"seq_max", num(static_cast<double>(seq.max_points))},
                        {"seq_q2", num(seq.q2_target)}})};
