@@ -5,6 +5,7 @@
 #include "bindings/surrogate/doe_options.hpp"
 #include "bindings/surrogate/kriging_options.hpp"
 #include "bindings/surrogate/screen_options.hpp"
+#include "bindings/surrogate/sequential_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
@@ -90,18 +91,7 @@ candidate with the largest weight x Kriging variance given the design and the ba
 variance needs no response, so the whole batch goes to the model, and a parallel evaluator, in
 one call). Weights say where the input distributions put their mass.
 options:
-  model = (required)      -- an smi.model, a function of the sample matrix, or a model object
-  design = (required)     -- the initial points (mat, columns = the model's inputs)
-  candidates = (required) -- the points it may add (mat, same columns)
-  weights = 1             -- a vec, one per candidate (> 0; 0: never chosen)
-  batch = ${seq_batch}              -- points per model call
-  max = ${seq_max}               -- the design never grows past this
-  q2 = ${seq_q2}              -- leave-one-out Q2 every output must reach
-  rmse = {}               -- {output = target}: leave-one-out RMSE in the output's units
-  trend = "constant"      -- the Krigings' trend
-  corr = "gauss"          -- the Krigings' correlation family
-  seed = smi.seed         -- the Krigings' multistart seed
-  inputs = (the model's)  -- input names the Krigings carry
+${sequential_options}
 returns: the design X, the outputs Y {output = vec}, the last Kriging per output, the history
   ({points, q2 = {output = x}, rmse = {...}} per round), reached (the targets were met) and stop
   (why it stopped)
@@ -188,7 +178,6 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const smi::surrogate::kriging::SequentialOptions seq;
   return {"bindings/surrogate/doc.cpp",
           fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
                        {"screen_options", surrogate::screen_schema().doc()},
@@ -196,9 +185,7 @@ DocText doc_surrogate() {
                        {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},
                        {"sobol_options", surrogate::sobol_schema().doc()},
                        {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
-                       {"seq_batch", num(static_cast<double>(seq.batch))},
-                       {"seq_max", num(static_cast<double>(seq.max_points))},
-                       {"seq_q2", num(seq.q2_target)}})};
+                       {"sequential_options", surrogate::sequential_schema().doc()}})};
 }
 
 }  // namespace smi::bind
