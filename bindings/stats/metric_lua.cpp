@@ -11,6 +11,7 @@
 
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/metric_options.hpp"
 #include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
@@ -116,11 +117,10 @@ int m_area(lua_State* L) {
 int m_loglik(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.metric.loglik");
   const auto d = to_distribution(L, 2, "smi.metric.loglik: argument 2");
-  lua::Options o(L, 3, "smi.metric.loglik");
-  o.check_known({"floor"});
+  const LoglikArgs o = loglik_schema().read(L, 3);
   return lua::protect(L, "smi.metric.loglik", [&] {
     int floored = 0;
-    lua_pushnumber(L, smi::stats::loglik(x, *d, o.number("floor", smi::stats::kLoglikFloor), &floored));
+    lua_pushnumber(L, smi::stats::loglik(x, *d, o.floor, &floored));
     lua_pushinteger(L, floored);
     return 2;
   });
@@ -150,10 +150,8 @@ std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replic
   };
 }
 
-smi::stats::UpoolMcSettings mc_settings(lua_State* L, const lua::Options& o, lua_Integer n) {
-  smi::stats::UpoolMcSettings s;
-  s.replications = o.integer("replications", s.replications);
-  if (o.has("seed")) s.seed = static_cast<std::uint64_t>(o.integer("seed", 0));
+/// The MC settings as read by a schema, with the progress line for n u-values.
+smi::stats::UpoolMcSettings mc_settings(lua_State* L, smi::stats::UpoolMcSettings s, lua_Integer n) {
   s.progress = mc_progress(L, static_cast<int>(n), s.replications);
   return s;
 }
@@ -170,8 +168,7 @@ int m_threshold(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   if (n < 1) return luaL_error(L, "smi.metric.upool_threshold: n must be >= 1 (the number of u-values), got %d", static_cast<int>(n));
   const double c = check_confidence_arg(L, 2, "smi.metric.upool_threshold");
-  lua::Options o(L, 3, "smi.metric.upool_threshold");
-  o.check_known({"replications", "seed"});
+  const smi::stats::UpoolMcSettings o = upool_mc_schema(true).read(L, 3);
   return lua::protect(L, "smi.metric.upool_threshold", [&] {
     lua_pushnumber(L, smi::stats::upool_threshold(static_cast<int>(n), c, mc_settings(L, o, n)));
     return 1;
@@ -182,8 +179,7 @@ int m_threshold(lua_State* L) {
 int m_pvalue(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   const double u = luaL_checknumber(L, 2);
-  lua::Options o(L, 3, "smi.metric.upool_pvalue");
-  o.check_known({"replications", "seed"});
+  const smi::stats::UpoolMcSettings o = upool_mc_schema(false).read(L, 3);
   return lua::protect(L, "smi.metric.upool_pvalue", [&] {
     lua_pushnumber(L, smi::stats::upool_pvalue(static_cast<int>(n), u, mc_settings(L, o, n)));
     return 1;
@@ -300,8 +296,7 @@ void read_groups(lua_State* L, int t, std::vector<Eigen::VectorXd>& data, std::v
 /// smi.metric.upool{data =, predicted =, confidence = 0.95, replications =, seed =} -> verdict
 int m_upool(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
-  lua::Options o(L, 1, "smi.metric.upool");
-  o.check_known({"data", "predicted", "confidence", "replications", "seed"});
+  const UpoolArgs o = upool_schema().read(L, 1);
   lua_getfield(L, 1, "confidence");
   const double c = check_confidence_arg(L, lua_gettop(L), "smi.metric.upool");
   lua_pop(L, 1);
