@@ -4,12 +4,12 @@
 #include "bindings/doc.hpp"
 #include "bindings/surrogate/doe_options.hpp"
 #include "bindings/surrogate/kriging_options.hpp"
+#include "bindings/surrogate/propagate_options.hpp"
 #include "bindings/surrogate/screen_options.hpp"
 #include "bindings/surrogate/sequential_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
-#include "kernels/surrogate/propagate.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
@@ -144,12 +144,7 @@ Monte Carlo propagation: n points drawn from the inputs pushed through the model
 matrices. The draws are common random numbers: the same seed gives the same points for any
 model, so two models (or two calibration steps) are compared without sampling noise.
 options:
-  model = (required)   -- an smi.kriging, a table of them by output name, a function(X) returning
-                       -- {name = vec}, or an smi.model.* model
-  inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
-  n = ${propagate_n}            -- sample size, 1..2^28
-  seed = smi.seed      -- the sample's seed
-  order = nil          -- the input order for a function model (names)
+${propagate_options}
 returns: outputs {name = vec} and the input matrix X (rows = points)
 errors: a missing model or inputs; an input the model does not know, or one it needs missing
   (named); the model returning the wrong number of rows
@@ -184,7 +179,7 @@ DocText doc_surrogate() {
                        {"kriging_fit_options", surrogate::kriging_fit_schema().doc()},
                        {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},
                        {"sobol_options", surrogate::sobol_schema().doc()},
-                       {"propagate_n", num(static_cast<double>(smi::surrogate::propagate::kDefaultSampleSize))},
+                       {"propagate_options", surrogate::propagate_schema().doc()},
                        {"sequential_options", surrogate::sequential_schema().doc()}})};
 }
 
