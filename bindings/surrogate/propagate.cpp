@@ -17,11 +17,13 @@ namespace {
 int propagate_call(lua_State* L) {
   constexpr const char* fname = "smi.propagate";
   luaL_checktype(L, 1, LUA_TTABLE);
+  // The model first: it stays on the stack while the options are read (their __index may run
+  // any Lua code, tests/lua/test_lifetimes.lua).
+  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
+  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   PropagateArgs args;
   args.seed = lua::policy(L).seed;
   propagate_schema().read(L, 1, args);
-  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
-  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   const lua_Integer n = args.n;
   if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
   const std::uint64_t seed = args.seed;

@@ -124,11 +124,13 @@ void push_result(lua_State* L, const smi::surrogate::screen::Result& r, lua_Inte
 int screen_call(lua_State* L) {
   constexpr const char* fname = "smi.screen";
   luaL_checktype(L, 1, LUA_TTABLE);
+  // The model first: it stays on the stack while the options are read (their __index may run
+  // any Lua code, tests/lua/test_lifetimes.lua).
+  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
+  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   ScreenArgs args;
   args.full.seed = lua::policy(L).seed;
   screen_schema().read(L, 1, args);
-  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
-  auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
   const smi::surrogate::screen::Options& so = args.full;
   const smi::surrogate::screen::SurrogateOptions& sso = args.surrogate;
   const std::optional<std::string>& want = args.output;

@@ -20,11 +20,6 @@ struct LhsOptions {
   bool centered = false;              // points at cell centres instead of uniform in the cell
 };
 
-/// smi.doe.sobol's option: points of the sequence skipped first.
-struct SobolOptions {
-  Eigen::Index skip = 0;
-};
-
 /// n points in [0,1]^d, each column a permutation of the n strata. Same seed, same design.
 Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const LhsOptions& opt = {});
 
@@ -39,6 +34,11 @@ int sobol_max_dim();
 /// skipping the all-zero point 0 so that every coordinate lies in (0, 1) and can go through a
 /// quantile function. `skip` extra points may be dropped as well.
 Eigen::MatrixXd sobol(Eigen::Index n, Eigen::Index d, Eigen::Index skip = 0);
+
+/// smi.doe.sobol's option: points of the sequence skipped first.
+struct SobolOptions {
+  Eigen::Index skip = 0;
+};
 
 /// All combinations of levels[j] values in column j (first column varies slowest).
 Eigen::MatrixXd full_factorial(const std::vector<Eigen::VectorXd>& levels);
