@@ -246,7 +246,10 @@ int push_mapped(lua_State* L, int idx, const char* fname, F&& f) {
 void push_named_vectors(lua_State* L, const std::vector<std::string>& names, const Eigen::MatrixXd& columns);
 
 // ---------------------------------------------------------------------------------------------
-// Options tables: trailing {key = value} arguments.
+// Options tables: trailing {key = value} arguments. A bound function declares its options in a
+// schema (option_schema.hpp: typed reads, unknown-key check and reference list from one table);
+// Options below is left for nested tables read by hand (a distribution spec, calibrate's
+// bootstrap = {...}) and presence checks.
 
 /// The option names every function has checked with Options::check_known so far in this process,
 /// by the function name given to Options (what smi-lua doc --check compares with the docs).

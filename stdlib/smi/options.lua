@@ -234,7 +234,9 @@ end
 doc.add[==[
 @ smi.options.check(argv, spec) -> opt | nil, message
 Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
-ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args.
+ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args;
+with rest = true, every argument the spec does not declare is kept, in order, in opt.rest (for
+another parser: smi.study.parse_args is check(argv, {rest = true, options.study_steps})).
 options:
   name = (required)     -- a declaration's option name: --name on the command line, opt.name in Lua
                         -- (dashes become underscores)
@@ -248,6 +250,7 @@ options:
   check = nil           -- function(v) returning true, or false and why
   input = nil           -- (path) true: the file must exist and be readable; checked at parse,
                         -- so a missing one is named by its option before anything runs
+  needs = nil           -- how a missing value is named: "--only needs a step name"
 returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
   positional arguments), or nil and a message naming the option and the allowed values; one of
   smi-lua's own options (--out, --seed, --quiet, --timeout, ...) that the spec does not declare is
