@@ -61,12 +61,11 @@ FNR == 1 { in_comment = 0; craw = "" }
     code = code c; i++
   }
   rest = code
-  while (match(rest, /[A-Za-z_0-9.]*[0-9][A-Za-z_0-9.]*([eE][-+][0-9]+)?/)) {
+  # an identifier (x2, int64_t: skipped) or a number with its exponent and suffix (1e-300, 0.5f)
+  while (match(rest, /[A-Za-z_][A-Za-z_0-9]*|[0-9][0-9.]*([eE][-+]?[0-9]+)?[A-Za-z]*|\.[0-9][0-9]*([eE][-+]?[0-9]+)?[A-Za-z]*/)) {
     tok = substr(rest, RSTART, RLENGTH)
-    before = RSTART > 1 ? substr(rest, RSTART - 1, 1) : ""
     rest = substr(rest, RSTART + RLENGTH)
-    if (tok !~ /^[0-9.]/) continue              # an identifier with digits (x2, int64_t)
-    if (tok ~ /^\.[A-Za-z_]/) continue          # a member after a call: f().x2
+    if (tok !~ /^[0-9.]/) continue
     lit = tok; sub(/[uUlLfF]+$/, "", lit)
     if (allowed(lit, code, comment)) continue
     printf "%s:%d: %s   %s\n", FILENAME, FNR, tok, $0
