@@ -131,4 +131,19 @@ const Schema<CalibrateSpec>& calibrate_schema() {
   return schema;
 }
 
+const Schema<smi::improve::BootstrapOptions>& bootstrap_schema() {
+  using S = smi::improve::BootstrapOptions;
+  static const Schema<S> schema("smi.calibrate bootstrap", std::vector<Option<S>>{
+      integer<S>("replicates", &S::replicates, any_value(), "full calibrations on resampled data"),
+      number<S>("level", &S::level, any_value(), "the percentile intervals' level"),
+      integer<S>("seed", &S::seed, any_value(), "the resampling's seed", "the calibration's"),
+      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, any_value(), "evaluations per start",
+                 "the calibration's"),
+      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(), "starts per replicate",
+                 "the calibration's"),
+      boolean<S>("warm", &S::warm_start, "start each replicate at the optimum, one start only"),
+  });
+  return schema;
+}
+
 }  // namespace smi::bind::improve

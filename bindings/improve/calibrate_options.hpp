@@ -9,5 +9,8 @@
 namespace smi::bind::improve {
 
 const lua::Schema<CalibrateSpec>& calibrate_schema();
+/// bootstrap = {...}: read over defaults the binding sets first (the calibration's seed, maxeval
+/// and multistart); its reference lines are the bootstrap entry's meaning in calibrate_schema().
+const lua::Schema<smi::improve::BootstrapOptions>& bootstrap_schema();
 
 }  // namespace smi::bind::improve

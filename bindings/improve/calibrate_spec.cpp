@@ -478,15 +478,8 @@ void read_bootstrap(lua_State* L, int idx, CalibrateSpec& s, std::uint64_t seed)
       if (!lua_isinteger(L, -1)) throw InvalidArgument("bootstrap must be an integer number of replicates");
       b.replicates = static_cast<int>(lua_tointeger(L, -1));
     } else {
-      lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
-      bo.check_known({"replicates", "level", "seed", "maxeval", "warm", "multistart"});
-      b.warm_start = bo.boolean("warm", b.warm_start);
-      b.replicates = static_cast<int>(bo.integer("replicates", b.replicates));
-      b.level = bo.number("level", b.level);
-      b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
-      b.optimizer = s.optimizer;
-      b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
-      b.optimizer.multistart = static_cast<int>(bo.integer("multistart", s.optimizer.multistart));
+      b.optimizer = s.optimizer;  // maxeval, multistart: the calibration's unless given
+      bootstrap_schema().read(L, lua_gettop(L), b);
     }
     if (!s.statistical) throw InvalidArgument("bootstrap needs experimental data: use the model form (model, inputs, data)");
     if (bt == LUA_TNUMBER) b.optimizer = s.optimizer;
