@@ -21,6 +21,7 @@
 #include <map>
 #include <vector>
 
+#include "bindings/csv_json_options.hpp"
 #include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/run_context.hpp"
@@ -72,7 +73,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   const std::string hint = csv::sniff(raw, sep);
   if (recs[0].fields.size() == 1 && !hint.empty())
     throw Error(fmt::format("{}:{}: {} (the header '{}' reads as one column name)", file, recs[0].line, hint,
-                            csv::trim(recs[0].fields[0]).substr(0, 60)));
+                            csv::trim(recs[0].fields[0]).substr(0, 60)));  // literal: the excerpt a message quotes
   Table t;
   t.header = header_names(recs[0], file);
   const std::size_t ncol = t.header.size();
@@ -138,25 +139,14 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   return t;
 }
 
-char sep_option(const lua::Options& o) {
-  const std::string s = o.string("sep", ",");
-  if (s.size() != 1 || s[0] == '"' || s[0] == '\n' || s[0] == '\r')
-    throw Error("option 'sep' must be one character other than a quote or a newline, got '" + s + "'");
-  return s[0];
-}
-
 /// smi.csv.read(path [, opts]) -> columns, header
 int csv_read(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
-  lua::Options opts(L, 2, "smi.csv.read");
-  opts.check_known({"sep", "decimal", "strings"});
-  std::set<std::string> strings;
-  if (opts.push("strings") != LUA_TNIL)
-    for (auto& s : lua::to_strings(L, -1, "option 'strings'")) strings.insert(s);
-  lua_pop(L, 1);
+  const CsvReadArgs opts = csv_read_schema().read(L, 2);
+  const std::set<std::string> strings(opts.strings.begin(), opts.strings.end());
   return lua::protect(L, "smi.csv.read", [&] {
-    const char sep = sep_option(opts);
-    const std::string decimal = opts.string("decimal", ".");
+    const char sep = opts.sep;
+    const std::string& decimal = opts.decimal;
     if (decimal != "." && decimal != ",") throw Error("option 'decimal' must be '.' or ',', got '" + decimal + "'");
     if (decimal == "," && sep == ',') throw Error("decimal = ',' needs another separator: pass sep = ';' (or '\\t')");
     const lua::CheckedFile f = lua::policy(L).open_read(path);
@@ -219,12 +209,9 @@ std::string format_number(lua_State* L, int idx) {
 int csv_write(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
   luaL_checktype(L, 2, LUA_TTABLE);
-  lua::Options opts(L, 3, "smi.csv.write");
-  opts.check_known({"sep", "header"});
-  std::vector<std::string> header;
-  if (opts.push("header") != LUA_TNIL) {
-    header = lua::to_strings(L, -1, "option 'header'");
-  } else {
+  const CsvWriteArgs opts = csv_write_schema().read(L, 3);
+  std::vector<std::string> header = opts.header;
+  if (header.empty()) {
     lua_pushnil(L);
     while (lua_next(L, 2)) {
       lua_pop(L, 1);
@@ -234,16 +221,8 @@ int csv_write(lua_State* L) {
     }
     std::sort(header.begin(), header.end());
   }
-  lua_pop(L, 1);
   if (header.empty()) luaL_error(L, "smi.csv.write: the table has no columns");
-  const char sep = [&] {
-    char c = ',';
-    lua::protect(L, "smi.csv.write", [&] {
-      c = sep_option(opts);
-      return 0;
-    });
-    return c;
-  }();
+  const char sep = opts.sep;
   // Render every column to text (raises on a bad cell, before the file is touched).
   std::vector<std::vector<std::string>> cols;
   for (const auto& name : header) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bindings/csv_json_options.hpp"
 #include "bindings/modules.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
@@ -127,7 +128,7 @@ class ToJson {
   void push_key(const Key& k) {
     if (k.is_string)
       lua_pushlstring(L_, k.text.data(), k.text.size());
-    else if (std::floor(k.num) == k.num && std::fabs(k.num) < 9.0e15)
+    else if (std::floor(k.num) == k.num && std::fabs(k.num) < 9.0e15)  // literal: integers exact in a double (below 2^53)
       lua_pushinteger(L_, static_cast<lua_Integer>(k.num));
     else
       lua_pushnumber(L_, k.num);
@@ -240,49 +241,30 @@ void push_value(lua_State* L, const json::Value& v, int null_idx) {
 
 // ---- options
 
-struct EncodeOptions {
-  json::WriteOptions write;
-  bool skip = false;
-};
-
-/// can_skip: write has no second result to name what skip left out, so it takes no skip.
-EncodeOptions encode_options(lua_State* L, int idx, const char* fname, int default_indent, bool can_skip) {
-  lua::Options o(L, idx, fname);
-  if (can_skip) o.check_known({"indent", "nonfinite", "skip", "root"});
-  else o.check_known({"indent", "nonfinite", "root"});
-  EncodeOptions e;
-  const lua_Integer n = o.integer("indent", default_indent);
-  luaL_argcheck(L, n >= 0 && n <= 16, idx, "indent must be 0..16");
-  e.write.indent = static_cast<int>(n);
-  const std::string nf = o.string("nonfinite", "refuse");
-  if (nf == "encode") e.write.non_finite = json::NonFinite::Encode;
-  else if (nf != "refuse") luaL_argerror(L, idx, "nonfinite must be \"refuse\" or \"encode\"");
-  e.write.root = o.string("root", "$");
-  e.skip = can_skip && o.boolean("skip", false);
-  return e;
-}
+using EncodeOptions = JsonEncodeArgs;
 
 /// The stack index of the value that JSON null decodes to (opts.null), or 0 for smi.json.null.
 int null_option(lua_State* L, int idx, const char* fname) {
-  lua::Options o(L, idx, fname);
-  o.check_known({"null"});
-  if (!o.present() || !o.has("null")) return 0;
-  o.push("null");  // stays on the stack for the decode
-  return lua_gettop(L);
+  json_decode_schema(std::string_view(fname) == "smi.json.read").read(L, idx);  // the unknown-key check
+  if (lua_isnoneornil(L, idx) || lua_getfield(L, idx, "null") == LUA_TNIL) {
+    if (!lua_isnoneornil(L, idx)) lua_pop(L, 1);
+    return 0;
+  }
+  return lua_gettop(L);  // the value stays on the stack for the decode
 }
 
 /// Encodes the value at idx; with skip, pushes nothing and fills `skipped`.
 std::string encode(lua_State* L, int idx, const EncodeOptions& e, std::vector<std::string>* skipped = nullptr) {
   ToJson t(L, e.skip);
   json::Value v;
-  if (!t.convert(idx, e.write.root, 0, v)) v = nullptr;
+  if (!t.convert(idx, e.root, 0, v)) v = nullptr;
   if (skipped) *skipped = std::move(t.skipped);
-  return json::write(v, e.write);
+  return json::write(v, e);
 }
 
 int json_encode(lua_State* L) {
   luaL_checkany(L, 1);
-  const EncodeOptions e = encode_options(L, 2, "smi.json.encode", 0, true);
+  const EncodeOptions e = json_encode_schema().read(L, 2);
   return lua::protect(L, "smi.json.encode", [&] {
     std::vector<std::string> skipped;
     const std::string s = encode(L, 1, e, &skipped);
@@ -310,7 +292,7 @@ int json_decode(lua_State* L) {
 int json_write(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
   luaL_checkany(L, 2);
-  const EncodeOptions e = encode_options(L, 3, "smi.json.write", 2, false);
+  const EncodeOptions e = json_write_schema().read(L, 3);
   return lua::protect(L, "smi.json.write", [&] {
     std::string s = encode(L, 2, e);
     s += '\n';

@@ -16,7 +16,7 @@ Rng& self(lua_State* L) { return lua::check_box<Rng>(L, 1, kRngType); }
 
 Eigen::Index check_count(lua_State* L, int arg) {
   const lua_Integer n = luaL_checkinteger(L, arg);
-  luaL_argcheck(L, n >= 0 && n <= (lua_Integer(1) << 31), arg, "count must be in 0..2^31");
+  luaL_argcheck(L, n >= 0 && n <= (lua_Integer(1) << 31), arg, "count must be in 0..2^31");  // literal: the largest count
   lua::check_alloc(L, static_cast<double>(n), sizeof(double), "smi.rng count");
   return static_cast<Eigen::Index>(n);
 }

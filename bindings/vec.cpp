@@ -38,10 +38,10 @@ Eigen::Index checked_length(lua_State* L, int idx, const char* fname) {
     msg = fmt::format("{}({}): a length must be a whole number >= 0; to make a vector holding the number {}, write "
                       "smi.vec{{{}}}", fname, shown, shown, shown);
   const double mem = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
-  if (msg.empty() && mem > 0 && 8.0 * x > mem)
+  if (msg.empty() && mem > 0 && 8.0 * x > mem)  // literal: bytes per double
     msg = fmt::format("{}({}): a vector of {:.0f} numbers needs {:.3g} GB of memory, more than this machine has "
                       "({:.3g} GB); to make a vector holding the number {}, write smi.vec{{{}}}",
-                      fname, shown, x, 8e-9 * x, mem / 1e9, shown, shown);
+                      fname, shown, x, 8e-9 * x, mem / 1e9, shown, shown);  // literal: bytes per double, bytes per GB
   if (!msg.empty()) luaL_error(L, "%s", msg.c_str());
   return static_cast<Eigen::Index>(x);
 }
@@ -53,7 +53,7 @@ int push_filled(lua_State* L, Eigen::Index n, double value, const char* fname) {
     try {
       push_vec(L, Vec::Constant(n, value));
     } catch (const std::bad_alloc&) {
-      throw Error(fmt::format("not enough memory for a vector of {} numbers ({:.3g} GB)", n, 8e-9 * static_cast<double>(n)));
+      throw Error(fmt::format("not enough memory for a vector of {} numbers ({:.3g} GB)", n, 8e-9 * static_cast<double>(n)));  // literal: bytes per double
     }
     return 1;
   });
@@ -85,7 +85,7 @@ int vec_linspace(lua_State* L) {
 int vec_range(lua_State* L) {
   const double a = luaL_checknumber(L, 1), b = luaL_checknumber(L, 2), step = luaL_optnumber(L, 3, 1.0);
   luaL_argcheck(L, step != 0 && std::isfinite(step), 3, "step must be finite and non-zero");
-  const double count = std::floor((b - a) / step + 1e-9) + 1;
+  const double count = std::floor((b - a) / step + 1e-9) + 1;  // literal: rounding slack of a range count
   if (!std::isfinite(a) || !std::isfinite(b)) return luaL_error(L, "smi.vec.range: a and b must be finite");
   // Checked before the vec exists (pushing it would count it only once allocated), inside
   // protect: an allocation failure is a message, not a C++ exception crossing Lua.
@@ -289,7 +289,7 @@ int vec_tostring(lua_State* L) {
   const Vec& v = self(L);
   const Eigen::Index n = v.size();
   std::string s = fmt::format("vec({})[", n);
-  const bool summary = n > 12;
+  const bool summary = n > 12;  // literal: how many elements print in full
   for (Eigen::Index i = 0; i < n; ++i) {
     if (summary && i == 5) {
       s += ", ...";

@@ -2,6 +2,7 @@
 // the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
 // "solver" (smi-lua doc allows it for them), so they run anywhere.
 #include "bindings/doc.hpp"
+#include "bindings/eval/lua_model_options.hpp"
 #include "platform/eval/evaluator.hpp"
 
 namespace smi::bind {
@@ -92,10 +93,7 @@ example:
 A model computed by a Lua function of the whole design matrix (one call per evaluation, never
 one per point), returning {output = vec}.
 options:
-  name = "lua"          -- the model's name
-  inputs = (required)   -- input names (columns of X)
-  outputs = (required)  -- output names
-  fn = (required)       -- function(X) returning {output = vec, ...}, one value per row
+${lua_model_options}
 returns: a model (smi.model, kind "lua")
 errors: no inputs or outputs; fn not a function; fn returning the wrong lengths (at evaluate)
 example:
@@ -228,7 +226,8 @@ DocText doc_eval() {
   const smi::eval::CommandConfig c;
   auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/eval/doc.cpp",
-          fill(kText, {{"name", c.name},
+          fill(kText, {{"lua_model_options", bind::eval::lua_model_schema().doc()},
+                       {"name", c.name},
                        {"deck", c.deck_file},
                        {"timeout", num(c.timeout)},
                        {"retries", num(c.retries)},

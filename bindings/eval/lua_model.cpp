@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "bindings/eval/lua_model_options.hpp"
 #include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
 
@@ -14,18 +15,17 @@ namespace se = smi::eval;
 
 int model_lua(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
-  lua::Options o(L, 1, "smi.model.lua");
-  o.check_known({"name", "inputs", "outputs", "fn"});
+  const LuaModelArgs args = lua_model_schema().read(L, 1);
   Model m;
   m.kind = Model::LuaFn;
-  m.name = o.string("name", "lua");
-  o.push("inputs");
+  m.name = args.name;
+  lua_getfield(L, 1, "inputs");
   m.inputs = lua::to_strings(L, -1, "inputs");
-  o.push("outputs");
+  lua_getfield(L, 1, "outputs");
   m.outputs = lua::to_strings(L, -1, "outputs");
   lua_pop(L, 2);
   if (m.inputs.empty() || m.outputs.empty()) return luaL_error(L, "smi.model.lua: inputs and outputs must name at least one variable");
-  if (o.push("fn") != LUA_TFUNCTION)
+  if (lua_getfield(L, 1, "fn") != LUA_TFUNCTION)
     return luaL_error(L, "smi.model.lua: option 'fn' must be a function(X) returning {output = vec, ...}, got %s",
                       luaL_typename(L, -1));
   push_model(L, std::move(m), -1);

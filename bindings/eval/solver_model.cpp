@@ -305,7 +305,7 @@ void place_solver_outputs(lua::Policy& pol, const RunContext& ctx, const SolverO
 // version_args = {"--version"}: the program run once with these arguments (no shell, in its runs
 // folder, at most kVersionSeconds); the first non-empty line of its stdout is the version line
 // the provenance records (issue 24). Throws naming the program when it fails or prints nothing.
-constexpr double kVersionSeconds = 10;
+constexpr double kVersionSeconds = 10;  // literal: how long a --version probe may take
 std::string version_line(const se::CommandConfig& c, const std::vector<std::string>& args) {
   se::SpawnSpec sp;
   sp.program = c.program;
@@ -326,9 +326,9 @@ std::string version_line(const se::CommandConfig& c, const std::vector<std::stri
       }
       throw Error(fmt::format("version_args: '{}' did not finish within {} s", c.program_name, kVersionSeconds));
     }
-    ::usleep(5000);
+    ::usleep(5000);  // literal: poll interval (us)
   }
-  const std::string out = se::file_tail(sp.stdout_path, 4096);
+  const std::string out = se::file_tail(sp.stdout_path, 4096);  // literal: bytes of output a message quotes
   std::size_t at = 0;
   while (at < out.size()) {
     std::size_t end = out.find('\n', at);
@@ -484,7 +484,7 @@ se::ProgressFn terminal_progress(const Model& m, const RunContext& ctx) {
   if (!ctx.progress.live) return {};
   return [&m, shown_at = -1.0](const se::Progress& p, bool final) mutable {
     const double now = se::monotonic_seconds();
-    if (!final && now - shown_at < 0.1) return;  // a terminal line ten times a second is plenty
+    if (!final && now - shown_at < 0.1) return;  // literal: a terminal line ten times a second is plenty
     shown_at = now;
     se::show_progress(stderr, se::format_progress(m.name, p), final);
   };
@@ -508,8 +508,8 @@ std::string failure_summary(const Model& m, const Eigen::MatrixXd& X, const se::
                                     r.stopped ? " (on_failure = 'stop')" : " (skipped)");
   int shown = 0;
   for (std::size_t i = 0; i < r.status.size(); ++i)
-    if (r.status[i] == se::Status::Failed && shown++ < 10) summary += fmt::format("\n  row {}: {}", i + 1, r.reason[i]);
-  if (shown > 10) summary += fmt::format("\n  ... and {} more (see info.failures)", shown - 10);
+    if (r.status[i] == se::Status::Failed && shown++ < 10) summary += fmt::format("\n  row {}: {}", i + 1, r.reason[i]);  // literal: failures a message lists
+  if (shown > 10) summary += fmt::format("\n  ... and {} more (see info.failures)", shown - 10);  // literal: failures a message lists
   summary += fmt::format("\n  records in {}", m.ev->config().store_path);
   return summary;
 }

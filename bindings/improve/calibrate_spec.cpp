@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bindings/improve/calibrate_options.hpp"
 #include "bindings/improve/lua_values.hpp"
 #include "bindings/stats/dist_box.hpp"
 #include "luax/luax.hpp"
@@ -391,25 +392,8 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
   // The list stays on the stack too, below the functions.
 }
 
-// method, multistart, maxeval, tolerances and steps of the optimiser (shared by the bootstrap's
-// and the intervals' refits unless they say otherwise).
-OptimizerOptions read_optimizer(lua::Options& o, std::uint64_t seed) {
-  OptimizerOptions opt;
-  opt.method = parse_method(o.string("method", "slsqp"));
-  opt.multistart = static_cast<int>(o.integer("multistart", opt.multistart));
-  opt.maxeval = static_cast<int>(o.integer("maxeval", opt.maxeval));
-  opt.xtol_rel = o.number("xtol_rel", opt.xtol_rel);
-  opt.ftol_abs = o.number("ftol_abs", opt.ftol_abs);
-  opt.fd_step = o.number("fd_step", opt.fd_step);
-  opt.initial_step = o.number("initial_step", opt.initial_step);
-  opt.hops = static_cast<int>(o.integer("hops", opt.hops));
-  opt.hop_step = o.number("hop_step", opt.hop_step);
-  opt.seed = seed;
-  return opt;
-}
-
 // objective = function(theta) ... end with parameters: the function stays on the stack.
-void read_objective_form(lua_State* L, int idx, lua::Options& o, CalibrateSpec& s) {
+void read_objective_form(lua_State* L, int idx, const lua::Options& o, CalibrateSpec& s) {
   if (o.has("inputs") || o.has("data") || o.has("metric"))
     throw InvalidArgument("inputs/data/metric belong to the model form; with objective = ... give parameters only");
   if (o.has("penalty"))
@@ -442,19 +426,11 @@ void read_penalty(lua_State* L, int idx, CalibrateSpec& s) {
 }
 
 // model with inputs and data: the statistical calibration's sampling, model, data and metric.
-void read_model_form(lua_State* L, int idx, lua::Options& o, CalibrateSpec& s, std::uint64_t seed) {
+void read_model_form(lua_State* L, int idx, const lua::Options& o, CalibrateSpec& s, std::uint64_t seed) {
   if (o.has("parameters"))
     throw InvalidArgument("with a model, the calibrated parameters are the input ranges: give mean/std as {lower, upper, start}");
   s.statistical = true;
-  s.stat.n = static_cast<Eigen::Index>(o.integer("n", s.stat.n));
-  s.stat.seed = seed;
-  const std::string crn = o.string("crn", "random");
-  if (crn == "random") s.stat.crn = CrnKind::random;
-  else if (crn == "quantiles") s.stat.crn = CrnKind::quantiles;
-  else throw InvalidArgument(fmt::format("crn must be \"random\" or \"quantiles\", got \"{}\"", crn));
-  s.stat.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", s.stat.grid_nodes));
-  s.stat.bandwidth = o.string("bandwidth", s.stat.bandwidth);
-  s.stat.threads = static_cast<int>(o.integer("threads", s.stat.threads));
+  s.stat.seed = seed;  // n, crn, grid_nodes, bandwidth, threads: read by the schema
   read_model(L, idx, s);
   read_inputs(L, idx, s);
   read_data(L, idx, s);
@@ -489,7 +465,7 @@ void read_identifiability(lua_State* L, int idx, CalibrateSpec& s) {
     throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
   // PR is unit-free (range [0, 2] per response): a change below 1e-3 over a whole range is noise.
-  if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = 1e-3;
+  if (it != LUA_TTABLE && s.statistical && s.stat.metric == MetricKind::pr) s.ident.abs_tol = s.ident.pr_abs_tol;
   lua_pop(L, 1);
 }
 
@@ -503,15 +479,8 @@ void read_bootstrap(lua_State* L, int idx, CalibrateSpec& s, std::uint64_t seed)
       if (!lua_isinteger(L, -1)) throw InvalidArgument("bootstrap must be an integer number of replicates");
       b.replicates = static_cast<int>(lua_tointeger(L, -1));
     } else {
-      lua::Options bo(L, lua_gettop(L), "smi.calibrate bootstrap");
-      bo.check_known({"replicates", "level", "seed", "maxeval", "warm", "multistart"});
-      b.warm_start = bo.boolean("warm", b.warm_start);
-      b.replicates = static_cast<int>(bo.integer("replicates", b.replicates));
-      b.level = bo.number("level", b.level);
-      b.seed = static_cast<std::uint64_t>(bo.integer("seed", static_cast<lua_Integer>(seed)));
-      b.optimizer = s.optimizer;
-      b.optimizer.maxeval = static_cast<int>(bo.integer("maxeval", s.optimizer.maxeval));
-      b.optimizer.multistart = static_cast<int>(bo.integer("multistart", s.optimizer.multistart));
+      b.optimizer = s.optimizer;  // maxeval, multistart: the calibration's unless given
+      bootstrap_schema().read(L, lua_gettop(L), b);
     }
     if (!s.statistical) throw InvalidArgument("bootstrap needs experimental data: use the model form (model, inputs, data)");
     if (bt == LUA_TNUMBER) b.optimizer = s.optimizer;
@@ -571,14 +540,13 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
 // penalty, priors' fn, progress) are left on the Lua stack and their slots recorded, in this order.
 CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   idx = lua_absindex(L, idx);
-  lua::Options o(L, idx, "smi.calibrate");
-  o.check_known({"parameters", "objective", "model", "inputs", "data", "metric", "n", "seed", "crn", "method", "multistart",
-                 "maxeval", "xtol_rel", "ftol_abs", "fd_step", "initial_step", "grid", "grid_nodes", "bandwidth", "order",
-                 "bootstrap", "identifiability", "design_bounds", "threads", "progress", "penalty", "prior", "prior_weight", "overlap_start", "moment_start", "gradient", "intervals",
-                 "hops", "hop_step", "model_differences", "model_step"});
+  // Every scalar option (the optimiser's, the sampling's, gradient, steps, starts) by the schema
+  // (calibrate_options.cpp) into the structs that hold their defaults; the seed defaults to the run's.
   CalibrateSpec s;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
-  s.optimizer = read_optimizer(o, seed);
+  s.optimizer.seed = lua::run_context(L).seed;
+  calibrate_schema().read(L, idx, s);
+  const std::uint64_t seed = s.optimizer.seed;
+  const lua::Options o(L, idx, "smi.calibrate");  // presence of the form's keys (has)
 
   const bool has_objective = o.has("objective"), has_model = o.has("model");
   if (has_objective == has_model)
@@ -587,19 +555,9 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   else read_model_form(L, idx, o, s, seed);
 
   read_priors(L, idx, s);
-  s.overlap_start = o.boolean("overlap_start", s.overlap_start);
-  s.moment_start = o.boolean("moment_start", s.moment_start);
-  s.gradient = o.string("gradient", s.gradient);
-  if (s.gradient != "auto" && s.gradient != "analytic" && s.gradient != "model" && s.gradient != "differences")
-    throw InvalidArgument(fmt::format("gradient must be \"auto\", \"analytic\", \"model\" or \"differences\", got \"{}\"", s.gradient));
-  s.model_differences = o.string("model_differences", s.model_differences);
-  if (s.model_differences != "forward" && s.model_differences != "central")
-    throw InvalidArgument(fmt::format("model_differences must be \"forward\" or \"central\", got \"{}\"", s.model_differences));
-  s.model_step = o.number("model_step", s.model_step);
-  if (!(s.model_step > 0.0 && s.model_step < 0.1))
+  if (!(s.model_step > 0.0 && s.model_step < 0.1))  // literal: the range model_step must lie in
     throw InvalidArgument(fmt::format("model_step must be a relative step in (0, 0.1) (1e-6 for a smooth model; about the square root of the "
                                       "outputs' relative resolution for a solver's printed results), got {}", s.model_step));
-  s.prior_weight = o.number("prior_weight", s.prior_weight);
   if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
     throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
 

@@ -2,6 +2,7 @@
 // The weighted decision matrix of spec §6 with criteria written by the analyst: a magnitude is a
 // Lua function(candidate, j) or a list of values (or a table keyed by candidate name).
 #include "bindings/improve/decision_matrix_binding.hpp"
+#include "bindings/improve/decision_matrix_options.hpp"
 
 #include <fmt/format.h>
 
@@ -155,9 +156,8 @@ void push_decision(lua_State* L, const DecisionResult& r, int cands, const std::
 int decision_matrix(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_settop(L, 1);
+  const smi::improve::DecisionOptions opt = decision_matrix_schema().read(L, 1);
   return lua::protect(L, "smi.refine.decision_matrix", [&] {
-    lua::Options o(L, 1, "smi.refine.decision_matrix");
-    o.check_known({"candidates", "criteria", "tie_tol"});
     if (lua_getfield(L, 1, "candidates") != LUA_TTABLE || lua_rawlen(L, -1) == 0)
       throw InvalidArgument("candidates must be a non-empty list (names, or tables describing each revision)");
     const int cands = lua_gettop(L);
@@ -171,7 +171,7 @@ int decision_matrix(lua_State* L) {
     Eigen::MatrixXd M(J, I);
     Eigen::VectorXd w(I);
     read_criteria(L, crits, cands, cnames, inames, M, w);
-    const DecisionResult r = smi::improve::decision_matrix(M, w, cnames, inames, o.number("tie_tol", 1e-12));
+    const DecisionResult r = smi::improve::decision_matrix(M, w, cnames, inames, opt.tie_tol);
     const std::string text = format_decision(r, cnames, inames, w);
 
     push_decision(L, r, cands, cnames, inames, w, text);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "platform/core/descriptive.hpp"
 
 namespace smi::bind::stats {
@@ -10,6 +12,11 @@ double required_number(const lua::Options& o, const char* key, const char* fname
   const auto v = o.number(key);
   if (!v) throw InvalidArgument(fmt::format("missing field '{}' (a number): add {} = ... to the options of {}", key, key, fname));
   return *v;
+}
+
+double required(double v, const char* key, const char* fname) {
+  if (std::isnan(v)) throw InvalidArgument(fmt::format("missing field '{}' (a number): add {} = ... to the options of {}", key, key, fname));
+  return v;
 }
 
 Eigen::VectorXd data_arg(lua_State* L, int idx, const char* fname, Eigen::Index min_size) {

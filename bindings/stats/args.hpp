@@ -10,6 +10,8 @@ namespace smi::bind::stats {
 
 /// A required numeric field of an options table; raises a Lua error naming it and the call.
 double required_number(const lua::Options& o, const char* key, const char* fname);
+/// A required numeric option read by a schema as NaN when absent; throws naming it and the call.
+double required(double v, const char* key, const char* fname);
 /// The data argument at idx (vec or table), checked finite (naming the index) and non-empty.
 Eigen::VectorXd data_arg(lua_State* L, int idx, const char* fname, Eigen::Index min_size = 1);
 /// Pushes {x = vec, pdf = vec, cdf = vec} (pdf omitted when has_pdf is false).

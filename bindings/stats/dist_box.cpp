@@ -97,8 +97,8 @@ int dist_support(lua_State* L) {
 /// An ECDF gives its steps {x =, cdf =} instead.
 int dist_curve(lua_State* L) {
   const smi::stats::Distribution& d = self(L);
-  const lua_Integer n = luaL_optinteger(L, 2, 401);
-  luaL_argcheck(L, n >= 2 && n <= 10000000, 2, "number of points must be in 2..1e7");
+  const lua_Integer n = luaL_optinteger(L, 2, kDefaultCurvePoints);
+  luaL_argcheck(L, n >= 2 && n <= 10000000, 2, "number of points must be in 2..1e7");  // literal: the most points
   return lua::protect(L, "dist:curve", [&] {
     if (const auto* e = dynamic_cast<const smi::stats::Ecdf*>(&d)) {
       Eigen::VectorXd x, y;
@@ -114,8 +114,8 @@ int dist_curve(lua_State* L) {
       hi = k->data()[k->data().size() - 1] + 4 * k->bandwidth();
     } else {
       const auto s = d.support();
-      lo = std::isfinite(s.first) ? s.first : d.quantile(1e-4);
-      hi = std::isfinite(s.second) ? s.second : d.quantile(1 - 1e-4);
+      lo = std::isfinite(s.first) ? s.first : d.quantile(1e-4);  // literal: the plotted quantile range
+      hi = std::isfinite(s.second) ? s.second : d.quantile(1 - 1e-4);  // literal: the plotted quantile range
     }
     const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(static_cast<Eigen::Index>(n), lo, hi);
     lua_createtable(L, 0, 3);

@@ -1,11 +1,12 @@
 // Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp).
 #include "bindings/doc.hpp"
+#include "platform/core/defaults.hpp"
 
 namespace smi::bind {
 
 // long: one raw string of reference text (data, no logic); doc.lua reads it entry by entry
 DocText doc_stats_dist() {
-  return {"bindings/stats/dist_doc.cpp", R"DOC(
+  return {"bindings/stats/dist_doc.cpp", fill(R"DOC(
 @ module smi.dist
 Probability distributions by the variable's own mean and std where the paper's tables give them
 (normal, lognormal, uniform), and by their usual parameters (truncnormal, weibull, gumbel, gamma,
@@ -209,7 +210,7 @@ example:
   print(smi.dist.beta{alpha = 2, beta = 3}:support())
 
 @ smi.dist:curve([n]) -> {x =, pdf =, cdf =}
-Plot series over the bulk of the distribution: n points (default 401) from the 1e-4 to the
+Plot series over the bulk of the distribution: n points (default ${curve_points}) from the 1e-4 to the
 1 - 1e-4 quantile (the finite ends of the support; for a KDE the data range +- 4 bandwidths).
 An ECDF gives its steps {x =, cdf =} instead.
 returns: a table of vecs
@@ -217,7 +218,7 @@ errors: n outside 2..1e7
 example:
   local c = smi.dist.normal{mean = 0, std = 1}:curve(5)
   print(c.x, c.pdf)
-)DOC"};
+)DOC", {{"curve_points", num(kDefaultCurvePoints)}})};
 }
 
 }  // namespace smi::bind

@@ -1,8 +1,7 @@
 // Reference texts of smi.kde, smi.kde_bd, smi.kde_ebd, smi.ecdf, smi.bandwidth (kde_lua.cpp).
-// Defaults are read from the kernels' option structs (stats/kde.hpp, stats/kde_bounded.hpp).
+// The option lists come from the functions' schemas (kde_options.cpp), defaults from their structs.
 #include "bindings/doc.hpp"
-#include "kernels/stats/kde.hpp"
-#include "kernels/stats/kde_bounded.hpp"
+#include "bindings/stats/kde_options.hpp"
 
 namespace smi::bind {
 namespace {
@@ -12,11 +11,7 @@ const char* const kText = R"DOC(
 Gaussian kernel density estimate of data, with the bandwidth rule named by its formula or a fixed
 bandwidth; large evaluations use a binned path with a stated error bound.
 options:
-  bandwidth = "silverman"  -- a number, or a rule: silverman, 1.06, robust, scott, mad, lscv, sj
-  method = "auto"          -- "exact" sums, "binned" (linear binning, then exact Gaussian weights
-                           -- over the bins; no FFT), or "auto" (binned for large data x points)
-  tol = ${tol}             -- the binned path's error bound relative to the kernel peak, in (0, 0.1)
-  threads = ${threads}     -- worker threads for large evaluations (results identical for any count)
+${kde}
 returns: a dist (smi.dist:* methods) with k.bandwidth and k.family = "kde"
 errors: a rule needs at least 2 data ("pass a fixed bandwidth"); an unknown rule or option (the
   closest name is suggested); a non-finite datum
@@ -28,16 +23,7 @@ example:
 KDE with known bounded data (spec 1.2): points are added inside [lower, upper] until the
 intersection area of successive KDEs reaches critical_area.
 options:
-  lower = (required)          -- the lower bound
-  upper = (required)          -- the upper bound
-  critical_area = ${critical_area}  -- stop when IA(previous, new) >= this
-  step = ${step}              -- points added per iteration
-  max_added = ${max_added}    -- the most points added; -1 means 10 n
-  compare = "${compare}"      -- "previous" (the last KDE) or "data" (the KDE of the data only)
-  bandwidth = "${bandwidth}"  -- the rule applied to the pooled points every iteration
-  deterministic = false       -- place points at l + (u - l)(j - 1/2)/m instead of drawing them
-  seed = smi.seed             -- the draws' seed
-  grid_nodes = ${grid_nodes}  -- quadrature nodes of the intersection area
+${kde_bd}
 returns: the KDE (with d.lower, d.upper, d.added, d.converged) and info = {lower =, upper =,
   added =, converged =, bandwidth =, added_points = vec, ia_history = vec, outside =}
 errors: no opts or no bounds; lower >= upper; fewer than 2 data. Data outside the bounds are
@@ -50,16 +36,7 @@ example:
 KDE with estimated bounded data (spec 1.2): bounds from the data (min/max estimators with
 c = alpha^(-1/n), or the unbiased ones), then the loop of smi.kde_bd.
 options:
-  alpha = 0.1                 -- the bounds' significance level
-  unbiased = false            -- use the unbiased bound estimators
-  critical_area = ${critical_area}  -- as smi.kde_bd
-  step = ${step}              -- as smi.kde_bd
-  max_added = ${max_added}    -- as smi.kde_bd
-  compare = "${compare}"      -- as smi.kde_bd
-  bandwidth = "${bandwidth}"  -- as smi.kde_bd
-  deterministic = false       -- as smi.kde_bd
-  seed = smi.seed             -- as smi.kde_bd
-  grid_nodes = ${grid_nodes}  -- as smi.kde_bd
+${kde_ebd}
 returns: as smi.kde_bd
 errors: fewer than 2 data; alpha outside (0, 1); an unknown option
 example:
@@ -86,17 +63,8 @@ example:
 }  // namespace
 
 DocText doc_stats_kde() {
-  const smi::stats::KdeOptions k;
-  const smi::stats::BoundedKdeOptions b;
   return {"bindings/stats/kde_doc.cpp",
-          fill(kText, {{"tol", num(k.binned_tol)},
-                       {"threads", num(k.threads)},
-                       {"critical_area", num(b.critical_area)},
-                       {"step", num(b.step)},
-                       {"max_added", num(b.max_added)},
-                       {"compare", b.compare},
-                       {"bandwidth", b.bandwidth},
-                       {"grid_nodes", num(static_cast<double>(b.grid_nodes))}})};
+          fill(kText, {{"kde", stats::kde_schema().doc()}, {"kde_bd", stats::kde_bd_schema().doc()}, {"kde_ebd", stats::kde_ebd_schema().doc()}})};
 }
 
 }  // namespace smi::bind

@@ -3,6 +3,7 @@
 
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/kde_options.hpp"
 #include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/ecdf.hpp"
@@ -15,28 +16,11 @@
 namespace smi::bind::stats {
 namespace {
 
-using lua::Options;
-
-smi::stats::KdeOptions kde_options(const Options& o) {
-  smi::stats::KdeOptions k;
-  const std::string m = o.string("method", "auto");
-  if (m == "auto") k.method = smi::stats::KdeMethod::Auto;
-  else if (m == "exact") k.method = smi::stats::KdeMethod::Exact;
-  else if (m == "binned") k.method = smi::stats::KdeMethod::Binned;
-  else throw InvalidArgument(fmt::format("method must be \"auto\", \"exact\" or \"binned\", got \"{}\"", m));
-  k.binned_tol = o.number("tol", k.binned_tol);
-  if (!(k.binned_tol > 0.0 && k.binned_tol < 0.1)) throw InvalidArgument(fmt::format("tol must be in (0, 0.1), got {}", k.binned_tol));
-  k.threads = static_cast<int>(o.integer("threads", k.threads));
-  if (k.threads < 1 || k.threads > 64) throw InvalidArgument(fmt::format("threads must be in 1..64, got {}", k.threads));
-  return k;
-}
-
 /// smi.kde(data [, {bandwidth = h | "rule", method = "auto"|"exact"|"binned", tol =, threads =}])
 int kde_new(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.kde");
-  Options o(L, 2, "smi.kde");
-  o.check_known({"bandwidth", "method", "tol", "threads"});
-  const int bt = o.push("bandwidth");
+  const KdeArgs ko = kde_schema().read(L, 2);
+  const int bt = lua_istable(L, 2) ? lua_getfield(L, 2, "bandwidth") : (lua_pushnil(L), LUA_TNIL);
   std::string rule = "silverman";
   double h = 0.0;
   if (bt == LUA_TNUMBER) h = lua_tonumber(L, -1);
@@ -44,7 +28,6 @@ int kde_new(lua_State* L) {
   else if (bt != LUA_TNIL) return luaL_error(L, "smi.kde: bandwidth must be a number or a rule name such as \"silverman\", got %s", lua_typename(L, bt));
   lua_pop(L, 1);
   return lua::protect(L, "smi.kde", [&] {
-    const smi::stats::KdeOptions ko = kde_options(o);
     if (bt == LUA_TNUMBER) {
       push_distribution(L, smi::stats::make_kde(x, h, ko));
       return 1;
@@ -54,19 +37,6 @@ int kde_new(lua_State* L) {
     push_distribution(L, smi::stats::make_kde(x, rule, ko));
     return 1;
   });
-}
-
-smi::stats::BoundedKdeOptions bounded_options(lua_State* L, const Options& o) {
-  smi::stats::BoundedKdeOptions b;
-  b.critical_area = o.number("critical_area", b.critical_area);
-  b.step = static_cast<int>(o.integer("step", b.step));
-  b.max_added = static_cast<int>(o.integer("max_added", b.max_added));
-  b.compare = o.string("compare", b.compare);
-  b.bandwidth = o.string("bandwidth", b.bandwidth);
-  b.deterministic = o.boolean("deterministic", b.deterministic);
-  b.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
-  b.grid_nodes = static_cast<Eigen::Index>(o.integer("grid_nodes", b.grid_nodes));
-  return b;
 }
 
 /// Returns d (the KDE, with d.lower, d.upper, d.added) and an info table.
@@ -91,14 +61,15 @@ int push_bounded(lua_State* L, const smi::stats::BoundedKdeResult& r, int outsid
 /// smi.kde_bd(data, {lower =, upper =, <loop options>})
 int kde_bd(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.kde_bd", 2);
-  Options o(L, 2, "smi.kde_bd");
-  if (!o.present()) return luaL_error(L, "smi.kde_bd: pass the bounds, e.g. smi.kde_bd(data, {lower = 0, upper = 1})");
+  if (lua_isnoneornil(L, 2)) return luaL_error(L, "smi.kde_bd: pass the bounds, e.g. smi.kde_bd(data, {lower = 0, upper = 1})");
+  KdeBdArgs b;
+  b.seed = lua::run_context(L).seed;
+  kde_bd_schema().read(L, 2, b);
   return lua::protect(L, "smi.kde_bd", [&] {
-    o.check_known({"lower", "upper", "critical_area", "step", "max_added", "compare", "bandwidth", "deterministic", "seed", "grid_nodes"});
-    const double lo = required_number(o, "lower", "smi.kde_bd"), hi = required_number(o, "upper", "smi.kde_bd");
+    const double lo = required(b.lower, "lower", "smi.kde_bd"), hi = required(b.upper, "upper", "smi.kde_bd");
     if (!(lo < hi)) throw InvalidArgument(fmt::format("lower ({}) must be < upper ({}): swap them", lo, hi));
     int outside = 0;
-    const auto r = smi::stats::kde_bounded(x, lo, hi, bounded_options(L, o), &outside);
+    const auto r = smi::stats::kde_bounded(x, lo, hi, b, &outside);
     if (outside > 0) {
       char w[160];
       std::snprintf(w, sizeof w, "%d data point(s) lie outside [%g, %g]", outside, lo, hi);
@@ -108,13 +79,14 @@ int kde_bd(lua_State* L) {
   });
 }
 
-/// smi.kde_ebd(data [, {alpha = 0.1, unbiased = false, <loop options>}])
+/// smi.kde_ebd(data [, {alpha =, unbiased =, <loop options>}])
 int kde_ebd_new(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.kde_ebd", 2);
-  Options o(L, 2, "smi.kde_ebd");
+  KdeEbdArgs e;
+  e.seed = lua::run_context(L).seed;
+  kde_ebd_schema().read(L, 2, e);
   return lua::protect(L, "smi.kde_ebd", [&] {
-    o.check_known({"alpha", "unbiased", "critical_area", "step", "max_added", "compare", "bandwidth", "deterministic", "seed", "grid_nodes"});
-    const auto r = smi::stats::kde_ebd(x, o.number("alpha", 0.1), o.boolean("unbiased", false), bounded_options(L, o));
+    const auto r = smi::stats::kde_ebd(x, e.alpha, e.unbiased, e);
     return push_bounded(L, r, 0);
   });
 }

@@ -1,7 +1,9 @@
 // Reference texts of smi.metric.* and the u-pooling verdict (metric_lua.cpp). The Monte Carlo
 // defaults are read from stats/upool.hpp, the grid's from stats/grid.hpp.
 #include "bindings/doc.hpp"
+#include "bindings/stats/metric_options.hpp"
 #include "kernels/stats/grid.hpp"
+#include "kernels/stats/metrics.hpp"
 #include "kernels/stats/upool.hpp"
 
 namespace smi::bind {
@@ -46,7 +48,7 @@ example:
 The log-likelihood of data under dist; densities below floor are floored (and counted), so a
 datum outside a KDE's reach gives a finite, very low value instead of -inf.
 options:
-  floor = 1e-300   -- the smallest density used
+${loglik_options}
 returns: the sum of log densities, and the number of floored data
 errors: data not numbers; dist not a distribution
 example:
@@ -59,11 +61,7 @@ seeded Monte Carlo (cached per n) for n <= 50, from a fitted table of sqrt(n) U 
 (n = 1: exact). data and predicted are one sample and one dist, a list of
 groups and one dist per group, or one datum per dist.
 options:
-  data = (required)        -- a vec/table, or a list of them (groups)
-  predicted = (required)   -- a dist, or a list of dists (one per group or per datum)
-  confidence = 0.95        -- the confidence of the threshold, in (0, 1)
-  replications = ${replications}  -- Monte Carlo sets of n uniforms for the threshold
-  seed = ${seed}           -- the Monte Carlo seed
+${upool_options}
 returns: a verdict table {metric =, threshold =, p =, pass =, confidence =, n =, u = vec, text =};
   tostring(v) is its sentence, v:curve() its plot series
 errors: data and predicted of different counts (both named); a missing field; confidence outside (0, 1)
@@ -85,8 +83,7 @@ The (confidence) quantile of U under H0 for n u-values. For n <= 50 from seeded 
 (cached per n); for n > 50 from a fitted table of the quantiles of sqrt(n) U (replications and
 seed then do not apply); n = 1 exact.
 options:
-  replications = ${replications}  -- Monte Carlo sets
-  seed = ${seed}           -- the Monte Carlo seed
+${threshold_options}
 returns: a number
 errors: n < 1; confidence outside (0, 1); replications < 1000
 example:
@@ -95,8 +92,7 @@ example:
 @ smi.metric.upool_pvalue(n, U [, opts]) -> p
 P(U' >= U) under H0 for n u-values.
 options:
-  replications = ${replications}  -- Monte Carlo sets
-  seed = ${seed}           -- the Monte Carlo seed
+${pvalue_options}
 returns: a number in [0, 1]
 errors: n < 1; U not a number
 example:
@@ -113,12 +109,13 @@ example:
 }  // namespace
 
 DocText doc_stats_metric() {
-  const smi::stats::UpoolMcSettings s;
   const smi::stats::Grid g;
   return {"bindings/stats/metric_doc.cpp",
           fill(kText, {{"nodes", num(static_cast<double>(g.n))},
-                       {"replications", num(static_cast<double>(s.replications))},
-                       {"seed", num(static_cast<double>(s.seed))}})};
+                       {"loglik_options", stats::loglik_schema().doc()},
+                       {"upool_options", stats::upool_schema().doc()},
+                       {"threshold_options", stats::upool_mc_schema(true).doc()},
+                       {"pvalue_options", stats::upool_mc_schema(false).doc()}})};
 }
 
 }  // namespace smi::bind

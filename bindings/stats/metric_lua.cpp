@@ -11,6 +11,7 @@
 
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/metric_options.hpp"
 #include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/kde.hpp"
 #include "kernels/stats/metrics.hpp"
@@ -117,11 +118,10 @@ int m_area(lua_State* L) {
 int m_loglik(lua_State* L) {
   const Eigen::VectorXd x = data_arg(L, 1, "smi.metric.loglik");
   const auto d = to_distribution(L, 2, "smi.metric.loglik: argument 2");
-  lua::Options o(L, 3, "smi.metric.loglik");
-  o.check_known({"floor"});
+  const LoglikArgs o = loglik_schema().read(L, 3);
   return lua::protect(L, "smi.metric.loglik", [&] {
     int floored = 0;
-    lua_pushnumber(L, smi::stats::loglik(x, *d, o.number("floor", 1e-300), &floored));
+    lua_pushnumber(L, smi::stats::loglik(x, *d, o.floor, &floored));
     lua_pushinteger(L, floored);
     return 2;
   });
@@ -141,26 +141,24 @@ std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replic
   return [line, n, replications](double done) {
     std::lock_guard<std::mutex> lock(line->mu);
     const auto now = std::chrono::steady_clock::now();
-    if (done < 1.0 && now - line->last < std::chrono::milliseconds(100)) return;
+    if (done < 1.0 && now - line->last < std::chrono::milliseconds(100)) return;  // literal: progress line refresh (ms) and percent
     line->last = now;
     const double elapsed = std::chrono::duration<double>(now - line->start).count();
     smi::eval::show_progress(stderr,
                              fmt::format("u-pooling H0 Monte Carlo, n = {}: {} sets, {:.0f} %, ETA {}", n, replications,
-                                         100.0 * done, smi::eval::format_duration(elapsed * (1.0 - done) / done)),
+                                         100.0 * done, smi::eval::format_duration(elapsed * (1.0 - done) / done)),  // literal: percent
                              done >= 1.0);
   };
 }
 
-smi::stats::UpoolMcSettings mc_settings(lua_State* L, const lua::Options& o, lua_Integer n) {
-  smi::stats::UpoolMcSettings s;
-  s.replications = o.integer("replications", s.replications);
-  if (o.has("seed")) s.seed = static_cast<std::uint64_t>(o.integer("seed", 0));
+/// The MC settings as read by a schema, with the progress line for n u-values.
+smi::stats::UpoolMcSettings mc_settings(lua_State* L, smi::stats::UpoolMcSettings s, lua_Integer n) {
   s.progress = mc_progress(L, static_cast<int>(n), s.replications);
   return s;
 }
 
 double check_confidence_arg(lua_State* L, int idx, const char* fname) {
-  if (lua_isnoneornil(L, idx)) return 0.95;
+  if (lua_isnoneornil(L, idx)) return smi::stats::kDefaultUpoolConfidence;
   const double c = luaL_checknumber(L, idx);
   if (!(c > 0.0 && c < 1.0)) luaL_error(L, "%s: confidence must be in (0, 1), e.g. 0.95; got %f", fname, c);
   return c;
@@ -171,8 +169,7 @@ int m_threshold(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   if (n < 1) return luaL_error(L, "smi.metric.upool_threshold: n must be >= 1 (the number of u-values), got %d", static_cast<int>(n));
   const double c = check_confidence_arg(L, 2, "smi.metric.upool_threshold");
-  lua::Options o(L, 3, "smi.metric.upool_threshold");
-  o.check_known({"replications", "seed"});
+  const smi::stats::UpoolMcSettings o = upool_mc_schema(true).read(L, 3);
   return lua::protect(L, "smi.metric.upool_threshold", [&] {
     lua_pushnumber(L, smi::stats::upool_threshold(static_cast<int>(n), c, mc_settings(L, o, n)));
     return 1;
@@ -183,8 +180,7 @@ int m_threshold(lua_State* L) {
 int m_pvalue(lua_State* L) {
   const lua_Integer n = luaL_checkinteger(L, 1);
   const double u = luaL_checknumber(L, 2);
-  lua::Options o(L, 3, "smi.metric.upool_pvalue");
-  o.check_known({"replications", "seed"});
+  const smi::stats::UpoolMcSettings o = upool_mc_schema(false).read(L, 3);
   return lua::protect(L, "smi.metric.upool_pvalue", [&] {
     lua_pushnumber(L, smi::stats::upool_pvalue(static_cast<int>(n), u, mc_settings(L, o, n)));
     return 1;
@@ -301,8 +297,7 @@ void read_groups(lua_State* L, int t, std::vector<Eigen::VectorXd>& data, std::v
 /// smi.metric.upool{data =, predicted =, confidence = 0.95, replications =, seed =} -> verdict
 int m_upool(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
-  lua::Options o(L, 1, "smi.metric.upool");
-  o.check_known({"data", "predicted", "confidence", "replications", "seed"});
+  const UpoolArgs o = upool_schema().read(L, 1);
   lua_getfield(L, 1, "confidence");
   const double c = check_confidence_arg(L, lua_gettop(L), "smi.metric.upool");
   lua_pop(L, 1);

@@ -2,6 +2,11 @@
 // are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp,
 // screen_surrogate.hpp, sequential_design.hpp) and core/defaults.hpp.
 #include "bindings/doc.hpp"
+#include "bindings/surrogate/doe_options.hpp"
+#include "bindings/surrogate/kriging_options.hpp"
+#include "bindings/surrogate/propagate_options.hpp"
+#include "bindings/surrogate/screen_options.hpp"
+#include "bindings/surrogate/sequential_options.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "kernels/surrogate/kriging.hpp"
 #include "kernels/surrogate/poly_ridge.hpp"
@@ -23,11 +28,7 @@ full factorials. space is a dimension count (the unit cube) or one entry per inp
 An optimized Latin hypercube of n points (ESE optimisation of maximin or phi_p), the same design
 for the same seed.
 options:
-  seed = smi.seed                  -- the design's seed
-  criterion = "${criterion}"       -- "maximin", "phip" or "none" (a random LHS)
-  p = ${p}                         -- the exponent of phi_p
-  iterations = ${iterations}       -- ESE outer iterations; 0 = automatic by size
-  centered = ${centered}           -- points at the cell centres instead of uniform in the cell
+${lhs_options}
 returns: an n x d mat
 errors: n not an integer in 1..2^28; a bad space entry (named by index, e.g. "space[2] = {1, 0}
   needs finite lo < hi"); an unknown criterion or option
@@ -38,7 +39,7 @@ example:
 @ smi.doe.sobol(n, space [, opts]) -> mat
 The first n points of the Sobol sequence (Joe-Kuo directions, up to smi.doe.sobol_max_dim inputs).
 options:
-  skip = 0        -- points of the sequence skipped first
+${sobol_options}
 returns: an n x d mat
 errors: n out of range; more inputs than smi.doe.sobol_max_dim; a bad space entry
 example:
@@ -62,20 +63,7 @@ Fits a Kriging model to the points X (rows) and responses y: regression trend pl
 process, theta by maximum likelihood on the analytic gradient with a seeded multistart and
 data-scaled bounds, or DACE's boxmin.
 options:
-  trend = "constant"       -- "constant", "linear" or "quadratic"
-  corr = "gauss"           -- "gauss", "exp", "matern32" or "matern52"
-  theta = nil              -- fixed correlation parameters (a number or one per input): no search
-  method = "${method}"     -- "ml" or "boxmin" (DACE's pattern search)
-  theta0 = nil             -- boxmin's start (a number or one per input)
-  lower = nil              -- bounds of theta (default: scaled to the data)
-  upper = nil              -- upper bounds of theta
-  nugget = ${nugget}       -- a relative nugget, or true to estimate it (noisy responses)
-  starts = ${starts}       -- local searches of the multistart; 0 = automatic by size
-  seed = ${seed}           -- the multistart's candidate points
-  normalize = ${normalize} -- DACE's normalisation of inputs and response
-  inputs = nil             -- input names (for smi.propagate, smi.screen and smi.calibrate)
-  output = "y"             -- the response's name
-  threads = ${threads}     -- worker threads
+${kriging_fit_options}
 returns: a model (smi.kriging) with fields theta, beta, sigma2, n, trend, corr, method, nugget,
   inputs, output, warnings, evaluations
 errors: X and y of different lengths; fewer points than trend terms; two identical points; an
@@ -103,18 +91,7 @@ candidate with the largest weight x Kriging variance given the design and the ba
 variance needs no response, so the whole batch goes to the model, and a parallel evaluator, in
 one call). Weights say where the input distributions put their mass.
 options:
-  model = (required)      -- an smi.model, a function of the sample matrix, or a model object
-  design = (required)     -- the initial points (mat, columns = the model's inputs)
-  candidates = (required) -- the points it may add (mat, same columns)
-  weights = 1             -- a vec, one per candidate (> 0; 0: never chosen)
-  batch = ${seq_batch}              -- points per model call
-  max = ${seq_max}               -- the design never grows past this
-  q2 = ${seq_q2}              -- leave-one-out Q2 every output must reach
-  rmse = {}               -- {output = target}: leave-one-out RMSE in the output's units
-  trend = "constant"      -- the Krigings' trend
-  corr = "gauss"          -- the Krigings' correlation family
-  seed = smi.seed         -- the Krigings' multistart seed
-  inputs = (the model's)  -- input names the Krigings carry
+${sequential_options}
 returns: the design X, the outputs Y {output = vec}, the last Kriging per output, the history
   ({points, q2 = {output = x}, rmse = {...}} per round), reached (the targets were met) and stop
   (why it stopped)
@@ -128,8 +105,7 @@ example:
 @ smi.kriging:predict(X [, opts]) -> mean, mse
 Predictions at the rows of X, on both cores for large X.
 options:
-  mse = true      -- also return the mean squared error (false: the mean only, faster)
-  threads = ${predict_threads}     -- worker threads
+${kriging_predict_options}
 returns: a vec of means and (with mse) a vec of MSEs
 errors: X with a different number of columns than the model's inputs
 example:
@@ -168,12 +144,7 @@ Monte Carlo propagation: n points drawn from the inputs pushed through the model
 matrices. The draws are common random numbers: the same seed gives the same points for any
 model, so two models (or two calibration steps) are compared without sampling noise.
 options:
-  model = (required)   -- an smi.kriging, a table of them by output name, a function(X) returning
-                       -- {name = vec}, or an smi.model.* model
-  inputs = (required)  -- {name = dist | number, ...} or {{name, dist | number}, ...} (ordered)
-  n = 10000            -- sample size, 1..2^28
-  seed = smi.seed      -- the sample's seed
-  order = nil          -- the input order for a function model (names)
+${propagate_options}
 returns: outputs {name = vec} and the input matrix X (rows = points)
 errors: a missing model or inputs; an input the model does not know, or one it needs missing
   (named); the model returning the wrong number of rows
@@ -187,25 +158,7 @@ Variance-based screening: the PDF-area index of each input (paper eq. 3 and 7: t
 the output's PDF with the input varying and with it fixed), beside Sobol first-order and total
 indices with bootstrap intervals.
 options:
-  model = (required)     -- as smi.propagate
-  inputs = (required)    -- as smi.propagate
-  n = ${n}               -- Monte Carlo size
-  seed = smi.seed        -- the sample's seed
-  fix = "${fix}"         -- the value an input is fixed at: "mean" or "median"
-  sobol = ${sobol}       -- also compute Sobol S1 and ST
-  bootstrap = ${bootstrap}  -- resamples for the Sobol intervals (0 = none)
-  level = ${level}       -- the intervals' level
-  grid = ${grid}         -- grid nodes of the PDF areas
-  output = nil           -- with several outputs: the one to rank (default: all, by name)
-  order = nil            -- as smi.propagate
-  method = "full"        -- "full" (eq. 3 on the model) or "surrogate": a ridge-regularised quadratic
-                         -- (or linear) fit from `runs` model runs, checked by leave-one-out Q2, then
-                         -- eq. 3 on the surrogate at no model cost
-  runs = ${runs}             -- surrogate: model runs of its Latin hypercube
-  basis = "${basis}"    -- surrogate: "quadratic" (main effects and squares) or "linear"
-  q2_min = ${q2_min}           -- surrogate: a leave-one-out Q2 below this warns (add runs or use "full")
-  delta = ${delta}           -- surrogate: also Borgonovo's given-data delta from the same runs
-  classes = ${classes}            -- surrogate: delta's conditioning classes (0: SALib's rule by run count)
+${screen_options}
 returns: rows {input, e, ne, rank, s1, s1_lo, s1_hi, st, st_lo, st_hi} sorted by rank, with fields
   output, n, variance, warnings, by_input; tostring() prints the table. Several outputs and no
   `output`: a table of rankings by output name
@@ -220,38 +173,14 @@ example:
 }  // namespace
 
 DocText doc_surrogate() {
-  const smi::surrogate::doe::LhsOptions lo;
-  const smi::surrogate::kriging::FitOptions fo;
-  const smi::surrogate::screen::Options so;
-  const smi::surrogate::screen::SurrogateOptions sso;
-  const smi::surrogate::kriging::SequentialOptions seq;
-  auto b = [](bool v) { return std::string(v ? "true" : "false"); };
   return {"bindings/surrogate/doc.cpp",
-          fill(kText, {{"criterion", lo.criterion},
-                       {"p", num(lo.p)},
-                       {"iterations", num(lo.iterations)},
-                       {"centered", b(lo.centered)},
-                       {"method", fo.method},
-                       {"nugget", num(fo.nugget)},
-                       {"starts", num(fo.starts)},
-                       {"seed", num(static_cast<double>(fo.seed))},
-                       {"normalize", b(fo.normalize)},
-                       {"threads", num(fo.threads)},
-                       {"n", num(static_cast<double>(so.n))},
-                       {"fix", so.fix},
-                       {"sobol", b(so.sobol)},
-                       {"bootstrap", num(so.bootstrap)},
-                       {"level", num(so.level)},
-                       {"grid", num(static_cast<double>(so.grid))},
-                       {"runs", num(static_cast<double>(sso.runs))},
-                       {"basis", smi::surrogate::polyfit::basis_name(sso.basis)},
-                       {"q2_min", num(sso.q2_min)},
-                       {"delta", b(sso.delta)},
-                       {"classes", num(static_cast<double>(sso.delta_classes))},
-                       {"seq_batch", num(static_cast<double>(seq.batch))},
-                       {"seq_max", num(static_cast<double>(seq.max_points))},
-                       {"seq_q2", num(seq.q2_target)},
-                       {"predict_threads", num(kDefaultThreads)}})};
+          fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
+                       {"screen_options", surrogate::screen_schema().doc()},
+                       {"kriging_fit_options", surrogate::kriging_fit_schema().doc()},
+                       {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},
+                       {"sobol_options", surrogate::sobol_schema().doc()},
+                       {"propagate_options", surrogate::propagate_schema().doc()},
+                       {"sequential_options", surrogate::sequential_schema().doc()}})};
 }
 
 }  // namespace smi::bind

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/surrogate/doe_options.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "kernels/surrogate/doe.hpp"
 #include "luax/luax.hpp"
@@ -29,7 +30,7 @@ std::vector<Dim> read_space(lua_State* L, int idx, const char* fname) {
   std::vector<Dim> space;
   if (lua_isinteger(L, idx)) {
     const lua_Integer d = lua_tointeger(L, idx);
-    if (d < 1 || d > 10000) luaL_error(L, "%s: dimension must be in 1..10000, got %d", fname, static_cast<int>(d));
+    if (d < 1 || d > 10000) luaL_error(L, "%s: dimension must be in 1..10000, got %d", fname, static_cast<int>(d));  // literal: the largest dimension
     space.resize(static_cast<std::size_t>(d));
     return space;
   }
@@ -80,21 +81,17 @@ Eigen::MatrixXd map_space(const Eigen::MatrixXd& U, const std::vector<Dim>& spac
 Eigen::Index check_n(lua_State* L, int arg, const char* fname) {
   if (!lua_isinteger(L, arg)) luaL_error(L, "%s: n must be an integer number of points", fname);
   const lua_Integer n = lua_tointeger(L, arg);
-  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
+  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
   return static_cast<Eigen::Index>(n);
 }
 
 int doe_lhs(lua_State* L) {
   const Eigen::Index n = check_n(L, 1, "smi.doe.lhs");
   const std::vector<Dim> space = read_space(L, 2, "smi.doe.lhs");
-  lua::Options o(L, 3, "smi.doe.lhs");
-  o.check_known({"seed", "criterion", "p", "iterations", "centered"});
-  smi::surrogate::doe::LhsOptions lo;
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
-  lo.criterion = o.string("criterion", "maximin");
-  lo.p = o.number("p", lo.p);
-  lo.iterations = static_cast<int>(o.integer("iterations", lo.iterations));
-  lo.centered = o.boolean("centered", lo.centered);
+  LhsArgs lo;
+  lo.seed = lua::run_context(L).seed;
+  lhs_schema().read(L, 3, lo);
+  const std::uint64_t seed = lo.seed;
   return lua::protect(L, "smi.doe.lhs", [&] {
     // The design, its copies while optimised, and the n x n distances the criterion keeps.
     const double nd = static_cast<double>(n) * static_cast<double>(space.size());
@@ -108,9 +105,7 @@ int doe_lhs(lua_State* L) {
 int doe_sobol(lua_State* L) {
   const Eigen::Index n = check_n(L, 1, "smi.doe.sobol");
   const std::vector<Dim> space = read_space(L, 2, "smi.doe.sobol");
-  lua::Options o(L, 3, "smi.doe.sobol");
-  o.check_known({"skip"});
-  const auto skip = static_cast<Eigen::Index>(o.integer("skip", 0));
+  const Eigen::Index skip = sobol_schema().read(L, 3).skip;
   return lua::protect(L, "smi.doe.sobol", [&] {
     lua::require_room(L, 2.0 * static_cast<double>(n) * static_cast<double>(space.size()), sizeof(double), "the design");
     lua::push_mat(L, map_space(smi::surrogate::doe::sobol(n, static_cast<Eigen::Index>(space.size()), skip), space));

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "bindings/surrogate/kriging_box.hpp"
+#include "bindings/surrogate/kriging_options.hpp"
 #include "bindings/surrogate/open_parts.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
@@ -30,52 +31,14 @@ void push_strings(lua_State* L, const std::vector<std::string>& v) {
   }
 }
 
-Eigen::VectorXd opt_vector(lua_State* L, const lua::Options& o, const char* key) {
-  const int t = o.push(key);
-  Eigen::VectorXd v;
-  if (t == LUA_TNUMBER) {
-    v = Eigen::VectorXd::Constant(1, lua_tonumber(L, -1));
-  } else if (t != LUA_TNIL) {
-    v = lua::to_vector(L, -1, key);
-  }
-  lua_pop(L, 1);
-  return v;
-}
-
 int k_fit(lua_State* L) {
   const Eigen::MatrixXd X = lua::to_matrix(L, 1, "X");
   const Eigen::VectorXd y = lua::to_vector(L, 2, "y");
-  lua::Options o(L, 3, "smi.kriging.fit");
-  o.check_known({"trend", "corr", "theta", "method", "theta0", "lower", "upper", "nugget", "starts", "seed",
-                 "normalize", "inputs", "output", "threads"});
-  smi::surrogate::kriging::FitOptions fo;
+  KrigingFitArgs fo = kriging_fit_schema().read(L, 3);
   KrigingBox box;
-  std::string trend = o.string("trend", "constant"), corr = o.string("corr", "gauss");
-  fo.method = o.string("method", "ml");
-  if (o.has("theta")) fo.theta = opt_vector(L, o, "theta");
-  fo.theta0 = opt_vector(L, o, "theta0");
-  fo.lower = opt_vector(L, o, "lower");
-  fo.upper = opt_vector(L, o, "upper");
-  if (o.push("nugget") == LUA_TBOOLEAN) {
-    fo.estimate_nugget = lua_toboolean(L, -1);
-    lua_pop(L, 1);
-  } else {
-    lua_pop(L, 1);
-    fo.nugget = o.number("nugget", fo.nugget);
-  }
-  fo.starts = static_cast<int>(o.integer("starts", fo.starts));
-  fo.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(fo.seed)));
-  fo.normalize = o.boolean("normalize", fo.normalize);
-  fo.threads = static_cast<int>(o.integer("threads", fo.threads));
-  if (o.has("inputs")) {
-    o.push("inputs");
-    box.inputs = lua::to_strings(L, -1, "inputs");
-    lua_pop(L, 1);
-  }
-  box.output = o.string("output", "y");
+  box.inputs = std::move(fo.inputs);
+  box.output = fo.output;
   return lua::protect(L, "smi.kriging.fit", [&] {
-    fo.trend = smi::surrogate::kriging::parse_trend(trend);
-    fo.corr = smi::surrogate::kriging::parse_corr(corr);
     if (!box.inputs.empty() && static_cast<Eigen::Index>(box.inputs.size()) != X.cols())
       throw DimensionMismatch("inputs names " + std::to_string(box.inputs.size()) + " names for " +
                               std::to_string(X.cols()) + " columns of X");
@@ -88,10 +51,9 @@ int k_fit(lua_State* L) {
 int k_predict(lua_State* L) {
   KrigingBox& k = self(L);
   const Eigen::MatrixXd X = lua::to_matrix(L, 2, "X");
-  lua::Options o(L, 3, "predict");
-  o.check_known({"mse", "threads"});
-  const bool want_mse = o.boolean("mse", true);
-  const int threads = static_cast<int>(o.integer("threads", kDefaultThreads));
+  const KrigingPredictArgs po = kriging_predict_schema().read(L, 3);
+  const bool want_mse = po.mse;
+  const int threads = po.threads;
   return lua::protect(L, "predict", [&] {
     if (!want_mse) {
       lua::push_vec(L, smi::surrogate::kriging::predict_mean(k.model, X, threads));

@@ -3,6 +3,7 @@
 // (surrogate/propagate.hpp), and the model gets the whole sample in one call.
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
+#include "bindings/surrogate/propagate_options.hpp"
 #include "luax/luax.hpp"
 #include "luax/run_context.hpp"
 #include "luax/memory.hpp"
@@ -17,12 +18,16 @@ namespace {
 int propagate_call(lua_State* L) {
   constexpr const char* fname = "smi.propagate";
   luaL_checktype(L, 1, LUA_TTABLE);
-  lua::Options o(L, 1, fname);
-  o.check_known({"model", "inputs", "n", "seed", "order"});
+  // The model first: it stays on the stack while the options are read (their __index may run
+  // any Lua code, tests/lua/test_lifetimes.lua).
+  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
-  const lua_Integer n = o.integer("n", 10000);
-  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));
-  const auto seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
+  PropagateArgs args;
+  args.seed = lua::run_context(L).seed;
+  propagate_schema().read(L, 1, args);
+  const lua_Integer n = args.n;
+  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
+  const std::uint64_t seed = args.seed;
   return lua::protect(L, fname, [&] {
     // The sample (and its uniforms while drawn) and the outputs, before any of it exists.
     lua::require_room(L, static_cast<double>(n) * (2.0 * static_cast<double>(inputs.size()) + 1), sizeof(double),

@@ -13,6 +13,7 @@
 
 #include "bindings/surrogate/model_arg.hpp"
 #include "bindings/surrogate/open_parts.hpp"
+#include "bindings/surrogate/screen_options.hpp"
 #include "kernels/surrogate/screen.hpp"
 #include "kernels/surrogate/screen_surrogate.hpp"
 #include "luax/luax.hpp"
@@ -124,20 +125,17 @@ void push_result(lua_State* L, const smi::surrogate::screen::Result& r, lua_Inte
 int screen_call(lua_State* L) {
   constexpr const char* fname = "smi.screen";
   luaL_checktype(L, 1, LUA_TTABLE);
-  lua::Options o(L, 1, fname);
-  o.check_known({"model", "inputs", "n", "seed", "fix", "sobol", "bootstrap", "level", "output", "order", "grid",
-                 "method", "runs", "basis", "q2_min", "delta", "classes"});
+  // The model first: it stays on the stack while the options are read (their __index may run
+  // any Lua code, tests/lua/test_lifetimes.lua).
+  const lua::Options o(L, 1, fname);  // model, inputs, order: read_model_and_inputs
   auto [model, model_idx, inputs] = read_model_and_inputs(L, o, fname);
-  smi::surrogate::screen::Options so;
-  so.n = static_cast<Eigen::Index>(o.integer("n", so.n));
-  so.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
-  so.fix = o.string("fix", "mean");
-  so.sobol = o.boolean("sobol", so.sobol);
-  so.bootstrap = static_cast<int>(o.integer("bootstrap", so.bootstrap));
-  so.level = o.number("level", so.level);
-  so.grid = static_cast<Eigen::Index>(o.integer("grid", so.grid));
-  const std::optional<std::string> want = o.string("output");
-  const std::string method = o.string("method", "full");
+  ScreenArgs args;
+  args.full.seed = lua::run_context(L).seed;
+  screen_schema().read(L, 1, args);
+  const smi::surrogate::screen::Options& so = args.full;
+  const smi::surrogate::screen::SurrogateOptions& sso = args.surrogate;
+  const std::optional<std::string>& want = args.output;
+  const std::string& method = args.method;
   const bool surrogate = method == "surrogate";
   std::string misplaced;  // a surrogate-only option given to the full screening
   if (!surrogate)
@@ -146,12 +144,6 @@ int screen_call(lua_State* L) {
       if (!lua_isnil(L, -1) && misplaced.empty()) misplaced = k;
       lua_pop(L, 1);
     }
-  smi::surrogate::screen::SurrogateOptions sso;
-  sso.runs = static_cast<Eigen::Index>(o.integer("runs", sso.runs));
-  const std::string basis = o.string("basis", smi::surrogate::polyfit::basis_name(sso.basis));
-  sso.q2_min = o.number("q2_min", sso.q2_min);
-  sso.delta = o.boolean("delta", sso.delta);
-  sso.delta_classes = static_cast<Eigen::Index>(o.integer("classes", sso.delta_classes));
   return lua::protect(L, fname, [&] {
     if (method != "full" && method != "surrogate")
       throw InvalidArgument("method must be \"full\" or \"surrogate\", got '" + method + "'");
@@ -160,7 +152,6 @@ int screen_call(lua_State* L) {
     std::vector<smi::surrogate::screen::Result> res;
     std::vector<smi::surrogate::screen::SurrogateFitInfo> fits;
     if (surrogate) {
-      sso.basis = smi::surrogate::polyfit::parse_basis(basis);
       smi::surrogate::screen::SurrogateResult sr = smi::surrogate::screen::screen_surrogate(inputs, model.fn, *model.outputs, so, sso);
       res = std::move(sr.screening);
       fits = std::move(sr.fits);

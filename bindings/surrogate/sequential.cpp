@@ -14,6 +14,7 @@
 
 #include "bindings/surrogate/kriging_box.hpp"
 #include "bindings/surrogate/model_arg.hpp"
+#include "bindings/surrogate/sequential_options.hpp"
 #include "kernels/surrogate/sequential_design.hpp"
 #include "luax/luax.hpp"
 #include "luax/run_context.hpp"
@@ -25,18 +26,11 @@ namespace {
 
 namespace kr = smi::surrogate::kriging;
 
-// The options the kernel reads from the call's table (defaults: the kernel's SequentialOptions);
-// the trend and correlation names stay text until inside protect (their parse throws).
-struct SequentialArgs {
-  kr::SequentialOptions so;
-  std::string trend = "constant", corr = "gauss";
-  std::vector<std::string> input_names;
-  Eigen::MatrixXd design, candidates;
-  Eigen::VectorXd weights;
-};
-
+// The scalar options by the schema (sequential_options.cpp), the matrices and names by hand.
 SequentialArgs read_sequential_args(lua_State* L, lua::Options& o, const ModelArg& model, const char* fname) {
   SequentialArgs a;
+  a.so.fit.seed = lua::run_context(L).seed;
+  sequential_schema().read(L, o.index(), a);
   auto matrix = [&](const char* key) {
     if (o.push(key) == LUA_TNIL) luaL_error(L, "%s: '%s' is required", fname, key);
     Eigen::MatrixXd m = lua::to_matrix(L, -1, key);
@@ -48,12 +42,6 @@ SequentialArgs read_sequential_args(lua_State* L, lua::Options& o, const ModelAr
   if (o.push("weights") == LUA_TNIL) a.weights = Eigen::VectorXd::Ones(a.candidates.rows());
   else a.weights = lua::to_vector(L, -1, "weights");
   lua_pop(L, 1);
-  a.so.batch = static_cast<Eigen::Index>(o.integer("batch", static_cast<lua_Integer>(a.so.batch)));
-  a.so.max_points = static_cast<Eigen::Index>(o.integer("max", static_cast<lua_Integer>(a.so.max_points)));
-  a.so.q2_target = o.number("q2", a.so.q2_target);
-  a.so.fit.seed = static_cast<std::uint64_t>(o.integer("seed", static_cast<lua_Integer>(lua::run_context(L).seed)));
-  a.trend = o.string("trend", a.trend);
-  a.corr = o.string("corr", a.corr);
   if (o.has("inputs")) {
     o.push("inputs");
     a.input_names = lua::to_strings(L, -1, "inputs");
@@ -144,7 +132,7 @@ int sequential_call(lua_State* L) {
   constexpr const char* fname = "smi.kriging.sequential";
   luaL_checktype(L, 1, LUA_TTABLE);
   lua::Options o(L, 1, fname);
-  o.check_known({"model", "design", "candidates", "weights", "batch", "max", "q2", "rmse", "trend", "corr", "seed", "inputs"});
+  sequential_schema().check_keys(L, 1);
   o.push("model");
   const int model_idx = lua_gettop(L);
   if (lua_isnil(L, model_idx)) return luaL_error(L, "%s: 'model' is required (an smi.model, a function or a model object)", fname);
@@ -154,8 +142,6 @@ int sequential_call(lua_State* L) {
   const int rmse_idx = lua_gettop(L);
   if (rmse_t != LUA_TNIL && rmse_t != LUA_TTABLE) return luaL_error(L, "%s: 'rmse' must be a table {<output> = target}", fname);
   return lua::protect(L, fname, [&] {
-    a.so.fit.trend = kr::parse_trend(a.trend);
-    a.so.fit.corr = kr::parse_corr(a.corr);
     if (!a.input_names.empty() && static_cast<Eigen::Index>(a.input_names.size()) != a.design.cols())
       throw DimensionMismatch(std::to_string(a.input_names.size()) + " input names for " + std::to_string(a.design.cols()) +
                               " columns of the design");

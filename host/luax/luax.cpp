@@ -254,40 +254,39 @@ void record_known_options(const std::string& fname, const std::vector<std::strin
   into.insert(keys.begin(), keys.end());
 }
 
-void Options::check_known(std::initializer_list<const char*> known) const {
-  if (fname_) record_known_options(fname_, std::vector<std::string>(known.begin(), known.end()));
-  if (!idx_) return;
+std::string unknown_option_message(lua_State* L, int idx, const char* fname, const std::vector<std::string>& known) {
+  idx = lua_absindex(L, idx);
   // The keys in name order: of several unknown options the one named is the same every run
-  // (the table's traversal order changes from process to process). The message is built with
-  // the C++ objects in a scope of their own, and raised after it.
-  {
-    std::vector<std::string> keys;
-    lua_pushnil(L_);
-    while (lua_next(L_, idx_)) {
-      lua_pop(L_, 1);  // keep the key
-      if (lua_type(L_, -1) == LUA_TSTRING) keys.emplace_back(lua_tostring(L_, -1));  // positional: the caller's
-    }
-    std::sort(keys.begin(), keys.end());
-    std::string msg;
-    for (const std::string& key : keys) {
-      bool ok = false;
-      const char* best = nullptr;
-      std::size_t best_d = 1000;
-      for (const char* k : known) {
-        if (key == k) ok = true;
-        const std::size_t d = smi::name_distance(k, key);
-        if (d < best_d) best_d = d, best = k;
-      }
-      if (ok) continue;
-      if (best && best_d <= 2) {
-        msg = std::string(fname_ ? fname_ : "options") + ": unknown option '" + key + "' (did you mean '" + best + "'?)";
-      } else {
-        std::string list;
-        for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-        msg = std::string(fname_ ? fname_ : "options") + ": unknown option '" + key + "'; known options: " + list;
-      }
-      break;
-    }
+  // (the table's traversal order changes from process to process).
+  std::vector<std::string> keys;
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);  // keep the key
+    if (lua_type(L, -1) == LUA_TSTRING) keys.emplace_back(lua_tostring(L, -1));  // positional: the caller's
+  }
+  std::sort(keys.begin(), keys.end());
+  const std::string who = fname ? fname : "options";
+  for (const std::string& key : keys) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    // The nearest known key within 2 edits (typos are the usual cause), else the whole list.
+    const std::string* best = nullptr;
+    std::size_t best_d = 3;
+    for (const std::string& k : known)
+      if (const std::size_t d = smi::name_distance(k, key); d < best_d) best_d = d, best = &k;
+    if (best) return who + ": unknown option '" + key + "' (did you mean '" + *best + "'?)";
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    return who + ": unknown option '" + key + "'; known options: " + list;
+  }
+  return {};
+}
+
+void Options::check_known(std::initializer_list<const char*> known) const {
+  const std::vector<std::string> names(known.begin(), known.end());
+  if (fname_) record_known_options(fname_, names);
+  if (!idx_) return;
+  {  // the message is built with the C++ objects in a scope of their own, and raised after it
+    const std::string msg = unknown_option_message(L_, idx_, fname_, names);
     if (msg.empty()) return;
     luaL_where(L_, 1);
     lua_pushlstring(L_, msg.data(), msg.size());

@@ -246,7 +246,10 @@ int push_mapped(lua_State* L, int idx, const char* fname, F&& f) {
 void push_named_vectors(lua_State* L, const std::vector<std::string>& names, const Eigen::MatrixXd& columns);
 
 // ---------------------------------------------------------------------------------------------
-// Options tables: trailing {key = value} arguments.
+// Options tables: trailing {key = value} arguments. A bound function declares its options in a
+// schema (option_schema.hpp: typed reads, unknown-key check and reference list from one table);
+// Options below is left for nested tables read by hand (a distribution spec, calibrate's
+// bootstrap = {...}) and presence checks.
 
 /// The option names every function has checked with Options::check_known so far in this process,
 /// by the function name given to Options (what smi-lua doc --check compares with the docs).
@@ -254,6 +257,10 @@ std::map<std::string, std::set<std::string>> known_options();
 /// Adds to known_options(): for a function that checks its option names another way than
 /// Options::check_known (a kernel's spec table), so that the doc check still compares them.
 void record_known_options(const std::string& fname, const std::vector<std::string>& keys);
+/// "fname: unknown option 'k' (did you mean 'x'?)" (or with the list of known options) for the
+/// first string key of the table at idx, in name order, that is not in `known`; "" if none. The
+/// one unknown-key check of Options::check_known and the option schemas.
+std::string unknown_option_message(lua_State* L, int idx, const char* fname, const std::vector<std::string>& known);
 
 class Options {
  public:

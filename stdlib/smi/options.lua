@@ -19,7 +19,9 @@
 -- Checks: allowed = {...} (every element for a list), min, max, input = true (a path that must
 -- name a readable file, opened at parse), and check = function(v) that
 -- returns true, or false/nil and why. Arguments not starting with "--" are refused unless the
--- spec says args = "<meaning>" (then they are kept in opt.args). smi-lua's own options (--out,
+-- spec says args = "<meaning>" (then they are kept in opt.args); with rest = true, every argument
+-- the spec does not declare is kept, in order, in opt.rest (smi.study.parse_args: the steps'
+-- options here, the study's own for its parser). needs = "a step name" words a missing value. smi-lua's own options (--out,
 -- --seed, ...) go before the script; given after it, one the study did not declare is refused
 -- with "smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ...".
 local doc = require "smi.doc"
@@ -53,8 +55,8 @@ end
 
 --- --only, --from and --quiet as smi.study's s:run(opt) reads them (splice into a spec's list).
 M.study_steps = {
-  { name = "only", type = "list", meaning = "run only these steps (comma-separated); the others' results are read from results.json" },
-  { name = "from", type = "string", meaning = "run this step and every later one; earlier results are read from results.json" },
+  { name = "only", type = "list", needs = "a step name", meaning = "run only these steps (comma-separated); the others' results are read from results.json" },
+  { name = "from", type = "string", needs = "a step name", meaning = "run this step and every later one; earlier results are read from results.json" },
   { name = "quiet", type = "flag", meaning = "no progress lines (also automatic when output is not a terminal)" },
 }
 
@@ -233,7 +235,9 @@ end
 doc.add[==[
 @ smi.options.check(argv, spec) -> opt | nil, message
 Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
-ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args.
+ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args;
+with rest = true, every argument the spec does not declare is kept, in order, in opt.rest (for
+another parser: smi.study.parse_args is check(argv, {rest = true, options.study_steps})).
 options:
   name = (required)     -- a declaration's option name: --name on the command line, opt.name in Lua
                         -- (dashes become underscores)
@@ -247,6 +251,7 @@ options:
   check = nil           -- function(v) returning true, or false and why
   input = nil           -- (path) true: the file must exist and be readable; checked at parse,
                         -- so a missing one is named by its option before anything runs
+  needs = nil           -- how a missing value is named: "--only needs a step name"
 returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
   positional arguments), or nil and a message naming the option and the allowed values; one of
   smi-lua's own options (--out, --seed, --quiet, --timeout, ...) that the spec does not declare is
@@ -259,22 +264,52 @@ example:
   print(options.check({"--starts=4"}, spec).starts)
   print(options.check({"--metric", "rmse"}, spec))
 ]==]
+-- After the arguments: the declared defaults of what was not given, and the input files opened
+-- (a missing one names the option). Returns nil, or the message.
+local function finish(decl, opt, given)
+  for _, d in ipairs(decl) do
+    local key = d.name:gsub("%-", "_")
+    if not given[key] then
+      -- a flag not given keeps its declared default (nil when none: smi.study's --quiet must
+      -- stay unset so that smi-lua's own --quiet still applies)
+      if d.default ~= nil then opt[key] = d.default end
+    end
+  end
+  -- input files are opened now, before the study spends anything: a missing one names the option
+  if not opt.help then
+    for _, d in ipairs(decl) do
+      local key = d.name:gsub("%-", "_")
+      if d.input and d.type == "path" and type(opt[key]) == "string" then
+        local why = unreadable(opt[key])
+        if why then
+          return ("--%s%s: cannot read '%s': %s (give the %s with --%s PATH)"):format(d.name,
+            given[key] and "" or " (its default)", opt[key], why, d.meaning, d.name)
+        end
+      end
+    end
+  end
+end
+
 --- Parses argv against spec without exiting: returns opt, or nil and a message naming the
 -- option and what it accepts; opt.help is true when --help was given.
 function M.check(argv, spec)
   if type(spec) ~= "table" then error("smi.options: spec must be a table of option declarations", 2) end
   local decl, by = declarations(spec)
-  local opt, given = {}, {}
+  local opt, given = { rest = spec.rest and {} or nil }, {}
   argv = argv or {}
   local i = 1
   while i <= #argv do
     local a = tostring(argv[i])
-    if a == "--help" or a == "-h" then
+    local name, value = a:match("^%-%-([^=]+)=(.*)$")
+    name = name or a:sub(3)
+    if spec.rest and not (a:sub(1, 2) == "--" and by[name]) then
+      -- spec.rest: what the spec does not declare is kept, in order, for another parser
+      opt.rest[#opt.rest + 1] = a
+      i = i + 1
+    elseif a == "--help" or a == "-h" then
       opt.help = true
       i = i + 1
     elseif a:sub(1, 2) == "--" then
-      local name, value = a:match("^%-%-([^=]+)=(.*)$")
-      name = name or a:sub(3)
       local d = by[name]
       if not d and M.host_options[name] ~= nil then return nil, host_option_message(name, argv) end
       if not d then
@@ -293,6 +328,7 @@ function M.check(argv, spec)
         if value == nil then
           value = argv[i + 1]
           if value == nil or tostring(value):sub(1, 2) == "--" then
+            if d.needs then return nil, ("--%s needs %s"):format(d.name, d.needs) end
             return nil, ("--%s needs a value (%s)"):format(d.name, accepts(d) ~= "" and accepts(d) or d.meaning)
           end
           i = i + 2
@@ -318,27 +354,8 @@ function M.check(argv, spec)
       return nil, ("unexpected argument '%s': options start with -- (--help lists them)"):format(a)
     end
   end
-  for _, d in ipairs(decl) do
-    local key = d.name:gsub("%-", "_")
-    if not given[key] then
-      -- a flag not given keeps its declared default (nil when none: smi.study's --quiet must
-      -- stay unset so that smi-lua's own --quiet still applies)
-      if d.default ~= nil then opt[key] = d.default end
-    end
-  end
-  -- input files are opened now, before the study spends anything: a missing one names the option
-  if not opt.help then
-    for _, d in ipairs(decl) do
-      local key = d.name:gsub("%-", "_")
-      if d.input and d.type == "path" and type(opt[key]) == "string" then
-        local why = unreadable(opt[key])
-        if why then
-          return nil, ("--%s%s: cannot read '%s': %s (give the %s with --%s PATH)"):format(d.name,
-            given[key] and "" or " (its default)", opt[key], why, d.meaning, d.name)
-        end
-      end
-    end
-  end
+  local err = finish(decl, opt, given)
+  if err then return nil, err end
   return opt
 end
 

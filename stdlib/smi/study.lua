@@ -668,28 +668,10 @@ example:
 --- Splits command-line arguments: --only NAME[,NAME...] (repeatable), --from NAME, --quiet;
 -- everything else is kept, in order, in .rest (for the study's own options).
 function M.parse_args(argv)
-  local o, rest = {}, {}
-  local i = 1
-  argv = argv or {}
-  while i <= #argv do
-    local a = argv[i]
-    if a == "--only" or a == "--from" then
-      local v = argv[i + 1]
-      if not v or v:sub(1, 2) == "--" then error(("study: %s needs a step name"):format(a), 0) end
-      if a == "--from" then o.from = v else
-        o.only = o.only or {}
-        for name in v:gmatch("[^,]+") do o.only[#o.only + 1] = name end
-      end
-      i = i + 2
-    elseif a == "--quiet" then
-      o.quiet = true
-      i = i + 1
-    else
-      rest[#rest + 1] = a
-      i = i + 1
-    end
-  end
-  o.rest = rest
+  -- one parser (smi.options) over the one list of the steps' options (options.study_steps);
+  -- everything else is kept in o.rest for the study's own parser
+  local o, err = require("smi.options").check(argv, { rest = true, require("smi.options").study_steps })
+  if not o then error("study: " .. err, 0) end
   return o
 end
 

@@ -55,6 +55,17 @@ T.case("--help lists every option with its default and allowed values", function
   end
 end)
 
+T.case("rest = true keeps what the spec does not declare (smi.study.parse_args is this)", function()
+  local o = assert(options.check({ "--data", "f.csv", "--only", "a,b", "x", "--quiet", "--only=c" }, { rest = true, options.study_steps }))
+  T.eq(table.concat(o.only, ","), "a,b,c", "only, repeated and with =")
+  T.eq(o.quiet, true, "quiet")
+  T.eq(table.concat(o.rest, ","), "--data,f.csv,x", "the rest, in order")
+  local _, err = options.check({ "--from" }, { rest = true, options.study_steps })
+  T.eq(err, "--from needs a step name", "needs words the missing value")
+  local study = require "smi.study"
+  T.eq(table.concat(study.parse_args{ "--only", "a", "--data", "f" }.rest, ","), "--data,f", "parse_args is the same parser")
+end)
+
 T.case("a bad declaration is refused", function()
   T.raises(function() options.check({}, { { name = "x", type = "float", meaning = "m" } }) end, "type must be flag")
   T.raises(function() options.check({}, { { name = "x" } }) end, "has no meaning")

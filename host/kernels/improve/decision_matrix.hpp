@@ -19,11 +19,17 @@ struct DecisionResult {
   std::vector<std::string> warnings;
 };
 
+/// The decision's one option (smi.refine.decision_matrix's tie_tol).
+struct DecisionOptions {
+  double tie_tol = 1e-12;  ///< overall ratings closer than this to the best are ties
+};
+
 /// M: candidates (rows) × criteria (columns), finite, >= 0. Weights: one per criterion, >= 0,
 /// summing to 1 within 1e-9. Names only label error messages (may be empty).
 DecisionResult decision_matrix(const Eigen::MatrixXd& magnitudes, const Eigen::VectorXd& weights,
                                const std::vector<std::string>& candidate_names = {},
-                               const std::vector<std::string>& criterion_names = {}, double tie_tol = 1e-12);
+                               const std::vector<std::string>& criterion_names = {},
+                               double tie_tol = DecisionOptions{}.tie_tol);
 
 /// A fixed-width text table of M, S, r and O for printing.
 std::string format_decision(const DecisionResult& r, const std::vector<std::string>& candidate_names,

@@ -14,6 +14,9 @@ struct IdentifiabilityOptions {
   int points = 11;          ///< sweep nodes per parameter (bounds included)
   double abs_tol = 0.0;     ///< flagged when the objective's span over the sweep is below abs_tol...
   double rel_tol = 0.01;    ///< ...or below rel_tol times the largest span of any parameter
+  /// abs_tol under the PR metric when not given: PR is unit-free (range [0, 2] per response), so
+  /// a change below this over a whole range is noise.
+  double pr_abs_tol = 1e-3;
 };
 
 struct IdentifiabilityResult {

@@ -41,17 +41,17 @@ struct KdeOptions {
 };
 
 /// Exact Gaussian KDE density of `data` (any order) with bandwidth h at the points x.
-Eigen::VectorXd kde_pdf(ConstVec data, double h, ConstVec x, int threads = 2);
+Eigen::VectorXd kde_pdf(ConstVec data, double h, ConstVec x, int threads = kDefaultThreads);
 /// Exact Gaussian KDE CDF at x.
-Eigen::VectorXd kde_cdf(ConstVec data, double h, ConstVec x, int threads = 2);
+Eigen::VectorXd kde_cdf(ConstVec data, double h, ConstVec x, int threads = kDefaultThreads);
 /// Binned Gaussian KDE density at x with bins of width `bin` (linear binning). Absolute error
 /// <= binned_error_bound(h, bin).
-Eigen::VectorXd kde_pdf_binned(ConstVec data, double h, ConstVec x, double bin, int threads = 2);
+Eigen::VectorXd kde_pdf_binned(ConstVec data, double h, ConstVec x, double bin, int threads = kDefaultThreads);
 /// Bound on |binned − exact| density for bin width δ: δ² φ(0) / (8 h³) (the second derivative
 /// of the kernel in t is at most φ(0)/h³; linear interpolation error is δ²/8 times that).
 double binned_error_bound(double h, double bin);
 /// KDE density on a §0 grid (the form screening, PR and calibration use): exact sums.
-Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, int threads = 2);
+Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, int threads = kDefaultThreads);
 /// KDE density on a grid by opt.method: Auto takes the binned path on the same rule as Kde::pdf
 /// (N > 2000 and N·M > 2e7), with absolute error <= binned_error_bound(h, kde_bin_width(h, opt)).
 Eigen::VectorXd kde_pdf_grid(ConstVec data, double h, const Grid& g, const KdeOptions& opt);

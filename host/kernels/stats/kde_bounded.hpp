@@ -24,6 +24,12 @@ struct BoundedKdeOptions {
   Eigen::Index grid_nodes = kDefaultGridNodes;
 };
 
+/// KDE-ebd's bound estimation (§1.2): the significance level and which estimators.
+struct EbdBoundsOptions {
+  double alpha = 0.1;     ///< c = alpha^(-1/n)
+  bool unbiased = false;  ///< the unbiased bound estimators instead of min/max
+};
+
 /// §1.2 bounds: min/max estimators (unbiased = false) or the unbiased ones; c = α^{-1/n}.
 std::pair<double, double> ebd_bounds(ConstVec x, double alpha, bool unbiased = false);
 

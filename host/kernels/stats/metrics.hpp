@@ -59,10 +59,13 @@ double area_metric_samples(ConstVec a, ConstVec b);
 /// their 1e-12..1−1e-12 quantile ranges.
 double area_metric(const Distribution& a, const Distribution& b);
 
+/// The density floor of loglik unless told (a density below it counts as floored).
+inline constexpr double kLoglikFloor = 1e-300;
+
 /// Σ log f(y_i), densities floored at `floor` (§2.2); `floored` (if given) counts the floored.
 /// Small densities are taken through d.logpdf (finite where the pdf underflows). Throws
 /// InvalidArgument naming d and the data point where the density is NaN, or infinite (an
 /// observation on a singular support bound: the likelihood is unbounded).
-double loglik(ConstVec y, const Distribution& d, double floor = 1e-300, int* floored = nullptr);
+double loglik(ConstVec y, const Distribution& d, double floor = kLoglikFloor, int* floored = nullptr);
 
 }  // namespace smi::stats

@@ -33,6 +33,9 @@ struct UpoolMcSettings {
 /// The H0 sample of U for n u-values, in generation order (computed once per (n, replications,
 /// seed), then cached for the process; thread-safe).
 std::shared_ptr<const std::vector<double>> upool_null_sample(int n, const UpoolMcSettings& s = {});
+/// The threshold's confidence unless told.
+inline constexpr double kDefaultUpoolConfidence = 0.95;
+
 /// U_crit(n, confidence): the confidence-quantile of U under H0 (type-7 on the MC sample).
 /// confidence in (0, 1), n >= 1; n = 1 uses the exact closed form ¼ + (confidence/2)²; n above
 /// kUpoolMonteCarloMaxN (50) the fitted large-n form of stats/upool_asymptotic.hpp (the MC

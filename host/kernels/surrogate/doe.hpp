@@ -40,6 +40,11 @@ int sobol_max_dim();
 /// quantile function. `skip` extra points may be dropped as well.
 Eigen::MatrixXd sobol(Eigen::Index n, Eigen::Index d, Eigen::Index skip = 0);
 
+/// smi.doe.sobol's option: points of the sequence skipped first.
+struct SobolOptions {
+  Eigen::Index skip = 0;
+};
+
 /// All combinations of levels[j] values in column j (first column varies slowest).
 Eigen::MatrixXd full_factorial(const std::vector<Eigen::VectorXd>& levels);
 

@@ -13,6 +13,9 @@
 
 namespace smi::surrogate::propagate {
 
+/// smi.propagate's sample size unless told.
+inline constexpr Eigen::Index kDefaultSampleSize = 10000;
+
 /// A named input: a distribution, or a constant when dist is null.
 struct Input {
   std::string name;

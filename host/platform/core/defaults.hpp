@@ -16,4 +16,7 @@ inline constexpr int kDefaultThreads = 2;
 /// Nodes of the §0 integration grid (>= 2001 by the spec; 4001 recommended).
 inline constexpr Eigen::Index kDefaultGridNodes = 4001;
 
+/// Points of a distribution's plot series (d:curve()) unless told.
+inline constexpr int kDefaultCurvePoints = 401;
+
 }  // namespace smi

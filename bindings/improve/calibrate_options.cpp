@@ -1,0 +1,149 @@
+// The option schema of smi.calibrate (calibrate_options.hpp), in the reference's order.
+#include "bindings/improve/calibrate_options.hpp"
+
+#include <vector>
+
+#include "kernels/improve/bounded_optimizer.hpp"
+#include "kernels/improve/crn_mapping.hpp"
+
+namespace smi::bind::improve {
+
+using namespace smi::lua;
+using smi::improve::CrnKind;
+using smi::improve::method_name;
+using smi::improve::parse_method;
+
+// long: one table of 36 entries, one per option in the reference's order (data, no logic)
+const Schema<CalibrateSpec>& calibrate_schema() {
+  using S = CalibrateSpec;
+  static const Schema<S> schema("smi.calibrate", std::vector<Option<S>>{
+      by_hand<S>("model", "nil",
+         "model form: an smi.model, an smi.kriging (or a table of them by\n"
+         "output), or a function(X) returning {output = vec}"),
+      by_hand<S>("inputs", "nil",
+         "model form: {name = {dist = \"normal\", mean = m | {lo, hi, start},\n"
+         "std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =);\n"
+         "dist: any of the nine families (truncnormal/beta with fixed lower/upper,\n"
+         "gamma/weibull with a fixed loc, triangular with mode_at)"),
+      by_hand<S>("data", "nil",
+         "model form: {output = vec of measurements | a dist (an experimental PDF)}"),
+      by_hand<S>("metric", "\"pr\"",
+         "\"pr\", \"loglik\", or function(predicted, data) returning a number"),
+      by_hand<S>("penalty", "nil",
+         "function(theta) returning a number added to the metric (prior knowledge)"),
+      by_hand<S>("prior", "nil",
+         "{{param = \"x.mean\", mean =, std =} | {name =, fn = function(theta), mean =,\n"
+         "std =}, ...}: adds 0.5((v - mean)/std)^2 each, reported as metrics.prior"),
+      number<S>("prior_weight", &S::prior_weight, any_value(),
+         "factor on the prior part"),
+      string<S>("gradient", &S::gradient, {"auto", "analytic", "model", "differences"},
+         "\"auto\": analytic where the model gives one (Kriging, m:gradient),\n"
+         "else the MODEL's differences at the CRN sample (\"model\": one call\n"
+         "of the model on k + 1 stacked blocks of n rows for k calibrated\n"
+         "inputs, chained through the quantile derivatives, KDE and metric\n"
+         "like the analytic path; a solver model runs the blocks as one\n"
+         "parallel, resumable evaluation), else (custom metric, lscv/sj)\n"
+         "the objective's differences (\"differences\": 2k' + 1 evaluations\n"
+         "a gradient for k' parameters); r.gradient says which ran"),
+      string<S>("model_differences", &S::model_differences, {"forward", "central"},
+         "or \"central\" (2k + 1 blocks, O(h^2))"),
+      number<S>("model_step", &S::model_step, any_value(),
+         "relative step of model differences (input sd units); a solver whose\n"
+         "printed outputs carry d digits needs about 10^(-d/2)"),
+      boolean<S>("overlap_start", &S::overlap_start,
+         "a start where a response's PR is near 2 (no overlap) is first moved\n"
+         "to a moment-matching start"),
+      boolean<S>("moment_start", &S::moment_start,
+         "true: every start is first moved to match the responses' means and\n"
+         "sds (Levenberg-Marquardt, analytic Jacobian where the model has a\n"
+         "gradient), kept when the objective is lower: fewer evaluations"),
+      integer<S>("n", [](auto& s) -> auto& { return s.stat.n; }, any_value(),
+         "CRN sample size per evaluation"),
+      choice<S>("crn", [](auto& s) -> auto& { return s.stat.crn; }, Names<CrnKind>{{"random", CrnKind::random}, {"quantiles", CrnKind::quantiles}},
+         "\"random\" draws or \"quantiles\" (stratified) common random numbers"),
+      by_hand<S>("grid", "nil",
+         "{output = {lower, upper}}: PR integration ranges"),
+      integer<S>("grid_nodes", [](auto& s) -> auto& { return s.stat.grid_nodes; }, any_value(),
+         "nodes of the default PR grids"),
+      string<S>("bandwidth", [](auto& s) -> auto& { return s.stat.bandwidth; }, {},
+         "KDE rule for the predicted outputs"),
+      by_hand<S>("order", "nil",
+         "the input column order for a function model (names)"),
+      by_hand<S>("design_bounds", "nil",
+         "{input = {lower, upper}}: the surrogate's design range; leaving it warns"),
+      integer<S>("threads", [](auto& s) -> auto& { return s.stat.threads; }, any_value(),
+         "KDE evaluation threads; with Kriging models and no Lua metric, penalty,\n"
+         "prior function or progress, the starts run side by side on them instead"),
+      by_hand<S>("parameters", "nil",
+         "objective form: {{name, lower, upper, start}, ...} (start: mid-range)"),
+      by_hand<S>("objective", "nil",
+         "objective form: function(theta) returning a number; theta[name]"),
+      parsed<S>("method", [](auto& s) -> auto& { return s.optimizer.method; }, parse_method, method_name,
+         "\"slsqp\", \"lbfgs\" (gradient-based too), \"cobyla\", \"bobyqa\" or \"neldermead\""),
+      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(),
+         "starts: the given one plus multistart - 1 seeded points"),
+      integer<S>("hops", [](auto& s) -> auto& { return s.optimizer.hops; }, any_value(),
+         "basin hopping: each start jumps hops times from its optimum and keeps\n"
+         "a lower optimum it finds (for multimodal fits; 0: no hops)"),
+      number<S>("hop_step", [](auto& s) -> auto& { return s.optimizer.hop_step; }, any_value(),
+         "the largest jump of a hop, as a share of each parameter's range"),
+      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, any_value(),
+         "objective evaluations per start (finite-difference probes included)"),
+      number<S>("xtol_rel", [](auto& s) -> auto& { return s.optimizer.xtol_rel; }, any_value(),
+         "relative tolerance on the scaled parameters"),
+      number<S>("ftol_abs", [](auto& s) -> auto& { return s.optimizer.ftol_abs; }, any_value(),
+         "absolute tolerance on the objective\n"
+         "Why these fit a Monte Carlo objective: on common random numbers\n"
+         "the objective is a fixed, smooth function of the parameters (PR's\n"
+         "grid makes it piecewise smooth at about 1e-9), so with a gradient\n"
+         "from the model (analytic, or model differences, exact to ~1e-7) the\n"
+         "optimiser reaches them like on any smooth function: ftol_abs sits\n"
+         "just above that 1e-9 roughness, xtol_rel far above the differences'\n"
+         "error. The Monte Carlo error of the optimum (the sample of n, about\n"
+         "1/sqrt(n)) is not an optimiser tolerance: r.tolerance and bootstrap\n"
+         "report it. Objective differences (2k + 1 evaluations a gradient)\n"
+         "may spend maxeval first: r.starts[i].criterion then says which\n"
+         "tolerance was missed and by how much."),
+      number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, any_value(),
+         "central-difference step in scaled units"),
+      number<S>("initial_step", [](auto& s) -> auto& { return s.optimizer.initial_step; }, any_value(),
+         "derivative-free methods' first step, scaled units"),
+      integer<S>("seed", [](auto& s) -> auto& { return s.optimizer.seed; }, any_value(),
+         "CRN sample, multistart points and bootstrap", "smi.seed"),
+      by_hand<S>("identifiability", "true",
+         "true, false, or {points = ${ident_points}, rel_tol = ${ident_rel_tol},\n"
+         "abs_tol = ${ident_abs_tol}, tolerance =, directions = true}: a sweep\n"
+         "of each parameter and the directions the data determine or not"),
+      by_hand<S>("intervals", "nil",
+         "{level = 0.9} profile intervals (loglik / objective read as a negative\n"
+         "log-likelihood) or {delta = rise}; observations = n (data count)\n"
+         "gives the small-sample delta n/2 ln(1 + t²(n-k)/(n-k)), k parameters"),
+      by_hand<S>("bootstrap", "nil",
+         "replicates, or {replicates = ${boot_replicates}, level = ${boot_level},\n"
+         "seed =, maxeval =, multistart =, warm = false}: full calibrations\n"
+         "on resampled data (model form; warm = true starts at the optimum)"),
+      by_hand<S>("progress", "nil",
+         "function(row) called after each optimizer step; false: no progress\n"
+         "line (by default one line on stderr when it is a terminal and not\n"
+         "--quiet: \"calibration: start 2/4, 137 evaluations, best 0.288,\n"
+         "ETA 0:42\", and the same for the bootstrap and near-optimal stages)"),
+  });
+  return schema;
+}
+
+const Schema<smi::improve::BootstrapOptions>& bootstrap_schema() {
+  using S = smi::improve::BootstrapOptions;
+  static const Schema<S> schema("smi.calibrate bootstrap", std::vector<Option<S>>{
+      integer<S>("replicates", &S::replicates, any_value(), "full calibrations on resampled data"),
+      number<S>("level", &S::level, any_value(), "the percentile intervals' level"),
+      integer<S>("seed", &S::seed, any_value(), "the resampling's seed", "the calibration's"),
+      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, any_value(), "evaluations per start",
+                 "the calibration's"),
+      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(), "starts per replicate",
+                 "the calibration's"),
+      boolean<S>("warm", &S::warm_start, "start each replicate at the optimum, one start only"),
+  });
+  return schema;
+}
+
+}  // namespace smi::bind::improve
