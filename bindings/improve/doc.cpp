@@ -38,9 +38,12 @@ options:
                               -- of the model on k + 1 stacked blocks of n rows for k calibrated
                               -- inputs, chained through the quantile derivatives, KDE and metric
                               -- like the analytic path; a solver model runs the blocks as one
-                              -- parallel, resumable evaluation), else (custom metric, lscv/sj)
-                              -- the objective's differences ("differences": 2k' + 1 evaluations
-                              -- a gradient for k' parameters); r.gradient says which ran
+                              -- parallel, resumable evaluation; k blocks where the value at that
+                              -- point was just computed), else (custom metric, lscv/sj) the
+                              -- objective's differences ("differences": 2k' + 1 evaluations a
+                              -- gradient for k' parameters); r.gradient says which ran. Either
+                              -- differences are computed only where SLSQP uses them: not at a
+                              -- line-search trial it rejects (the same iterates, less work)
   model_differences = "forward" -- or "central" (2k + 1 blocks, O(h^2))
   model_step = 1e-6           -- relative step of model differences (input sd units); a solver whose
                               -- printed outputs carry d digits needs about 10^(-d/2)
