@@ -108,7 +108,7 @@ L = [f"# The hidden-style calibration (issue 29): smi vs SciPy SLSQP, {datetime.
      "| run | objective | evaluations | model passes (n rows each) | CPU | max distance to SciPy's optimum (of each range) | status |",
      "|---|---|---|---|---|---|---|"]
 rows = {}
-for key, name in (("model_forward", "smi, model differences (forward, k + 1 = 6 passes a gradient), default tolerances"),
+for key, name in (("model_forward", "smi, model differences (forward, k + 1 = 6 passes a gradient, 5 where the value is known), default tolerances"),
                   ("model_central", "smi, model differences (central, 2k + 1 = 11 passes)"),
                   ("objective_differences", "smi, objective differences (gradient = \"differences\", 2k' + 1 = 21), maxeval 500")):
     th = np.array([float(v) for v in ours[key + "_theta"]])
