@@ -133,7 +133,7 @@ class StatisticalObjective {
   const std::vector<Parameter>& parameters() const { return params_; }
   const Eigen::MatrixXd& crn() const { return z_; }
   const StatisticalOptions& options() const { return opt_; }
-  /// Model runs so far (one per objective evaluation).
+  /// Model calls so far (at most one per objective evaluation: none where the outputs are cached).
   long model_runs() const { return runs_->load(); }
   /// Densities floored by the loglik metric so far.
   long floored() const { return floored_->load(); }
