@@ -103,8 +103,8 @@ struct OptimizerOptions {
   /// Worth it when a gradient costs several values (differences: 2k evaluations, or k model
   /// passes); with an analytic gradient about as cheap as a value (a Kriging's Jacobian), the
   /// value computed apart costs about what the skipped gradients save (the steering column's
-  /// trial 2: 3 % more CPU), so it is off by default and the calibration turns it on for
-  /// differences. A run that ends on its budget gets further with it (its probes are saved).
+  /// trial 2: 5 to 10 % more CPU in one measurement), so it is off by default and the
+  /// calibration turns it on for differences. A run that ends on its budget gets further with it (its probes are saved).
   bool defer_gradient = false;
 };
 
