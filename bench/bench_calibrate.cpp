@@ -88,7 +88,8 @@ Run timed(int reps, const std::vector<Parameter>& p, const Objective& f, const O
     out.gradient_calls = g_gradient_calls.load() - q0;
   }
   // Every gradient call ran the Jacobian once; the other Jacobian runs are the moment start's
-  // steps, each with one model run; every other model run is an objective evaluation.
+  // steps, each with one model run; every other model run is an objective evaluation (one that ran
+  // the model: at a point whose outputs the objective has cached, a gradient runs none).
   out.objective_evaluations = out.model_runs - (out.jacobian_runs - out.gradient_calls);
   return out;
 }

@@ -42,9 +42,12 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "of the model on k + 1 stacked blocks of n rows for k calibrated\n"
          "inputs, chained through the quantile derivatives, KDE and metric\n"
          "like the analytic path; a solver model runs the blocks as one\n"
-         "parallel, resumable evaluation), else (custom metric, lscv/sj)\n"
-         "the objective's differences (\"differences\": 2k' + 1 evaluations\n"
-         "a gradient for k' parameters); r.gradient says which ran"),
+         "parallel, resumable evaluation; k blocks where the value at that\n"
+         "point was just computed), else (custom metric, lscv/sj) the\n"
+         "objective's differences (\"differences\": 2k' + 1 evaluations a\n"
+         "gradient for k' parameters); r.gradient says which ran. Either\n"
+         "differences are computed only where SLSQP uses them: not at a\n"
+         "line-search trial it rejects (the same iterates, less work)"),
       string<S>("model_differences", &S::model_differences, {"forward", "central"},
          "or \"central\" (2k + 1 blocks, O(h^2))"),
       number<S>("model_step", &S::model_step, any_value(),

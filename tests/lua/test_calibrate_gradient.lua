@@ -25,7 +25,8 @@ T.case("Kriging surrogates: analytic gradient, same optimum as differences, ends
     T.truthy(an.converged and an.status ~= "maxeval_reached", metric .. " converged: " .. an.status)
     for k, v in pairs(fd.params) do T.near(an.params[k], v, 2e-3, metric .. " " .. k) end
     T.truthy(an.objective <= fd.objective + 1e-6 * math.abs(fd.objective), metric .. " objective at least as low")
-    T.truthy(an.evaluations * 3 < fd.evaluations, ("%s: %d evaluations vs %d"):format(metric, an.evaluations, fd.evaluations))
+    -- differences cost 2k = 8 probes a gradient (none at a line-search trial SLSQP rejects)
+    T.truthy(an.evaluations * 2 < fd.evaluations, ("%s: %d evaluations vs %d"):format(metric, an.evaluations, fd.evaluations))
   end
 end)
 

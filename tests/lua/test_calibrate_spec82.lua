@@ -30,7 +30,9 @@ T.case("SLSQP from (30.0, 0.5) reaches the spec optimum (30.21768, 0.42734), PR 
   -- The first evaluation is the start, where spec 8.2 gives PR(30.0, 0.5) = 0.4181069.
   T.near(r.history[1].objective, 0.4181069, 1e-7, "PR at the start")
   T.near(r.history[1].params["x.mean"], 30.0, 0, "first point is the start")
-  T.eq(r.model_runs, r.start_evaluations + r.evaluations + r.identifiability.evaluations, "one model run per evaluation")
+  -- at most one model run per evaluation: a gradient where SLSQP has just evaluated the value
+  -- (the accepted point of a line search) reuses its outputs
+  T.truthy(r.model_runs < r.start_evaluations + r.evaluations + r.identifiability.evaluations, "fewer model runs than evaluations")
   T.eq(r.start_evaluations, 1, "the start's overlap check: one run, the start overlaps")
   T.eq(#r.identifiability.weak, 0, "both moments are identifiable")
   local d = r.distributions.x

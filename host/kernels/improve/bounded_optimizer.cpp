@@ -102,6 +102,8 @@ struct Run {
     return t;
   }
 
+  /// One recorded evaluation at u: the value, and with `grad` the gradient in scaled units too
+  /// (from OptimizerOptions::gradient; the value comes from the same call).
   double eval(const double* u, bool probe, double* grad = nullptr) {
     if (evaluations >= opt.maxeval) {
       budget_spent = true;
@@ -110,12 +112,7 @@ struct Run {
     Eigen::VectorXd theta = theta_of(u);
     Evaluation e;
     if (grad) {
-      Eigen::VectorXd g;
-      e = opt.gradient(theta, g);
-      if (g.size() != theta.size() || !g.allFinite())
-        throw InvalidArgument(fmt::format("the objective's gradient has {} values (finite: {}) for {} parameters", g.size(), g.allFinite(),
-                                          theta.size()));
-      for (std::size_t i = 0; i < params.size(); ++i) grad[i] = g[static_cast<Eigen::Index>(i)] * (params[i].upper - params[i].lower);
+      e = analytic_gradient(theta, grad);
     } else {
       e = f(theta);
     }
@@ -135,33 +132,105 @@ struct Run {
     return e.value;
   }
 
-  /// NLopt callback: value at u and, when asked, the central-difference gradient in scaled units
-  /// (one-sided where a central probe would leave [0, 1]).
+  /// OptimizerOptions::gradient at θ, in scaled units into grad; returns its evaluation.
+  Evaluation analytic_gradient(const Eigen::VectorXd& theta, double* grad) const {
+    Eigen::VectorXd g;
+    Evaluation e = opt.gradient(theta, g);
+    if (g.size() != theta.size() || !g.allFinite())
+      throw InvalidArgument(fmt::format("the objective's gradient has {} values (finite: {}) for {} parameters", g.size(), g.allFinite(),
+                                        theta.size()));
+    for (std::size_t i = 0; i < params.size(); ++i) grad[i] = g[static_cast<Eigen::Index>(i)] * (params[i].upper - params[i].lower);
+    return e;
+  }
+
+  /// The gradient at u (scaled units) whose value f0 is known: the analytic one (not counted as
+  /// an evaluation: the value was), or central differences with probes (one-sided where a
+  /// central probe would leave [0, 1]).
+  void gradient_at(const std::vector<double>& u, double f0, std::vector<double>& grad) {
+    if (opt.gradient) {
+      analytic_gradient(theta_of(u.data()), grad.data());
+      return;
+    }
+    const double h = opt.fd_step;
+    std::vector<double> w(u);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const double ui = std::min(1.0, std::max(0.0, u[i]));
+      const double up = ui + h <= 1.0 ? ui + h : ui, dn = ui - h >= 0.0 ? ui - h : ui;
+      double fp = f0, fm = f0;
+      if (up != ui) {
+        w[i] = up;
+        fp = eval(w.data(), true);
+      }
+      if (dn != ui) {
+        w[i] = dn;
+        fm = eval(w.data(), true);
+      }
+      w[i] = u[i];
+      grad[i] = (fp - fm) / (up - dn);
+    }
+  }
+
+  // Deferred gradients (OptimizerOptions::defer_gradient). NLopt's SLSQP (slsqp.c, unchanged since
+  // 2010) asks for a gradient in three places: at the start; at the first trial x = x0 + s of
+  // each line search ("mode -2"), where it keeps the gradient when the trial passes the
+  // sufficient-decrease test f(x) − f(x0) <= 0.1 ∇f(x0)·s (bounds only: no constraint terms) and
+  // else discards it, trying smaller steps with values only; and at the point a line search
+  // accepted after such value-only trials ("mode -1"). So a gradient request right after another
+  // one is a first trial, x0 being the previous request's point; after a value-only call it is
+  // an accepted point (always computed).
+  enum class Call { none, value, gradient, deferred };
+  Call last = Call::none;
+  std::vector<double> x0, g0;
+  double f0 = 0.0;
+  int deferred = 0;
+  bool deferral_failed = false;
+
+  /// Whether NLopt's line search will reject the first trial u with value fu: the test above with
+  /// a margin far above the rounding of x0 + s (s is NLopt's, u − x0 ours), so that a borderline
+  /// trial gets its gradient.
+  bool surely_rejected(const std::vector<double>& u, double fu) const {
+    double gs = 0.0, mag = 0.0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      gs += g0[i] * (u[i] - x0[i]);
+      mag += std::abs(g0[i]) * (std::abs(u[i]) + std::abs(x0[i]));
+    }
+    const double margin = 1e-9 * (mag + std::abs(f0) + std::abs(fu));
+    return fu - f0 > 0.1 * gs + margin;
+  }
+
+  /// NLopt callback: value at u and, when asked, the gradient in scaled units.
   double operator()(const std::vector<double>& u, std::vector<double>& grad) {
     if (error || budget_spent) return HUGE_VAL;
     try {
-      if (!grad.empty() && opt.gradient) return eval(u.data(), false, grad.data());
-      const double f0 = eval(u.data(), false);
-      if (!grad.empty()) {
-        const double h = opt.fd_step;
-        std::vector<double> w(u);
-        for (std::size_t i = 0; i < u.size(); ++i) {
-          const double ui = std::min(1.0, std::max(0.0, u[i]));
-          const double up = ui + h <= 1.0 ? ui + h : ui, dn = ui - h >= 0.0 ? ui - h : ui;
-          double fp = f0, fm = f0;
-          if (up != ui) {
-            w[i] = up;
-            fp = eval(w.data(), true);
-          }
-          if (dn != ui) {
-            w[i] = dn;
-            fm = eval(w.data(), true);
-          }
-          w[i] = u[i];
-          grad[i] = (fp - fm) / (up - dn);
-        }
+      if (grad.empty()) {
+        last = Call::value;
+        return eval(u.data(), false);
       }
-      return f0;
+      if (last == Call::deferred && !deferral_failed) {
+        // NLopt used a step predicted to be rejected (a different NLopt?): it read the previous
+        // point's gradient for this one. Stop deferring for this start and say so.
+        deferral_failed = true;
+        failure_note = "a line-search step predicted to be rejected was accepted; gradients are no longer deferred in this start";
+      }
+      const bool first_trial = defer && !deferral_failed && last == Call::gradient;
+      double v;
+      if (first_trial || !opt.gradient) {
+        v = eval(u.data(), false);
+        if (first_trial && surely_rejected(u, v)) {
+          std::copy(g0.begin(), g0.end(), grad.begin());  // never read: NLopt rejects this step
+          last = Call::deferred;
+          ++deferred;
+          return v;
+        }
+        gradient_at(u, v, grad);
+      } else {
+        v = eval(u.data(), false, grad.data());
+      }
+      last = Call::gradient;
+      x0 = u;
+      g0 = grad;
+      f0 = v;
+      return v;
     } catch (const BudgetSpent&) {
     } catch (const std::exception&) {
       error = std::current_exception();
@@ -169,6 +238,8 @@ struct Run {
     solver->force_stop();
     return HUGE_VAL;
   }
+  bool defer = false;
+  std::string failure_note;
 };
 
 double trampoline(const std::vector<double>& u, std::vector<double>& grad, void* data) {
@@ -225,6 +296,7 @@ StartResult run_start(const std::vector<Parameter>& params, const Objective& f, 
   solver.set_maxeval(opt.maxeval);  // our own budget (Run::eval) also counts the gradient probes
   if (!uses_gradient(method)) solver.set_initial_step(opt.initial_step);
   Run run{params, f, opt, history, index, 0, false, nullptr, Eigen::VectorXd(), {HUGE_VAL, {}}, &solver};
+  run.defer = opt.defer_gradient && method == Method::slsqp;
   solver.set_min_objective(&trampoline, &run);
 
   std::vector<double> u(u0.data(), u0.data() + u0.size());
@@ -258,9 +330,11 @@ StartResult run_start(const std::vector<Parameter>& params, const Objective& f, 
     warnings.push_back(fmt::format("start {}: evaluation budget of {} spent before convergence (raise maxeval): {}", index + 1, opt.maxeval,
                                    out.criterion));
   if (run.evaluations == 0) throw Error(fmt::format("start {}: NLopt made no evaluation ({})", index + 1, out.status));
+  if (!run.failure_note.empty()) warnings.push_back(fmt::format("start {}: {}", index + 1, run.failure_note));
   out.theta = run.best_theta;
   out.value = run.best.value;
   out.evaluations = run.evaluations;
+  out.deferred_gradients = run.deferred;
   return out;
 }
 

@@ -92,6 +92,20 @@ struct OptimizerOptions {
   /// the cost at most: each hop's local run has its own `maxeval`).
   int hops = 0;
   double hop_step = 0.2;
+  /// SLSQP only: compute a gradient only where NLopt will use it. NLopt's SLSQP asks for the value
+  /// AND the gradient at the first trial point of every line search (its "mode -2", which saves a
+  /// call when the full step is accepted) and discards that gradient when the step is rejected.
+  /// With this set, the first trial's value comes first; when it fails the line search's
+  /// sufficient-decrease test f − f0 <= 0.1 ∇f0·(x − x0) (with a margin for rounding), the
+  /// gradient is not computed (NLopt never reads it: the line search goes on with values, then
+  /// asks for the gradient at the accepted point). The iterates are the same bit for bit; only the
+  /// work for rejected steps goes (k model passes, or 2k objective evaluations, per rejected step).
+  /// Worth it when a gradient costs several values (differences: 2k evaluations, or k model
+  /// passes); with an analytic gradient about as cheap as a value (a Kriging's Jacobian), the
+  /// value computed apart costs about what the skipped gradients save (the steering column's
+  /// trial 2: 5 to 10 % more CPU in one measurement), so it is off by default and the
+  /// calibration turns it on for differences. A run that ends on its budget gets further with it (its probes are saved).
+  bool defer_gradient = false;
 };
 
 
@@ -114,6 +128,7 @@ struct StartResult {
   /// it did not reach and how far the last step was from them.
   std::string criterion;
   bool converged = false;
+  int deferred_gradients = 0;  ///< gradients not computed at rejected line-search trials (defer_gradient)
   int hops = 0;           ///< basin hops tried (OptimizerOptions::hops)
   int hops_improved = 0;  ///< of them, those that found a lower optimum (kept)
   std::string start_status;        ///< prepare_start's PreparedStart::status (empty: none said)

@@ -106,7 +106,9 @@ void choose_gradient(const CalibrationProblem& p, const CalibrationOptions& o, S
 /// The objective form: the caller's objective (plus penalty and prior) minimised.
 Objective minimize_objective(const CalibrationProblem& p, const Extras& x, const OptimizerOptions& oo, CalibrationOutcome& out) {
   Objective f = with_extras(x, p.objective);
-  out.opt = minimize(p.params, f, oo);
+  OptimizerOptions od = oo;
+  od.defer_gradient = true;  // the objective's differences: 2k evaluations a gradient
+  out.opt = minimize(p.params, f, od);
   out.part_names = part_labels(x, p.objective_parts ? p.objective_parts() : std::vector<std::string>{}, out.opt.parts.size(), "objective");
   return f;
 }
@@ -139,6 +141,9 @@ Objective minimize_statistical(const CalibrationProblem& p, const CalibrationOpt
     oo.gradient = gradient_with_extras(x, p.params, obj);
     out.gradient = obj.has_model_jacobian() ? "analytic" : "model_differences";
   }
+  // A gradient by differences (k model passes, or 2k objective evaluations) costs far more than
+  // a value: compute it only where SLSQP uses it (OptimizerOptions::defer_gradient).
+  oo.defer_gradient = !obj.has_model_jacobian();
   if (o.moment_start)
     oo.prepare_start = [&obj](const Eigen::VectorXd& t) { return moment_start(obj, t); };
   else if (o.overlap_start)

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
@@ -35,6 +37,14 @@ double predicted_bandwidth(ConstVec y, const std::string& rule, const std::strin
     throw InvalidArgument(fmt::format("response '{}': the model output is constant ({}) over the CRN sample, so it has no density "
                                       "(check that the calibrated inputs reach the model)", response, lo));
   return stats::bandwidth_by_name(y, rule);
+}
+
+/// The same doubles bit for bit (0.0 and -0.0 differ; a NaN θ never reaches the model).
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() != b.size()) return false;
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+  return true;
 }
 
 }  // namespace
@@ -137,12 +147,33 @@ Eigen::MatrixXd StatisticalObjective::inputs_at(const Eigen::VectorXd& theta) co
   return X;
 }
 
+bool StatisticalObjective::cached_output(const Eigen::VectorXd& theta, Eigen::MatrixXd& Y) const {
+  std::lock_guard<std::mutex> lock(cache_->mutex);
+  auto& e = cache_->entries;
+  for (auto it = e.rbegin(); it != e.rend(); ++it)
+    if (same_bits(it->first, theta)) {
+      Y = it->second;
+      return true;
+    }
+  return false;
+}
+
+void StatisticalObjective::cache_output(const Eigen::VectorXd& theta, const Eigen::MatrixXd& Y) const {
+  std::lock_guard<std::mutex> lock(cache_->mutex);
+  auto& e = cache_->entries;
+  if (e.size() >= OutputCache::kEntries) e.erase(e.begin());
+  e.emplace_back(theta, Y);
+}
+
 Eigen::MatrixXd StatisticalObjective::run_model(const Eigen::VectorXd& theta) const {
+  Eigen::MatrixXd Y;
+  if (cached_output(theta, Y)) return Y;
   const Eigen::MatrixXd X = inputs_at(theta);
-  Eigen::MatrixXd Y = model_(X);
+  Y = model_(X);
   ++*runs_;
   ++*passes_;
   check_output(Y, X.rows(), theta);
+  cache_output(theta, Y);
   return Y;
 }
 
@@ -180,17 +211,21 @@ std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::d
   std::vector<Eigen::Index> cols;  // inputs that carry a calibrated parameter
   for (std::size_t j = 0; j < inputs_.size(); ++j)
     if (inputs_[j].mean_param >= 0 || inputs_[j].std_param >= 0) cols.push_back(static_cast<Eigen::Index>(j));
+  // The outputs at X itself are usually known: SLSQP asks for the gradient where it has just
+  // evaluated the value. Then the batch holds only the perturbed blocks.
+  Eigen::MatrixXd Y0;
+  const Eigen::Index base = cached_output(theta, Y0) ? 0 : 1;
   const Eigen::Index per = diff_central_ ? 2 : 1;
-  const Eigen::Index blocks = 1 + per * static_cast<Eigen::Index>(cols.size());
+  const Eigen::Index blocks = base + per * static_cast<Eigen::Index>(cols.size());
   Eigen::MatrixXd batch(N * blocks, k);
-  batch.topRows(N) = X;
+  if (base) batch.topRows(N) = X;
   std::vector<double> h(cols.size());
   for (std::size_t c = 0; c < cols.size(); ++c) {
     const Eigen::VectorXd x = X.col(cols[c]);
     const double sd = stddev(x), scale = std::max(sd, 1e-6 * std::abs(x.mean()));
     h[c] = diff_step_ * (scale > 0.0 ? scale : 1.0);
     for (Eigen::Index s = 0; s < per; ++s) {
-      const Eigen::Index b = 1 + per * static_cast<Eigen::Index>(c) + s;
+      const Eigen::Index b = base + per * static_cast<Eigen::Index>(c) + s;
       batch.middleRows(b * N, N) = X;
       batch.middleRows(b * N, N).col(cols[c]).array() += (s == 0 ? h[c] : -h[c]);
     }
@@ -199,18 +234,22 @@ std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> StatisticalObjective::d
   ++*runs_;
   *passes_ += static_cast<long>(blocks);
   check_output(out, batch.rows(), theta);
+  if (base) {
+    Y0 = out.topRows(N);
+    cache_output(theta, Y0);
+  }
   const Eigen::Index R = out.cols();
   std::vector<Eigen::MatrixXd> J(static_cast<std::size_t>(R), Eigen::MatrixXd::Zero(N, k));
   for (std::size_t c = 0; c < cols.size(); ++c) {
-    const Eigen::Index up = (1 + per * static_cast<Eigen::Index>(c)) * N;
+    const Eigen::Index up = (base + per * static_cast<Eigen::Index>(c)) * N;
     for (Eigen::Index r = 0; r < R; ++r) {
       if (diff_central_)
         J[static_cast<std::size_t>(r)].col(cols[c]) = (out.col(r).segment(up, N) - out.col(r).segment(up + N, N)) / (2.0 * h[c]);
       else
-        J[static_cast<std::size_t>(r)].col(cols[c]) = (out.col(r).segment(up, N) - out.col(r).head(N)) / h[c];
+        J[static_cast<std::size_t>(r)].col(cols[c]) = (out.col(r).segment(up, N) - Y0.col(r)) / h[c];
     }
   }
-  return {out.topRows(N), std::move(J)};
+  return {std::move(Y0), std::move(J)};
 }
 
 Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const {

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -97,7 +98,7 @@ class StatisticalObjective {
   /// its differences (one model call either way); throws when it has neither.
   std::pair<Eigen::MatrixXd, std::vector<Eigen::MatrixXd>> predict_with_jacobian(const Eigen::VectorXd& theta) const;
   /// Sample passes of the model so far (N rows each): one per objective evaluation, k + 1 (or
-  /// 2k + 1) per gradient by model differences.
+  /// 2k + 1) per gradient by model differences, less the passes the output cache saved.
   long model_passes() const { return passes_->load(); }
   /// The model's Jacobian at the rows of X, checked (one per response, N×k each, finite).
   std::vector<Eigen::MatrixXd> model_jacobian(const Eigen::MatrixXd& X) const;
@@ -132,7 +133,7 @@ class StatisticalObjective {
   const std::vector<Parameter>& parameters() const { return params_; }
   const Eigen::MatrixXd& crn() const { return z_; }
   const StatisticalOptions& options() const { return opt_; }
-  /// Model runs so far (one per objective evaluation).
+  /// Model calls so far (at most one per objective evaluation: none where the outputs are cached).
   long model_runs() const { return runs_->load(); }
   /// Densities floored by the loglik metric so far.
   long floored() const { return floored_->load(); }
@@ -161,6 +162,22 @@ class StatisticalObjective {
   std::shared_ptr<std::atomic<long>> runs_ = std::make_shared<std::atomic<long>>(0);
   std::shared_ptr<std::atomic<long>> floored_ = std::make_shared<std::atomic<long>>(0);
   std::shared_ptr<std::atomic<long>> passes_ = std::make_shared<std::atomic<long>>(0);
+
+  /// The model's last outputs by θ, bit for bit (the CRN inputs are a function of θ alone, so
+  /// the same θ gives the same N×R outputs). SLSQP evaluates the value at a line-search trial and
+  /// asks for the gradient at the accepted point, the same θ: with the outputs cached that
+  /// gradient costs k model passes (the perturbed blocks), not k + 1, and an analytic gradient no
+  /// model run. A few entries, so that starts run side by side do not evict each other at once;
+  /// shared by copies (with_data: the same model and CRN give the same outputs).
+  struct OutputCache {
+    static constexpr std::size_t kEntries = 8;
+    std::mutex mutex;
+    std::vector<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> entries;  ///< most recent last
+  };
+  /// The cached outputs at θ (true) or false.
+  bool cached_output(const Eigen::VectorXd& theta, Eigen::MatrixXd& Y) const;
+  void cache_output(const Eigen::VectorXd& theta, const Eigen::MatrixXd& Y) const;
+  std::shared_ptr<OutputCache> cache_ = std::make_shared<OutputCache>();
 };
 
 }  // namespace smi::improve

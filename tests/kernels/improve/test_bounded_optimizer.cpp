@@ -173,3 +173,81 @@ TEST_CASE("central differences match the analytic gradient") {
   CHECK(g[0] == Approx(2 * (0.4 - 1.3)).epsilon(1e-8));
   CHECK(g[1] == Approx(20 * (-0.3 - 0.2)).epsilon(1e-8));
 }
+
+namespace {
+/// Rosenbrock's valley in 4 dimensions: SLSQP's line searches reject many full steps on it.
+double rosen(const Eigen::VectorXd& t) {
+  double f = 0.0;
+  for (Eigen::Index i = 0; i + 1 < t.size(); ++i) f += 100 * std::pow(t[i + 1] - t[i] * t[i], 2) + std::pow(1 - t[i], 2);
+  return f;
+}
+Eigen::VectorXd rosen_gradient(const Eigen::VectorXd& t) {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(t.size());
+  for (Eigen::Index i = 0; i + 1 < t.size(); ++i) {
+    const double d = t[i + 1] - t[i] * t[i];
+    g[i] += -400 * t[i] * d - 2 * (1 - t[i]);
+    g[i + 1] += 200 * d;
+  }
+  return g;
+}
+std::vector<Parameter> rosen_params() { return {{"a", -2, 2, -1.2}, {"b", -2, 2, 1}, {"c", -2, 2, -1.2}, {"d", -2, 2, 1}}; }
+
+/// The points SLSQP asked for (finite-difference probes left out) and their values.
+std::vector<std::pair<Eigen::VectorXd, double>> asked(const OptimizationResult& r) {
+  std::vector<std::pair<Eigen::VectorXd, double>> out;
+  for (const HistoryEntry& h : r.history)
+    if (!h.probe) out.emplace_back(h.theta, h.value);
+  return out;
+}
+}  // namespace
+
+TEST_CASE("defer_gradient: SLSQP's iterates are the same bit for bit, without the gradients of rejected line-search trials") {
+  // NLopt's SLSQP asks for the gradient at the first trial of every line search and drops it when
+  // the trial fails the sufficient-decrease test; deferred, those gradients are not computed.
+  OptimizerOptions o;
+  o.xtol_rel = 1e-10;
+  o.ftol_abs = 1e-14;
+  o.maxeval = 2000;
+  SECTION("analytic gradient: fewer gradient calls, one per accepted point") {
+    int calls = 0;
+    o.gradient = [&calls](const Eigen::VectorXd& t, Eigen::VectorXd& g) {
+      ++calls;
+      g = rosen_gradient(t);
+      return Evaluation{rosen(t), {}};
+    };
+    const Objective f = [](const Eigen::VectorXd& t) { return Evaluation{rosen(t), {}}; };
+    o.defer_gradient = false;
+    const OptimizationResult plain = minimize(rosen_params(), f, o);
+    const int plain_calls = calls;
+    calls = 0;
+    o.defer_gradient = true;
+    const OptimizationResult deferred = minimize(rosen_params(), f, o);
+    INFO("gradients " << plain_calls << " -> " << calls << ", deferred " << deferred.starts[0].deferred_gradients);
+    CHECK(plain.converged);
+    CHECK(plain.theta.isApprox(Eigen::VectorXd::Ones(4), 1e-4));
+    CHECK(deferred.starts[0].deferred_gradients >= 5);
+    CHECK(plain.starts[0].deferred_gradients == 0);
+    CHECK(calls == plain_calls - deferred.starts[0].deferred_gradients);
+    CHECK(deferred.evaluations == plain.evaluations);
+    CHECK(asked(deferred) == asked(plain));
+    CHECK(deferred.theta == plain.theta);
+    CHECK(deferred.status == plain.status);
+    CHECK(deferred.warnings == plain.warnings);
+  }
+  SECTION("central differences of the objective: 2k probes saved per rejected trial") {
+    const Objective f = [](const Eigen::VectorXd& t) { return Evaluation{rosen(t), {}}; };
+    o.fd_step = 1e-6;
+    o.defer_gradient = false;
+    const OptimizationResult plain = minimize(rosen_params(), f, o);
+    o.defer_gradient = true;
+    const OptimizationResult deferred = minimize(rosen_params(), f, o);
+    const int saved = deferred.starts[0].deferred_gradients;
+    INFO("evaluations " << plain.evaluations << " -> " << deferred.evaluations << ", deferred " << saved);
+    CHECK(saved >= 5);
+    CHECK(asked(deferred) == asked(plain));
+    CHECK(deferred.theta == plain.theta);
+    // each skipped gradient had between k = 4 probes (one-sided at bounds) and 2k = 8 (central)
+    CHECK(deferred.evaluations <= plain.evaluations - 4 * saved);
+    CHECK(deferred.evaluations >= plain.evaluations - 8 * saved);
+  }
+}

@@ -184,14 +184,16 @@ TEST_CASE("model differences (issue 29): one batch of k + 1 (forward) or 2k + 1 
     REQUIRE(fwd.has_gradient());
     const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
     Eigen::VectorXd ga, gf, gc;
-    const double va = exact.value_and_gradient(t, ga).value;
     const long calls0 = fwd.model_runs(), passes0 = fwd.model_passes();
     const double vf = fwd.value_and_gradient(t, gf).value;
     CHECK(fwd.model_runs() - calls0 == 1);       // one model call: the batch
     CHECK(fwd.model_passes() - passes0 == 1 + 3);  // X and one step per calibrated input (3 inputs, 6 parameters)
+    // The copies share the output cache (the same model and CRN): the outputs at X itself are
+    // known now, so the central batch holds the 2k perturbed blocks only.
     const long cpass0 = ctr.model_passes();
     const double vc = ctr.value_and_gradient(t, gc).value;
-    CHECK(ctr.model_passes() - cpass0 == 1 + 2 * 3);
+    CHECK(ctr.model_passes() - cpass0 == 2 * 3);
+    const double va = exact.value_and_gradient(t, ga).value;
     CHECK(vf == va);  // the batch's first block is the model at X itself
     CHECK(vc == va);
     // Against the objective's own central differences (the reference the issue names) and the
@@ -205,6 +207,44 @@ TEST_CASE("model differences (issue 29): one batch of k + 1 (forward) or 2k + 1 
     CHECK((gf - ga).cwiseAbs().maxCoeff() < 1e-5 * scale);
     CHECK((gc - ga).cwiseAbs().maxCoeff() < 1e-7 * scale);
   }
+}
+
+TEST_CASE("a gradient where the value was just evaluated reuses its model outputs: k passes, not k + 1") {
+  // SLSQP evaluates the value at a line-search trial and then asks for the gradient at the
+  // accepted point (the same θ bit for bit): the base block of the model differences is known.
+  StatisticalObjective f = make(MetricKind::pr);
+  f.set_model_jacobian({});
+  f.set_model_differences(false, 1e-6);
+  const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
+  long runs = f.model_runs(), passes = f.model_passes();
+  const double v = f(t).value;
+  CHECK(f.model_runs() - runs == 1);
+  CHECK(f.model_passes() - passes == 1);
+  runs = f.model_runs();
+  passes = f.model_passes();
+  Eigen::VectorXd g, g_t;
+  CHECK(f.value_and_gradient(t, g_t).value == v);
+  CHECK(f.model_runs() - runs == 1);
+  CHECK(f.model_passes() - passes == 3);  // the 3 perturbed blocks only
+  // The same value again costs nothing; another θ costs its pass, and its gradient k + 1 when its
+  // value was not asked first.
+  passes = f.model_passes();
+  CHECK(f(t).value == v);
+  CHECK(f.model_passes() == passes);
+  Eigen::VectorXd t2 = t;
+  t2[0] += 1e-3;
+  f.value_and_gradient(t2, g);
+  CHECK(f.model_passes() - passes == 1 + 3);
+  // A fresh objective (no outputs cached) gives the same gradient bit for bit: the cache changes
+  // no number.
+  StatisticalObjective fresh = make(MetricKind::pr);
+  fresh.set_model_jacobian({});
+  fresh.set_model_differences(false, 1e-6);
+  Eigen::VectorXd g2;
+  passes = fresh.model_passes();
+  fresh.value_and_gradient(t, g2);
+  CHECK(fresh.model_passes() - passes == 1 + 3);
+  CHECK((g2 - g_t).cwiseAbs().maxCoeff() == 0.0);
 }
 
 TEST_CASE("model differences reject a step outside (0, 0.1)") {
@@ -221,11 +261,11 @@ TEST_CASE("moment residuals on model differences: one model call, the analytic J
   const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
   int ra = 0, rd = 0;
   Eigen::MatrixXd Ja, Jd;
-  const Eigen::VectorXd a = moment_residuals(f, t, &Ja, ra);
   const long passes = diff.model_passes();
   const Eigen::VectorXd d = moment_residuals(diff, t, &Jd, rd);
   CHECK(rd == 1);                                 // one batch, not 1 + 6 predictions
   CHECK(diff.model_passes() - passes == 1 + 3);   // X and one block per calibrated input
+  const Eigen::VectorXd a = moment_residuals(f, t, &Ja, ra);
   CHECK((a - d).norm() == 0.0);
   INFO("analytic\n" << Ja << "\nmodel differences\n" << Jd);
   CHECK((Ja - Jd).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + Ja.cwiseAbs().maxCoeff()));
