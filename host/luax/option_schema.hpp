@@ -129,11 +129,17 @@ class Schema : public SchemaBase {
     return s;
   }
 
-  std::string doc() const override {
+  std::string doc() const override { return doc(keys()); }
+  /// The lines of some keys only, in the schema's order (a reference entry that says "options
+  /// as <another function>, plus:" lists its own keys only).
+  std::string doc(const std::vector<std::string>& only) const {
     const S def{};
     std::vector<std::pair<std::string, std::string>> heads;
     std::vector<const char*> docs;
     for (const auto& o : options_) {
+      bool listed = false;
+      for (const auto& k : only) listed = listed || k == o.key;
+      if (!listed) continue;
       heads.emplace_back(o.key, o.default_text.empty() ? o.show(def) : o.default_text);
       docs.push_back(o.doc);
     }
