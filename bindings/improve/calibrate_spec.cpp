@@ -449,18 +449,9 @@ void read_identifiability(lua_State* L, int idx, CalibrateSpec& s) {
   if (it == LUA_TBOOLEAN) {
     s.identifiability = lua_toboolean(L, -1);
   } else if (it == LUA_TTABLE) {
-    lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
-    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step", "directions"});
-    s.identifiability_directions = io.boolean("directions", s.identifiability_directions);
-    s.ident.points = static_cast<int>(io.integer("points", s.ident.points));
-    s.directions.points = s.ident.points;
-    s.directions_tolerance = io.number("tolerance", s.directions_tolerance);
-    if (io.has("tolerance") && !(s.directions_tolerance > 0.0))
-      throw InvalidArgument(fmt::format("identifiability.tolerance must be > 0, got {}", s.directions_tolerance));
     // the kernel's step whether identifiability is true or a table (a table's own 1e-3 differed)
-    s.directions.step = io.number("step", s.directions.step);
-    s.ident.rel_tol = io.number("rel_tol", s.ident.rel_tol);
-    s.ident.abs_tol = io.number("abs_tol", s.ident.abs_tol);
+    identifiability_schema().read(L, lua_gettop(L), s);
+    s.directions.points = s.ident.points;
   } else if (it != LUA_TNIL) {
     throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
@@ -505,19 +496,18 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
     bool has_delta = false;
     int observations = 0;  // > 0: the small-sample (F-calibrated) delta
     if (iv == LUA_TTABLE) {
-      lua::Options io(L, lua_gettop(L), "smi.calibrate intervals");
-      io.check_known({"level", "delta", "observations"});
-      observations = io.has("observations") ? static_cast<int>(io.integer("observations", 0)) : 0;
-      if (io.has("observations") && (io.has("delta") || observations < 1))
+      const IntervalsArgs a = intervals_schema().read(L, lua_gettop(L));
+      observations = a.observations;
+      has_delta = !std::isnan(a.delta);
+      if (observations > 0 && has_delta)
         throw InvalidArgument(fmt::format("intervals.observations (the number of data of the likelihood) must be an integer >= 1 and goes with "
                                           "level, not delta; got {}", observations));
-      if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
-      s.interval_level = io.number("level", s.interval_level);
-      has_delta = io.has("delta");
+      if (!std::isnan(a.level) && has_delta) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
+      if (!std::isnan(a.level)) s.interval_level = a.level;
       if (has_delta) {
-        po.delta = io.number("delta", 1.0);
+        po.delta = a.delta;
         s.interval_level = 0.0;
-        if (!(po.delta > 0.0) || !std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
+        if (!std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
       }
     }
     if (!has_delta) {

@@ -147,7 +147,8 @@ TEST_CASE("every binding schema reads an empty table into its default-constructe
   INFO("schemas: " << names.size());
   CHECK(all.size() >= 6);
   // the loop below picks up each new schema that a reference entry lists, e.g. the solver models'
-  for (const char* f : {"smi.model.command", "smi.model.batch", "smi.metric.pr", "smi.metric.intersection"})
+  for (const char* f : {"smi.model.command", "smi.model.batch", "smi.metric.pr", "smi.metric.intersection", "smi.metric.pr grid",
+                        "smi.calibrate bootstrap", "smi.calibrate identifiability", "smi.calibrate intervals"})
     CHECK(std::find(names.begin(), names.end(), f) != names.end());
   State s;
   for (const SchemaBase* sb : all) {
