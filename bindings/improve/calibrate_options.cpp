@@ -134,6 +134,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
   (void)bootstrap_schema();
   (void)identifiability_schema();
   (void)intervals_schema();
+  (void)prior_schema();
   return schema;
 }
 
@@ -156,6 +157,18 @@ const Schema<IntervalsArgs>& intervals_schema() {
       number<S>("level", &S::level, any_value(), "a likelihood-ratio interval's level", num(CalibrateSpec{}.interval_level)),
       number<S>("delta", &S::delta, above(0), "the objective increase instead (not with level)", "nil"),
       integer<S>("observations", &S::observations, at_least(1), "the data count: the small-sample delta (with level)", "nil"),
+  });
+  return schema;
+}
+
+const Schema<PriorArgs>& prior_schema() {
+  using S = PriorArgs;
+  static const Schema<S> schema("smi.calibrate prior", std::vector<Option<S>>{
+      string<S>("param", &S::param, {}, "the calibrated parameter (or fn with name)", "nil"),
+      string<S>("name", &S::name, {}, "the label of a prior on fn", "nil"),
+      by_hand<S>("fn", "nil", "function(theta) returning the quantity with the prior"),
+      number<S>("mean", &S::mean, any_value(), "the normal prior's mean", "(required)"),
+      number<S>("std", &S::std, any_value(), "the normal prior's standard deviation, > 0", "(required)"),
   });
   return schema;
 }

@@ -4,6 +4,7 @@
 // StatisticalOptions); the nested tables and callbacks are listed by_hand and read by
 // calibrate_spec.cpp. doc.cpp takes the reference's option list from it.
 #include <limits>
+#include <string>
 
 #include "bindings/improve/calibrate_spec.hpp"
 #include "luax/option_schema.hpp"
@@ -26,5 +27,15 @@ struct IntervalsArgs {
   int observations = 0;                                     ///< 0: the large-sample delta
 };
 const lua::Schema<IntervalsArgs>& intervals_schema();
+
+/// An entry of prior = {...}: param (a calibrated parameter) or name with fn (read by hand, it
+/// stays on the stack), and the normal prior's mean and std (NaN until given).
+struct PriorArgs {
+  std::string param, name;
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double std = std::numeric_limits<double>::quiet_NaN();
+};
+/// Read with the entry's name ("prior[2]") in its messages.
+const lua::Schema<PriorArgs>& prior_schema();
 
 }  // namespace smi::bind::improve

@@ -357,13 +357,17 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
     luaL_checkstack(L, 4, "prior");
     if (lua_rawgeti(L, list, i) != LUA_TTABLE) throw InvalidArgument(where + " must be a table {param =, mean =, std =}");
     const int e = lua_gettop(L);
-    lua::Options po(L, e, where.c_str());
-    po.check_known({"param", "name", "fn", "mean", "std"});
+    const PriorArgs a = prior_schema().read(L, e, where.c_str());
+    const auto given = [&](const char* key) {
+      const bool g = lua_getfield(L, e, key) != LUA_TNIL;
+      lua_pop(L, 1);
+      return g;
+    };
     PriorSpec p;
-    const bool has_param = po.has("param"), has_fn = po.has("fn");
+    const bool has_param = given("param"), has_fn = given("fn");
     if (has_param == has_fn) throw InvalidArgument(where + ": give either param = \"<parameter name>\" or fn = function(theta) (with name =)");
     if (has_param) {
-      p.label = po.string("param", "");
+      p.label = a.param;
       for (std::size_t j = 0; j < s.params.size(); ++j)
         if (s.params[j].name == p.label) p.param = static_cast<int>(j);
       if (p.param < 0) {
@@ -372,12 +376,12 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
         throw InvalidArgument(fmt::format("{}.param: no calibrated parameter named \"{}\" (the parameters are: {})", where, p.label, names));
       }
     } else {
-      p.label = po.string("name", "");
+      p.label = a.name;
       if (p.label.empty()) throw InvalidArgument(where + ": a prior on a function needs name = \"<label>\"");
     }
-    if (!po.has("mean") || !po.has("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
-    p.mean = po.number("mean", 0.0);
-    p.std = po.number("std", 1.0);
+    if (!given("mean") || !given("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
+    p.mean = a.mean;
+    p.std = a.std;
     if (!std::isfinite(p.mean)) throw InvalidArgument(fmt::format("{}.mean must be finite, got {}", where, p.mean));
     if (!(p.std > 0.0) || !std::isfinite(p.std)) throw InvalidArgument(fmt::format("{}.std must be a finite number > 0, got {}", where, p.std));
     if (has_fn) {

@@ -148,7 +148,8 @@ TEST_CASE("every binding schema reads an empty table into its default-constructe
   CHECK(all.size() >= 6);
   // the loop below picks up each new schema that a reference entry lists, e.g. the solver models'
   for (const char* f : {"smi.model.command", "smi.model.batch", "smi.metric.pr", "smi.metric.intersection", "smi.metric.pr grid",
-                        "smi.calibrate bootstrap", "smi.calibrate identifiability", "smi.calibrate intervals"})
+                        "smi.calibrate bootstrap", "smi.calibrate identifiability", "smi.calibrate intervals",
+                        "smi.calibrate prior", "smi.dist.normal", "smi.dist.gamma"})
     CHECK(std::find(names.begin(), names.end(), f) != names.end());
   State s;
   for (const SchemaBase* sb : all) {

@@ -115,6 +115,16 @@ T.case("fit ranks families by AIC", function()
   T.raises(function() smi.dist.fit(X, {"normul"}) end, "unknown family 'normul'")
 end)
 
+T.case("distribution constructors read their parameters by their schemas", function()
+  T.near(smi.dist.beta{alpha = 2, beta = 2}:cdf(0.5), 0.5, 1e-12, "beta's default [0, 1]")
+  T.eq(smi.dist.gamma{shape = 2, rate = 0.5}:mean(), 4, "gamma's rate")
+  T.raises(function() smi.dist.normal{mean = 0, sd = 1} end, "smi.dist.normal: unknown option 'sd' (did you mean 'std'?)")
+  T.raises(function() smi.dist.normal{mean = 0} end, "missing field 'std' (a number)")
+  T.raises(function() smi.dist.normal{mean = 0 / 0, std = 1} end, "smi.dist.normal: mean must be finite, got nan")
+  T.raises(function() smi.dist.weibull{shape = 2, scale = 1, loc = "0"} end, "smi.dist.weibull: option 'loc' must be a number, got string")
+  T.raises(function() smi.dist.lognormal{mu_log = 1} end, "missing field 'sigma_log'")
+end)
+
 T.case("metrics: pr's and intersection's grid options are checked by their schemas", function()
   local a, b = smi.dist.normal{mean = 0, std = 1}, smi.dist.normal{mean = 1, std = 1}
   T.raises(function() smi.metric.pr(a, b, {nodez = 3}) end, "smi.metric.pr: unknown option 'nodez' (did you mean 'nodes'?)")
