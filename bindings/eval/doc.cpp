@@ -1,9 +1,9 @@
-// Reference texts of smi.model.* and the model methods (this folder). Defaults are read from
-// the evaluator's CommandConfig (eval/evaluator.hpp). The examples run /bin/sh as their
-// "solver" (smi-lua doc allows it for them), so they run anywhere.
+// Reference texts of smi.model.* and the model methods (this folder). The option lists come from
+// the schemas (solver_options.cpp, lua_model_options.cpp), whose defaults are the structs'. The
+// examples run /bin/sh as their "solver" (smi-lua doc allows it for them), so they run anywhere.
 #include "bindings/doc.hpp"
 #include "bindings/eval/lua_model_options.hpp"
-#include "platform/eval/evaluator.hpp"
+#include "bindings/eval/solver_options.hpp"
 
 namespace smi::bind {
 namespace {
@@ -27,34 +27,7 @@ functions (another global is an error naming it), with its other upvalues copied
 is made; and while it runs the sandbox refuses every file and program, also to the helpers it
 calls. The deck text is the store key, as a rendered template's is.
 options:
-  name = "${name}"           -- names the runs folder <out>/runs/<name> and the progress line
-  inputs = (required)        -- input names, in the column order of X
-  outputs = (required)       -- output names, the keys parse returns
-  template = nil             -- the deck template file, or a function(p) -> deck text (or template_string)
-  template_string = nil      -- the deck template text
-  deck = "${deck}"           -- the deck's file name in the work folder ({deck} in command)
-  constants = {}             -- more placeholder values {name = number | string}
-  files = {}                 -- files copied into every work folder
-  command = (required)       -- argv {program, arg, ...}: "{deck}" and "{workdir}" are replaced;
-                             -- the program must be allowed with --allow-exec
-  parse = (required)         -- function(dir, h) returning {output = number, ...}
-  version = ""               -- the solver's version in the store key ("" = the program's SHA-256)
-  version_args = nil         -- e.g. {"--version"}: run the program once with these arguments when
-                             -- the model is made; the first line it prints is recorded in the
-                             -- provenance (results.json, the report) as its version line
-  timeout = ${timeout}       -- seconds per run, 0 = none; the process group is killed
-  retries = ${retries}       -- extra attempts after a failure
-  on_failure = "stop"        -- "stop" (raise after the batch), "skip" (NaN, reported in info),
-                             -- or "retry"
-  concurrency = ${concurrency}  -- processes at once
-  reuse_failed = ${reuse_failed}  -- also reuse stored failures (default: run them again)
-  store = nil                -- the store file (default <out>/evaluations.sqlite); a missing folder
-                             -- is made (under --out or an --allow-write path only)
-  executor = nil             -- where the runs execute, overriding --executor: {kind = "slurm",
-                             -- partition =, account =, time =, ...} (the --slurm-opt keys)
-  env = nil                  -- {NAME = "value"}: variables the solver needs (OMP_NUM_THREADS, a
-                             -- licence server); loader and interpreter hooks (LD_*, BASH_ENV,
-                             -- PATH, PYTHONPATH, ...) are refused. Part of the store key
+${command_options}
 returns: a model (smi.model) with m.name, m.kind = "command", m.inputs, m.outputs, m.version
 errors: a missing or mistyped option (named); both or neither template; a program path that does
   not exist or is not an executable file (refused here, not at the first run); the sandbox refuses
@@ -77,8 +50,7 @@ An external solver that takes many points per run: the points are written as CSV
 input names) to input_file, and parse(dir, h, n) returns n values per output. Options as
 smi.model.command, without template/template_string/deck/constants, plus:
 options:
-  input_file = "points.csv"     -- the CSV file of points in the work folder ({deck} in command)
-  batch_size = ${batch_size}    -- points per run; 0 = all pending points in one run
+${batch_options}
 returns: a model (smi.model, kind "batch")
 errors: as smi.model.command; parse returning the wrong number of values (named with the output)
 example:
@@ -223,17 +195,11 @@ example:
 }  // namespace
 
 DocText doc_eval() {
-  const smi::eval::CommandConfig c;
-  auto b = [](bool v) { return std::string(v ? "true" : "false"); };
+  const auto& batch = bind::eval::solver_schema(true);
   return {"bindings/eval/doc.cpp",
           fill(kText, {{"lua_model_options", bind::eval::lua_model_schema().doc()},
-                       {"name", c.name},
-                       {"deck", c.deck_file},
-                       {"timeout", num(c.timeout)},
-                       {"retries", num(c.retries)},
-                       {"concurrency", num(c.concurrency)},
-                       {"reuse_failed", b(c.reuse_failed)},
-                       {"batch_size", num(c.batch_size)}})};
+                       {"command_options", bind::eval::solver_schema(false).doc()},
+                       {"batch_options", batch.doc({"input_file", "batch_size"})}})};
 }
 
 }  // namespace smi::bind

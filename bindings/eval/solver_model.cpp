@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "bindings/eval/model.hpp"
+#include "bindings/eval/solver_options.hpp"
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "luax/run_context.hpp"
@@ -73,10 +74,11 @@ int parse_trampoline(lua_State* L) {
   return 1;
 }
 
-// What solver_config reads from Lua before anything is checked against the sandbox policy.
+// What solver_config reads from Lua by hand (the schema's SolverArgs holds the rest) before
+// anything is checked against the sandbox policy.
 struct SolverOptions {
   std::vector<std::string> argv, files, version_args;
-  std::string on_failure, store, template_file, template_text;
+  std::string store, template_file, template_text;
   std::vector<std::pair<std::string, std::string>> exec_opts;
 };
 
@@ -183,28 +185,27 @@ void read_constants(lua_State* L, lua::Options& o, const char* fname, se::Comman
   lua_pop(L, 1);
 }
 
-// The deck: a template (file or text), its file name and constants (command form), or the
-// points file's name (batch form).
-void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, se::CommandConfig& c, SolverOptions& so) {
+// The deck: a template (file, text or function) and constants (command form; the deck's file
+// name came with the schema), or the points file's name (batch form).
+void read_deck(lua_State* L, lua::Options& o, bool batch, const char* fname, const SolverArgs& a, se::CommandConfig& c,
+               SolverOptions& so) {
   if (!batch) {
     if (o.push("template") == LUA_TFUNCTION) {  // a deck function (deck_function.cpp)
       lua_pop(L, 1);
       c.deck_function = true;
-      if (!o.string("template_string", "").empty())
+      if (!a.template_string.empty())
         luaL_error(L, "%s: give exactly one of 'template' (a file or a function) or 'template_string' (the text)", fname);
-      c.deck_file = o.string("deck", "input.deck");
       read_constants(L, o, fname, c);
       return;
     }
     lua_pop(L, 1);
     so.template_file = o.string("template", "");
-    so.template_text = o.string("template_string", "");
+    so.template_text = a.template_string;
     if (so.template_file.empty() == so.template_text.empty())
       luaL_error(L, "%s: give exactly one of 'template' (a file) or 'template_string' (the text)", fname);
-    c.deck_file = o.string("deck", "input.deck");
     read_constants(L, o, fname, c);
   } else {
-    c.deck_file = o.string("input_file", "points.csv");
+    c.deck_file = a.input_file;
   }
 }
 
@@ -360,23 +361,16 @@ void record_program(const lua::Policy& pol, bool dry_run, const se::CommandConfi
 }
 
 /// Builds the config common to both forms from the option table at index 1: the options are
-/// read from Lua first (Lua errors), then checked against the sandbox policy under protect().
+/// read from Lua first (Lua errors: the scalars by the schema, the nested tables by hand), then
+/// checked against the sandbox policy under protect().
 se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
+  const SolverArgs a = solver_schema(batch).read(L, 1);  // unknown keys, types, defaults
   lua::Options o(L, 1, fname);
-  if (batch)
-    o.check_known({"name", "inputs", "outputs", "input_file", "files", "command", "version", "parse", "timeout",
-                   "retries", "on_failure", "concurrency", "batch_size", "reuse_failed", "store", "executor",
-                   "version_args", "env"});
-  else
-    o.check_known({"name", "inputs", "outputs", "template", "template_string", "deck", "constants", "files", "command",
-                   "version", "parse", "timeout", "retries", "on_failure", "concurrency", "reuse_failed", "store",
-                   "executor", "version_args", "env"});
   lua::Policy& pol = lua::policy(L);
   const RunContext& ctx = lua::run_context(L);
-  se::CommandConfig c;
+  se::CommandConfig c = a.config;
   SolverOptions so;
   c.batch = batch;
-  c.name = o.string("name", "model");
   if (!valid_model_name(c.name))
     luaL_error(L, "%s: name '%s' must be letters, digits, '_', '-' or '.' (it names the runs folder)", fname, c.name.c_str());
   o.push("inputs");
@@ -389,19 +383,11 @@ se::CommandConfig solver_config(lua_State* L, bool batch, const char* fname) {
   lua_pop(L, 1);
   if (o.push("version_args") != LUA_TNIL) so.version_args = lua::to_strings(L, -1, "version_args");
   lua_pop(L, 1);
-  c.version = o.string("version", "");
-  c.timeout = o.number("timeout", c.timeout);
-  c.retries = static_cast<int>(o.integer("retries", c.retries));
-  c.concurrency = static_cast<int>(o.integer("concurrency", c.concurrency));
-  c.batch_size = static_cast<int>(o.integer("batch_size", c.batch_size));
-  c.reuse_failed = o.boolean("reuse_failed", c.reuse_failed);
-  so.on_failure = o.string("on_failure", "stop");
   so.exec_opts = read_executor_options(L, o, fname);
   c.env_set = read_env(L, o, fname);
-  so.store = o.string("store", "");
-  read_deck(L, o, batch, fname, c, so);
+  so.store = a.store;
+  read_deck(L, o, batch, fname, a, c, so);
   lua::protect(L, fname, [&] {
-    c.on_failure = se::parse_on_failure(so.on_failure);
     apply_executor(ctx, so, c);
     c.env_names = pol.allow_env;
     if (!ctx.script_path.empty()) c.script_hash = "sha256:" + sha256_file(ctx.script_path);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "kernels/improve/bounded_optimizer.hpp"
+#include "luax/doc_text.hpp"
 #include "kernels/improve/crn_mapping.hpp"
 
 namespace smi::bind::improve {
@@ -130,6 +131,47 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "line (by default one line on stderr when it is a terminal and not\n"
          "--quiet: \"calibration: start 2/4, 137 evaluations, best 0.288,\n"
          "ETA 0:42\", and the same for the bootstrap and near-optimal stages)"),
+  });
+  // the nested tables' schemas are built with it, so that the tests that check every schema the
+  // reference builds (their empty read equals the defaults) check them too
+  (void)bootstrap_schema();
+  (void)identifiability_schema();
+  (void)intervals_schema();
+  (void)prior_schema();
+  return schema;
+}
+
+const Schema<CalibrateSpec>& identifiability_schema() {
+  using S = CalibrateSpec;
+  static const Schema<S> schema("smi.calibrate identifiability", std::vector<Option<S>>{
+      integer<S>("points", [](auto& s) -> auto& { return s.ident.points; }, any_value(), "sweep points per parameter"),
+      number<S>("rel_tol", [](auto& s) -> auto& { return s.ident.rel_tol; }, any_value(), "relative objective change that counts"),
+      number<S>("abs_tol", [](auto& s) -> auto& { return s.ident.abs_tol; }, any_value(), "absolute objective change that counts"),
+      number<S>("tolerance", &S::directions_tolerance, above(0), "\"fits as well as the optimum\"", "by the metric"),
+      number<S>("step", [](auto& s) -> auto& { return s.directions.step; }, any_value(), "the directions' finite-difference step"),
+      boolean<S>("directions", &S::identifiability_directions, "also the directions the data determine (and near_optimal)"),
+  });
+  return schema;
+}
+
+const Schema<IntervalsArgs>& intervals_schema() {
+  using S = IntervalsArgs;
+  static const Schema<S> schema("smi.calibrate intervals", std::vector<Option<S>>{
+      number<S>("level", &S::level, any_value(), "a likelihood-ratio interval's level", num(CalibrateSpec{}.interval_level)),
+      number<S>("delta", &S::delta, above(0), "the objective increase instead (not with level)", "nil"),
+      integer<S>("observations", &S::observations, at_least(1), "the data count: the small-sample delta (with level)", "nil"),
+  });
+  return schema;
+}
+
+const Schema<PriorArgs>& prior_schema() {
+  using S = PriorArgs;
+  static const Schema<S> schema("smi.calibrate prior", std::vector<Option<S>>{
+      string<S>("param", &S::param, {}, "the calibrated parameter (or fn with name)", "nil"),
+      string<S>("name", &S::name, {}, "the label of a prior on fn", "nil"),
+      by_hand<S>("fn", "nil", "function(theta) returning the quantity with the prior"),
+      number<S>("mean", &S::mean, any_value(), "the normal prior's mean", "(required)"),
+      number<S>("std", &S::std, any_value(), "the normal prior's standard deviation, > 0", "(required)"),
   });
   return schema;
 }

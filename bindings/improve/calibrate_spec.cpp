@@ -357,13 +357,17 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
     luaL_checkstack(L, 4, "prior");
     if (lua_rawgeti(L, list, i) != LUA_TTABLE) throw InvalidArgument(where + " must be a table {param =, mean =, std =}");
     const int e = lua_gettop(L);
-    lua::Options po(L, e, where.c_str());
-    po.check_known({"param", "name", "fn", "mean", "std"});
+    const PriorArgs a = prior_schema().read(L, e, where.c_str());
+    const auto given = [&](const char* key) {
+      const bool g = lua_getfield(L, e, key) != LUA_TNIL;
+      lua_pop(L, 1);
+      return g;
+    };
     PriorSpec p;
-    const bool has_param = po.has("param"), has_fn = po.has("fn");
+    const bool has_param = given("param"), has_fn = given("fn");
     if (has_param == has_fn) throw InvalidArgument(where + ": give either param = \"<parameter name>\" or fn = function(theta) (with name =)");
     if (has_param) {
-      p.label = po.string("param", "");
+      p.label = a.param;
       for (std::size_t j = 0; j < s.params.size(); ++j)
         if (s.params[j].name == p.label) p.param = static_cast<int>(j);
       if (p.param < 0) {
@@ -372,12 +376,12 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
         throw InvalidArgument(fmt::format("{}.param: no calibrated parameter named \"{}\" (the parameters are: {})", where, p.label, names));
       }
     } else {
-      p.label = po.string("name", "");
+      p.label = a.name;
       if (p.label.empty()) throw InvalidArgument(where + ": a prior on a function needs name = \"<label>\"");
     }
-    if (!po.has("mean") || !po.has("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
-    p.mean = po.number("mean", 0.0);
-    p.std = po.number("std", 1.0);
+    if (!given("mean") || !given("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
+    p.mean = a.mean;
+    p.std = a.std;
     if (!std::isfinite(p.mean)) throw InvalidArgument(fmt::format("{}.mean must be finite, got {}", where, p.mean));
     if (!(p.std > 0.0) || !std::isfinite(p.std)) throw InvalidArgument(fmt::format("{}.std must be a finite number > 0, got {}", where, p.std));
     if (has_fn) {
@@ -449,18 +453,9 @@ void read_identifiability(lua_State* L, int idx, CalibrateSpec& s) {
   if (it == LUA_TBOOLEAN) {
     s.identifiability = lua_toboolean(L, -1);
   } else if (it == LUA_TTABLE) {
-    lua::Options io(L, lua_gettop(L), "smi.calibrate identifiability");
-    io.check_known({"points", "rel_tol", "abs_tol", "tolerance", "step", "directions"});
-    s.identifiability_directions = io.boolean("directions", s.identifiability_directions);
-    s.ident.points = static_cast<int>(io.integer("points", s.ident.points));
-    s.directions.points = s.ident.points;
-    s.directions_tolerance = io.number("tolerance", s.directions_tolerance);
-    if (io.has("tolerance") && !(s.directions_tolerance > 0.0))
-      throw InvalidArgument(fmt::format("identifiability.tolerance must be > 0, got {}", s.directions_tolerance));
     // the kernel's step whether identifiability is true or a table (a table's own 1e-3 differed)
-    s.directions.step = io.number("step", s.directions.step);
-    s.ident.rel_tol = io.number("rel_tol", s.ident.rel_tol);
-    s.ident.abs_tol = io.number("abs_tol", s.ident.abs_tol);
+    identifiability_schema().read(L, lua_gettop(L), s);
+    s.directions.points = s.ident.points;
   } else if (it != LUA_TNIL) {
     throw InvalidArgument("identifiability must be true, false or {points =, rel_tol =, abs_tol =, tolerance =, step =}");
   }
@@ -505,19 +500,18 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
     bool has_delta = false;
     int observations = 0;  // > 0: the small-sample (F-calibrated) delta
     if (iv == LUA_TTABLE) {
-      lua::Options io(L, lua_gettop(L), "smi.calibrate intervals");
-      io.check_known({"level", "delta", "observations"});
-      observations = io.has("observations") ? static_cast<int>(io.integer("observations", 0)) : 0;
-      if (io.has("observations") && (io.has("delta") || observations < 1))
+      const IntervalsArgs a = intervals_schema().read(L, lua_gettop(L));
+      observations = a.observations;
+      has_delta = !std::isnan(a.delta);
+      if (observations > 0 && has_delta)
         throw InvalidArgument(fmt::format("intervals.observations (the number of data of the likelihood) must be an integer >= 1 and goes with "
                                           "level, not delta; got {}", observations));
-      if (io.has("level") && io.has("delta")) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
-      s.interval_level = io.number("level", s.interval_level);
-      has_delta = io.has("delta");
+      if (!std::isnan(a.level) && has_delta) throw InvalidArgument("intervals: give level (a likelihood-ratio interval) or delta, not both");
+      if (!std::isnan(a.level)) s.interval_level = a.level;
       if (has_delta) {
-        po.delta = io.number("delta", 1.0);
+        po.delta = a.delta;
         s.interval_level = 0.0;
-        if (!(po.delta > 0.0) || !std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
+        if (!std::isfinite(po.delta)) throw InvalidArgument(fmt::format("intervals.delta must be a number > 0, got {}", po.delta));
       }
     }
     if (!has_delta) {

@@ -8,12 +8,6 @@
 
 namespace smi::bind::stats {
 
-double required_number(const lua::Options& o, const char* key, const char* fname) {
-  const auto v = o.number(key);
-  if (!v) throw InvalidArgument(fmt::format("missing field '{}' (a number): add {} = ... to the options of {}", key, key, fname));
-  return *v;
-}
-
 double required(double v, const char* key, const char* fname) {
   if (std::isnan(v)) throw InvalidArgument(fmt::format("missing field '{}' (a number): add {} = ... to the options of {}", key, key, fname));
   return v;

@@ -8,8 +8,6 @@
 
 namespace smi::bind::stats {
 
-/// A required numeric field of an options table; raises a Lua error naming it and the call.
-double required_number(const lua::Options& o, const char* key, const char* fname);
 /// A required numeric option read by a schema as NaN when absent; throws naming it and the call.
 double required(double v, const char* key, const char* fname);
 /// The data argument at idx (vec or table), checked finite (naming the index) and non-empty.

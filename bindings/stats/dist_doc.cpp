@@ -1,5 +1,7 @@
-// Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp).
+// Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp); the
+// constructors' option lists come from their schemas (dist_options.cpp).
 #include "bindings/doc.hpp"
+#include "bindings/stats/dist_options.hpp"
 #include "platform/core/defaults.hpp"
 
 namespace smi::bind {
@@ -15,8 +17,7 @@ beta, triangular); every one has the methods smi.dist:* (pdf, cdf, quantile, sam
 @ smi.dist.normal{mean =, std =} -> dist
 The normal distribution.
 options:
-  mean = (required)  -- the mean
-  std = (required)   -- the standard deviation, > 0
+${normal_options}
 returns: a dist (d.family = "normal", d.mean, d.std)
 errors: a missing or non-finite parameter; std <= 0; an unknown option (the closest name is suggested)
 example:
@@ -27,10 +28,7 @@ example:
 The lognormal distribution given by the variable's own mean and std (as the paper's tables), or
 by the parameters of its logarithm.
 options:
-  mean = nil       -- the mean of the variable (with std)
-  std = nil        -- the standard deviation of the variable
-  mu_log = nil     -- the mean of log(X) (with sigma_log, instead of mean/std)
-  sigma_log = nil  -- the standard deviation of log(X)
+${lognormal_options}
 returns: a dist (d.family = "lognormal")
 errors: neither pair given; mean <= 0 or std <= 0
 example:
@@ -40,10 +38,7 @@ example:
 @ smi.dist.uniform{lower =, upper =} -> dist
 The uniform distribution on [lower, upper], or given by its mean and std.
 options:
-  lower = nil      -- the lower end (with upper)
-  upper = nil      -- the upper end
-  mean = nil       -- the mean (with std, instead of lower/upper)
-  std = nil        -- the standard deviation: the width is std * sqrt(12)
+${uniform_options}
 returns: a dist (d.family = "uniform")
 errors: lower >= upper; neither pair given
 example:
@@ -52,10 +47,7 @@ example:
 @ smi.dist.truncnormal{mean =, std =, lower =, upper =} -> dist
 A normal distribution truncated to [lower, upper] (mean and std are those of the parent normal).
 options:
-  mean = (required)  -- the parent's mean
-  std = (required)   -- the parent's standard deviation
-  lower = -inf       -- the lower truncation point
-  upper = inf        -- the upper truncation point
+${truncnormal_options}
 returns: a dist (d.family = "truncnormal")
 errors: std <= 0; lower >= upper; bounds holding no probability mass
 example:
@@ -64,9 +56,7 @@ example:
 @ smi.dist.weibull{shape =, scale =} -> dist
 The Weibull distribution.
 options:
-  shape = (required)  -- k > 0
-  scale = (required)  -- lambda > 0
-  loc = 0             -- a shift
+${weibull_options}
 returns: a dist (d.family = "weibull")
 errors: shape or scale <= 0
 example:
@@ -75,8 +65,7 @@ example:
 @ smi.dist.gumbel{loc =, scale =} -> dist
 The Gumbel (largest extreme value) distribution.
 options:
-  loc = (required)    -- the mode
-  scale = (required)  -- beta > 0
+${gumbel_options}
 returns: a dist (d.family = "gumbel")
 errors: scale <= 0
 example:
@@ -85,10 +74,7 @@ example:
 @ smi.dist.gamma{shape =, scale = | rate =} -> dist
 The gamma distribution.
 options:
-  shape = (required)  -- k > 0
-  scale = nil         -- theta > 0 (or give rate)
-  rate = nil          -- 1/theta
-  loc = 0             -- a shift
+${gamma_options}
 returns: a dist (d.family = "gamma")
 errors: shape, scale or rate <= 0; neither scale nor rate
 example:
@@ -97,10 +83,7 @@ example:
 @ smi.dist.beta{alpha =, beta =} -> dist
 The beta distribution on [lower, upper].
 options:
-  alpha = (required)  -- > 0
-  beta = (required)   -- > 0
-  lower = 0           -- the lower end
-  upper = 1           -- the upper end
+${beta_options}
 returns: a dist (d.family = "beta")
 errors: alpha or beta <= 0; lower >= upper
 example:
@@ -109,9 +92,7 @@ example:
 @ smi.dist.triangular{lower =, mode =, upper =} -> dist
 The triangular distribution.
 options:
-  lower = (required)  -- the lower end
-  mode = (required)   -- the peak, in [lower, upper]
-  upper = (required)  -- the upper end
+${triangular_options}
 returns: a dist (d.family = "triangular")
 errors: not lower <= mode <= upper with lower < upper
 example:
@@ -218,7 +199,16 @@ errors: n outside 2..1e7
 example:
   local c = smi.dist.normal{mean = 0, std = 1}:curve(5)
   print(c.x, c.pdf)
-)DOC", {{"curve_points", num(kDefaultCurvePoints)}})};
+)DOC", {{"curve_points", num(kDefaultCurvePoints)},
+        {"normal_options", stats::normal_schema().doc()},
+        {"lognormal_options", stats::lognormal_schema().doc()},
+        {"uniform_options", stats::uniform_schema().doc()},
+        {"truncnormal_options", stats::truncnormal_schema().doc()},
+        {"weibull_options", stats::weibull_schema().doc()},
+        {"gumbel_options", stats::gumbel_schema().doc()},
+        {"gamma_options", stats::gamma_schema().doc()},
+        {"beta_options", stats::beta_schema().doc()},
+        {"triangular_options", stats::triangular_schema().doc()}})};
 }
 
 }  // namespace smi::bind

@@ -1,8 +1,12 @@
 // smi.dist.<family>{...} constructors and smi.dist.fit(data, {families}).
 #include <fmt/format.h>
 
+#include <cmath>
+#include <string>
+
 #include "bindings/stats/args.hpp"
 #include "bindings/stats/dist_box.hpp"
+#include "bindings/stats/dist_options.hpp"
 #include "bindings/stats/open_parts.hpp"
 #include "kernels/stats/families.hpp"
 #include "kernels/stats/fit.hpp"
@@ -11,78 +15,85 @@
 namespace smi::bind::stats {
 namespace {
 
-using lua::Options;
-
-template <class Make>
-int construct(lua_State* L, const char* fname, std::initializer_list<const char*> known, Make&& make) {
-  Options o(L, 1, fname);
-  if (!o.present()) return luaL_error(L, "%s: pass an options table, e.g. %s{...}", fname, fname);
-  o.check_known(known);
+/// Reads the family's options with its schema (dist_options.cpp) and pushes make(args) as a dist.
+/// A parameter given as NaN is refused here: NaN stands for "not given" in the option structs.
+template <class S, class Make>
+int construct(lua_State* L, const char* fname, const lua::Schema<S>& schema, Make&& make) {
+  if (lua_isnoneornil(L, 1)) return luaL_error(L, "%s: pass an options table, e.g. %s{...}", fname, fname);
+  const S args = schema.read(L, 1);
+  for (const std::string& k : schema.keys()) {
+    const bool nan = lua_getfield(L, 1, k.c_str()) == LUA_TNUMBER && std::isnan(lua_tonumber(L, -1));
+    lua_pop(L, 1);
+    if (nan) return luaL_error(L, "%s: %s must be finite, got nan", fname, k.c_str());
+  }
   return lua::protect(L, fname, [&] {
-    push_distribution(L, make(o));
+    push_distribution(L, make(args));
     return 1;
   });
 }
 
+/// Whether a parameter was given (the option structs hold NaN until it is).
+bool given(double v) { return !std::isnan(v); }
+
 int d_normal(lua_State* L) {
-  return construct(L, "smi.dist.normal", {"mean", "std"}, [](const Options& o) {
-    return std::make_shared<smi::stats::Normal>(required_number(o, "mean", "smi.dist.normal"), required_number(o, "std", "smi.dist.normal"));
+  const char* f = "smi.dist.normal";
+  return construct(L, f, normal_schema(), [f](const NormalArgs& a) {
+    return std::make_shared<smi::stats::Normal>(required(a.mean, "mean", f), required(a.std, "std", f));
   });
 }
 int d_lognormal(lua_State* L) {
-  return construct(L, "smi.dist.lognormal", {"mean", "std", "mu_log", "sigma_log"}, [](const Options& o) {
-    if (o.has("mu_log") || o.has("sigma_log"))
-      return std::make_shared<smi::stats::LogNormal>(smi::stats::LogNormal::from_log_params(required_number(o, "mu_log", "smi.dist.lognormal"),
-                                                                    required_number(o, "sigma_log", "smi.dist.lognormal")));
-    return std::make_shared<smi::stats::LogNormal>(smi::stats::LogNormal::from_moments(required_number(o, "mean", "smi.dist.lognormal"),
-                                                               required_number(o, "std", "smi.dist.lognormal")));
+  const char* f = "smi.dist.lognormal";
+  return construct(L, f, lognormal_schema(), [f](const LognormalArgs& a) {
+    if (given(a.mu_log) || given(a.sigma_log))
+      return std::make_shared<smi::stats::LogNormal>(
+          smi::stats::LogNormal::from_log_params(required(a.mu_log, "mu_log", f), required(a.sigma_log, "sigma_log", f)));
+    return std::make_shared<smi::stats::LogNormal>(smi::stats::LogNormal::from_moments(required(a.mean, "mean", f), required(a.std, "std", f)));
   });
 }
 int d_uniform(lua_State* L) {
-  return construct(L, "smi.dist.uniform", {"lower", "upper", "mean", "std"}, [](const Options& o) {
-    if (o.has("mean") || o.has("std"))
-      return std::make_shared<smi::stats::Uniform>(smi::stats::Uniform::from_moments(required_number(o, "mean", "smi.dist.uniform"),
-                                                             required_number(o, "std", "smi.dist.uniform")));
-    return std::make_shared<smi::stats::Uniform>(required_number(o, "lower", "smi.dist.uniform"), required_number(o, "upper", "smi.dist.uniform"));
+  const char* f = "smi.dist.uniform";
+  return construct(L, f, uniform_schema(), [f](const UniformArgs& a) {
+    if (given(a.mean) || given(a.std))
+      return std::make_shared<smi::stats::Uniform>(smi::stats::Uniform::from_moments(required(a.mean, "mean", f), required(a.std, "std", f)));
+    return std::make_shared<smi::stats::Uniform>(required(a.lower, "lower", f), required(a.upper, "upper", f));
   });
 }
 int d_truncnormal(lua_State* L) {
-  return construct(L, "smi.dist.truncnormal", {"mean", "std", "lower", "upper"}, [](const Options& o) {
-    const double inf = std::numeric_limits<double>::infinity();
-    return std::make_shared<smi::stats::TruncNormal>(required_number(o, "mean", "smi.dist.truncnormal"),
-                                         required_number(o, "std", "smi.dist.truncnormal"), o.number("lower", -inf),
-                                         o.number("upper", inf));
+  const char* f = "smi.dist.truncnormal";
+  return construct(L, f, truncnormal_schema(), [f](const TruncnormalArgs& a) {
+    return std::make_shared<smi::stats::TruncNormal>(required(a.mean, "mean", f), required(a.std, "std", f), a.lower, a.upper);
   });
 }
 int d_weibull(lua_State* L) {
-  return construct(L, "smi.dist.weibull", {"shape", "scale", "loc"}, [](const Options& o) {
-    return std::make_shared<smi::stats::Weibull>(required_number(o, "shape", "smi.dist.weibull"), required_number(o, "scale", "smi.dist.weibull"),
-                                     o.number("loc", 0.0));
+  const char* f = "smi.dist.weibull";
+  return construct(L, f, weibull_schema(), [f](const WeibullArgs& a) {
+    return std::make_shared<smi::stats::Weibull>(required(a.shape, "shape", f), required(a.scale, "scale", f), a.loc);
   });
 }
 int d_gumbel(lua_State* L) {
-  return construct(L, "smi.dist.gumbel", {"loc", "scale"}, [](const Options& o) {
-    return std::make_shared<smi::stats::Gumbel>(required_number(o, "loc", "smi.dist.gumbel"), required_number(o, "scale", "smi.dist.gumbel"));
+  const char* f = "smi.dist.gumbel";
+  return construct(L, f, gumbel_schema(), [f](const GumbelArgs& a) {
+    return std::make_shared<smi::stats::Gumbel>(required(a.loc, "loc", f), required(a.scale, "scale", f));
   });
 }
 int d_gamma(lua_State* L) {
-  return construct(L, "smi.dist.gamma", {"shape", "scale", "rate", "loc"}, [](const Options& o) {
-    const double k = required_number(o, "shape", "smi.dist.gamma");
-    const double scale = o.has("rate") ? 1.0 / required_number(o, "rate", "smi.dist.gamma") : required_number(o, "scale", "smi.dist.gamma");
-    return std::make_shared<smi::stats::Gamma>(k, scale, o.number("loc", 0.0));
+  const char* f = "smi.dist.gamma";
+  return construct(L, f, gamma_schema(), [f](const GammaArgs& a) {
+    const double k = required(a.shape, "shape", f);
+    const double scale = given(a.rate) ? 1.0 / a.rate : required(a.scale, "scale", f);
+    return std::make_shared<smi::stats::Gamma>(k, scale, a.loc);
   });
 }
 int d_beta(lua_State* L) {
-  return construct(L, "smi.dist.beta", {"alpha", "beta", "lower", "upper"}, [](const Options& o) {
-    return std::make_shared<smi::stats::Beta>(required_number(o, "alpha", "smi.dist.beta"), required_number(o, "beta", "smi.dist.beta"),
-                                  o.number("lower", 0.0), o.number("upper", 1.0));
+  const char* f = "smi.dist.beta";
+  return construct(L, f, beta_schema(), [f](const BetaArgs& a) {
+    return std::make_shared<smi::stats::Beta>(required(a.alpha, "alpha", f), required(a.beta, "beta", f), a.lower, a.upper);
   });
 }
 int d_triangular(lua_State* L) {
-  return construct(L, "smi.dist.triangular", {"lower", "mode", "upper"}, [](const Options& o) {
-    return std::make_shared<smi::stats::Triangular>(required_number(o, "lower", "smi.dist.triangular"),
-                                        required_number(o, "mode", "smi.dist.triangular"),
-                                        required_number(o, "upper", "smi.dist.triangular"));
+  const char* f = "smi.dist.triangular";
+  return construct(L, f, triangular_schema(), [f](const TriangularArgs& a) {
+    return std::make_shared<smi::stats::Triangular>(required(a.lower, "lower", f), required(a.mode, "mode", f), required(a.upper, "upper", f));
   });
 }
 

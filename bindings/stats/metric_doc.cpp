@@ -1,5 +1,5 @@
-// Reference texts of smi.metric.* and the u-pooling verdict (metric_lua.cpp). The Monte Carlo
-// defaults are read from stats/upool.hpp, the grid's from stats/grid.hpp.
+// Reference texts of smi.metric.* and the u-pooling verdict (metric_lua.cpp). The option lists
+// come from the schemas (metric_options.cpp), whose defaults are the kernels' structs'.
 #include "bindings/doc.hpp"
 #include "bindings/stats/metric_options.hpp"
 #include "kernels/stats/grid.hpp"
@@ -18,8 +18,7 @@ log-likelihood, and the u-pooling verdict with its Monte Carlo threshold.
 The probability residual PR = integral of |f_a - f_b| (paper eq. 9), in [0, 2]. a and b are each a
 dist or a sample (a vec/table, turned into its KDE).
 options:
-  grid = nil        -- {lower =, upper =, nodes =}: the integration grid (default: both bulks)
-  nodes = ${nodes}  -- the number of grid nodes when grid is not given
+${pr_options}
 returns: a number
 errors: an argument neither a dist nor numbers (named); an unknown option
 example:
@@ -29,8 +28,7 @@ example:
 @ smi.metric.intersection(a, b [, opts]) -> number
 The intersection area: the integral of min(f_a, f_b), in [0, 1] (1 for equal densities).
 options:
-  grid = nil        -- {lower =, upper =, nodes =}, as smi.metric.pr
-  nodes = ${nodes}  -- as smi.metric.pr
+${intersection_options}
 returns: a number
 errors: as smi.metric.pr
 example:
@@ -109,9 +107,9 @@ example:
 }  // namespace
 
 DocText doc_stats_metric() {
-  const smi::stats::Grid g;
   return {"bindings/stats/metric_doc.cpp",
-          fill(kText, {{"nodes", num(static_cast<double>(g.n))},
+          fill(kText, {{"pr_options", stats::overlap_schema(true).doc()},
+                       {"intersection_options", stats::overlap_schema(false).doc()},
                        {"loglik_options", stats::loglik_schema().doc()},
                        {"upool_options", stats::upool_schema().doc()},
                        {"threshold_options", stats::upool_mc_schema(true).doc()},

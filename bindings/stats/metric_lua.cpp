@@ -39,19 +39,24 @@ smi::stats::DistributionPtr dist_or_kde(lua_State* L, int idx, const char* fname
   return out;
 }
 
-/// Optional grid {lower =, upper =, nodes =} in an options table at idx.
-std::optional<smi::stats::Grid> grid_option(lua_State* L, int idx, const char* fname) {
-  lua::Options o(L, idx, fname);
-  o.check_known({"grid", "nodes"});
-  if (o.push("grid") == LUA_TTABLE) {
-    lua::Options g(L, lua_gettop(L), fname);
-    g.check_known({"lower", "upper", "nodes"});
-    smi::stats::Grid gr{required_number(g, "lower", fname), required_number(g, "upper", fname), static_cast<Eigen::Index>(g.integer("nodes", kDefaultGridNodes))};
+/// Optional grid {lower =, upper =, nodes =} or nodes = n (a grid over both bulks) in the options
+/// table at idx of smi.metric.pr (pr) or smi.metric.intersection: nullopt when neither is given.
+std::optional<smi::stats::Grid> grid_option(lua_State* L, int idx, const char* fname, bool pr) {
+  const OverlapArgs o = overlap_schema(pr).read(L, idx);
+  if (!lua_istable(L, idx)) return std::nullopt;
+  if (lua_getfield(L, idx, "grid") != LUA_TNIL) {
+    if (!lua_istable(L, -1)) luaL_error(L, "%s: option 'grid' must be a table {lower =, upper =, nodes =}, got %s", fname, luaL_typename(L, -1));
+    const GridArgs g = grid_schema(pr).read(L, -1);
     lua_pop(L, 1);
-    return gr;
+    // a Lua error, not required()'s exception: this runs outside protect()
+    for (const auto& [key, v] : {std::pair<const char*, double>{"lower", g.lower}, {"upper", g.upper}})
+      if (std::isnan(v)) luaL_error(L, "%s: missing field '%s' (a number): add grid = {%s = ...} to the options", fname, key, key);
+    return smi::stats::Grid{g.lower, g.upper, g.nodes};
   }
   lua_pop(L, 1);
-  if (o.has("nodes")) return smi::stats::Grid{0, 0, static_cast<Eigen::Index>(o.integer("nodes", kDefaultGridNodes))};  // range filled later
+  const bool nodes_given = lua_getfield(L, idx, "nodes") != LUA_TNIL;
+  lua_pop(L, 1);
+  if (nodes_given) return smi::stats::Grid{0, 0, o.nodes};  // range filled later
   return std::nullopt;
 }
 
@@ -69,7 +74,7 @@ smi::stats::Grid resolve_grid(const std::optional<smi::stats::Grid>& g, const sm
 double overlap(lua_State* L, const char* fname, bool l1) {
   const auto a = dist_or_kde(L, 1, fname, "a");
   const auto b = dist_or_kde(L, 2, fname, "b");
-  const auto g = grid_option(L, 3, fname);
+  const auto g = grid_option(L, 3, fname, l1);
   double v = 0.0;
   lua::protect(L, fname, [&] {
     if (!g) {

@@ -27,6 +27,33 @@ const Schema<LoglikArgs>& loglik_schema() {
   return s;
 }
 
+const Schema<GridArgs>& grid_schema(bool pr) {
+  using S = GridArgs;
+  auto make = [](const char* fname) {
+    return Schema<S>(fname, std::vector<Option<S>>{
+        number<S>("lower", &S::lower, any_value(), "the grid's lower end", "(required)"),
+        number<S>("upper", &S::upper, any_value(), "the grid's upper end", "(required)"),
+        integer<S>("nodes", &S::nodes, any_value(), "the number of grid nodes")});
+  };
+  // named after the function and the table, as its messages say: "smi.metric.pr grid: ..."
+  static const Schema<S> p = make("smi.metric.pr grid");
+  static const Schema<S> i = make("smi.metric.intersection grid");
+  return pr ? p : i;
+}
+
+const Schema<OverlapArgs>& overlap_schema(bool pr) {
+  using S = OverlapArgs;
+  (void)grid_schema(pr);  // built with it: every schema the reference lists is checked by the tests
+  auto make = [](const char* fname, const char* grid_doc, const char* nodes_doc) {
+    return Schema<S>(fname, std::vector<Option<S>>{by_hand<S>("grid", "nil", grid_doc),
+                                                   integer<S>("nodes", &S::nodes, any_value(), nodes_doc)});
+  };
+  static const Schema<S> p = make("smi.metric.pr", "{lower =, upper =, nodes =}: the integration grid (default: both bulks)",
+                                  "the number of grid nodes when grid is not given");
+  static const Schema<S> i = make("smi.metric.intersection", "{lower =, upper =, nodes =}, as smi.metric.pr", "as smi.metric.pr");
+  return pr ? p : i;
+}
+
 const Schema<UpoolArgs>& upool_schema() {
   static const Schema<UpoolArgs> s("smi.metric.upool", [] {
     std::vector<Option<UpoolArgs>> o{

@@ -40,7 +40,7 @@ int index_dispatch(lua_State* L) {
   return 0;  // nil, as for a missing table field
 }
 
-// The option names each function reads (check_known, by function name): smi-lua doc --check
+// The option names each function reads (its schema's, by function name): smi-lua doc --check
 // compares them with the documented option lists (known_options()).
 std::mutex g_known_mutex;
 std::map<std::string, std::set<std::string>>& known_registry() {
@@ -279,20 +279,6 @@ std::string unknown_option_message(lua_State* L, int idx, const char* fname, con
     return who + ": unknown option '" + key + "'; known options: " + list;
   }
   return {};
-}
-
-void Options::check_known(std::initializer_list<const char*> known) const {
-  const std::vector<std::string> names(known.begin(), known.end());
-  if (fname_) record_known_options(fname_, names);
-  if (!idx_) return;
-  {  // the message is built with the C++ objects in a scope of their own, and raised after it
-    const std::string msg = unknown_option_message(L_, idx_, fname_, names);
-    if (msg.empty()) return;
-    luaL_where(L_, 1);
-    lua_pushlstring(L_, msg.data(), msg.size());
-    lua_concat(L_, 2);
-  }
-  lua_error(L_);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -248,18 +248,17 @@ void push_named_vectors(lua_State* L, const std::vector<std::string>& names, con
 // ---------------------------------------------------------------------------------------------
 // Options tables: trailing {key = value} arguments. A bound function declares its options in a
 // schema (option_schema.hpp: typed reads, unknown-key check and reference list from one table);
-// Options below is left for nested tables read by hand (a distribution spec, calibrate's
-// bootstrap = {...}) and presence checks.
+// Options below is left for keys a schema lists as by_hand (nested tables, a number-or-string)
+// and presence checks; it has no unknown-key check of its own (the schema's is the one).
 
-/// The option names every function has checked with Options::check_known so far in this process,
-/// by the function name given to Options (what smi-lua doc --check compares with the docs).
+/// The option names of every schema built so far in this process, by function name (what
+/// smi-lua doc --check compares with the docs).
 std::map<std::string, std::set<std::string>> known_options();
-/// Adds to known_options(): for a function that checks its option names another way than
-/// Options::check_known (a kernel's spec table), so that the doc check still compares them.
+/// Adds to known_options() (each option schema does, when it is built).
 void record_known_options(const std::string& fname, const std::vector<std::string>& keys);
 /// "fname: unknown option 'k' (did you mean 'x'?)" (or with the list of known options) for the
 /// first string key of the table at idx, in name order, that is not in `known`; "" if none. The
-/// one unknown-key check of Options::check_known and the option schemas.
+/// one unknown-key check, the option schemas'.
 std::string unknown_option_message(lua_State* L, int idx, const char* fname, const std::vector<std::string>& known);
 
 class Options {
@@ -275,8 +274,6 @@ class Options {
   std::string string(const char* key, const std::string& def) const;
   std::optional<std::string> string(const char* key) const;
   bool boolean(const char* key, bool def) const;
-  /// Raises for a key not in `known`, naming the closest known key (typos are the usual cause).
-  void check_known(std::initializer_list<const char*> known) const;
   /// Pushes the raw field value (nil if absent); returns its Lua type.
   int push(const char* key) const;
   int index() const { return idx_; }

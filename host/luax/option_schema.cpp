@@ -48,9 +48,9 @@ std::vector<const SchemaBase*> schemas() {
   return registry();
 }
 
-void SchemaBase::check_keys(lua_State* L, int idx) const {
+void SchemaBase::check_keys(lua_State* L, int idx, const char* as) const {
   {  // the message (C++ strings) in a scope of its own; the Lua error is raised after it
-    const std::string msg = unknown_option_message(L, idx, fname_, keys_);
+    const std::string msg = unknown_option_message(L, idx, as ? as : fname_, keys_);
     if (msg.empty()) return;
     luaL_where(L, 1);  // as luaL_error would
     lua_pushlstring(L, msg.data(), msg.size());
@@ -59,8 +59,8 @@ void SchemaBase::check_keys(lua_State* L, int idx) const {
   lua_error(L);
 }
 
-void SchemaBase::raise(lua_State* L, const char* what) const {
-  luaL_error(L, "%s: %s", fname_, what);
+void SchemaBase::raise(lua_State* L, const char* what, const char* as) const {
+  luaL_error(L, "%s: %s", as ? as : fname_, what);
   std::abort();  // not reached: luaL_error does not return
 }
 

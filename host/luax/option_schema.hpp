@@ -77,15 +77,16 @@ class SchemaBase {
   /// (none when the schema holds no second default).
   virtual std::vector<std::string> default_mismatches(lua_State* L) const = 0;
   /// Raises "<fname>: unknown option '<key>' (did you mean '<closest>'?)" (or the known list)
-  /// for a string key of the table at idx that is not one of keys().
-  void check_keys(lua_State* L, int idx) const;
+  /// for a string key of the table at idx that is not one of keys(); `as` (when not null) names
+  /// the table instead of fname (an element of a list: "prior[2]").
+  void check_keys(lua_State* L, int idx, const char* as = nullptr) const;
 
  protected:
   /// Lines "  key = default  -- doc" aligned in one column (doc.lua's option-line format).
   static std::string format_lines(const std::vector<std::pair<std::string, std::string>>& heads,
                                   const std::vector<const char*>& docs);
-  /// Raises the Lua error "<fname>: <what>" (called after the C++ frames that threw are left).
-  [[noreturn]] void raise(lua_State* L, const char* what) const;
+  /// Raises the Lua error "<fname or as>: <what>" (called after the C++ frames that threw are left).
+  [[noreturn]] void raise(lua_State* L, const char* what, const char* as = nullptr) const;
 
  private:
   const char* fname_;
@@ -103,12 +104,13 @@ class Schema : public SchemaBase {
 
   /// Reads the options table at idx (nil or none: nothing) into `into`, whose current values are
   /// the defaults. Raises a Lua error naming the function and the key on an unknown key, a wrong
-  /// type or a value out of range (nothing C++ is alive when it does).
-  void read(lua_State* L, int idx, S& into) const {
+  /// type or a value out of range (nothing C++ is alive when it does). `as` (when not null) names
+  /// the table in the messages instead of the function (an element of a list: "prior[2]").
+  void read(lua_State* L, int idx, S& into, const char* as = nullptr) const {
     if (lua_isnoneornil(L, idx)) return;
-    if (!lua_istable(L, idx)) raise_type(L, idx);
+    if (!lua_istable(L, idx)) raise_type(L, idx, as);
     idx = lua_absindex(L, idx);
-    check_keys(L, idx);
+    check_keys(L, idx, as);
     char msg[1024];
     msg[0] = '\0';
     try {
@@ -121,19 +123,25 @@ class Schema : public SchemaBase {
     } catch (const std::exception& e) {
       copy_message(msg, sizeof msg, e.what());
     }
-    raise(L, msg);
+    raise(L, msg, as);
   }
-  S read(lua_State* L, int idx) const {
+  S read(lua_State* L, int idx, const char* as = nullptr) const {
     S s{};
-    read(L, idx, s);
+    read(L, idx, s, as);
     return s;
   }
 
-  std::string doc() const override {
+  std::string doc() const override { return doc(keys()); }
+  /// The lines of some keys only, in the schema's order (a reference entry that says "options
+  /// as <another function>, plus:" lists its own keys only).
+  std::string doc(const std::vector<std::string>& only) const {
     const S def{};
     std::vector<std::pair<std::string, std::string>> heads;
     std::vector<const char*> docs;
     for (const auto& o : options_) {
+      bool listed = false;
+      for (const auto& k : only) listed = listed || k == o.key;
+      if (!listed) continue;
       heads.emplace_back(o.key, o.default_text.empty() ? o.show(def) : o.default_text);
       docs.push_back(o.doc);
     }
@@ -157,7 +165,7 @@ class Schema : public SchemaBase {
     for (const auto& o : options) k.emplace_back(o.key);
     return k;
   }
-  [[noreturn]] void raise_type(lua_State* L, int idx) const;
+  [[noreturn]] void raise_type(lua_State* L, int idx, const char* as) const;
   static void copy_message(char* buf, std::size_t size, const char* what);
   std::vector<Option<S>> options_;
 };
@@ -270,8 +278,8 @@ Option<S> by_hand(const char* key, std::string default_text, const char* doc) {
 // ---------------------------------------------------------------------------------------------
 
 template <class S>
-void Schema<S>::raise_type(lua_State* L, int idx) const {
-  luaL_error(L, "%s: options must be a table, got %s", name(), luaL_typename(L, idx));
+void Schema<S>::raise_type(lua_State* L, int idx, const char* as) const {
+  luaL_error(L, "%s: options must be a table, got %s", as ? as : name(), luaL_typename(L, idx));
   std::abort();  // not reached
 }
 

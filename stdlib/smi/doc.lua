@@ -472,7 +472,7 @@ function M.names(prefix)
 end
 
 --- The documented option lists against the option names the code reads: for every function that
--- checked its options (Options::check_known in the bindings, recorded by smi._known_options)
+-- checked its options (its option schema in the bindings, recorded by smi._known_options)
 -- and has a doc entry, the names only one side has. Run after check_examples, which calls them.
 -- Returns a list of problems ("smi.kde: documented but not read: x"). `known` ({fname = {names}})
 -- replaces the recorded lists (tests).

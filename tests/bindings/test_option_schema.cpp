@@ -5,6 +5,7 @@
 // the struct's defaults.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -145,6 +146,11 @@ TEST_CASE("every binding schema reads an empty table into its default-constructe
   for (const SchemaBase* sb : all) names.emplace_back(sb->name());
   INFO("schemas: " << names.size());
   CHECK(all.size() >= 6);
+  // the loop below picks up each new schema that a reference entry lists, e.g. the solver models'
+  for (const char* f : {"smi.model.command", "smi.model.batch", "smi.metric.pr", "smi.metric.intersection", "smi.metric.pr grid",
+                        "smi.calibrate bootstrap", "smi.calibrate identifiability", "smi.calibrate intervals",
+                        "smi.calibrate prior", "smi.dist.normal", "smi.dist.gamma"})
+    CHECK(std::find(names.begin(), names.end(), f) != names.end());
   State s;
   for (const SchemaBase* sb : all) {
     INFO(sb->name());

@@ -106,6 +106,10 @@ T.case("prior on a parameter and on a function of the parameters (closed form)",
   T.raises(function() with{prior = {{param = "x.mean", mean = 1, std = 0}}} end, "prior[1].std must be a finite number > 0")
   T.raises(function() with{prior = {{param = "x.mean", mean = 1}}} end, "needs mean = and std =")
   T.raises(function() with{prior = {{fn = function() return 1 end, mean = 1, std = 1}}} end, "needs name =")
+  -- the entry's schema names the entry: a misspelt key, a wrong type
+  T.raises(function() with{prior = {{param = "x.mean", mean = 1, sd = 1}}} end, "prior[1]: unknown option 'sd' (did you mean 'std'?)")
+  T.raises(function() with{prior = {{param = "x.mean", mean = 1, std = 1}, {param = "x.mean", mean = "1", std = 1}}} end,
+    "prior[2]: option 'mean' must be a number, got string")
   T.raises(function() with{prior = {{name = "f", fn = function() return 0 / 0 end, mean = 1, std = 1}}} end, "prior 'f'")
 end)
 

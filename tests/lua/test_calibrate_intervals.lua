@@ -39,7 +39,18 @@ T.case("PR needs a delta; bad interval options name the field", function()
   spec.intervals = {level = 0.9, delta = 1}
   T.raises(function() smi.calibrate(spec) end, "not both")
   spec.intervals = {delta = -1}
-  T.raises(function() smi.calibrate(spec) end, "intervals.delta must be a number > 0")
+  T.raises(function() smi.calibrate(spec) end, "smi.calibrate intervals: delta must be > 0, got -1")
+  spec.intervals = {levl = 0.9}
+  T.raises(function() smi.calibrate(spec) end, "smi.calibrate intervals: unknown option 'levl' (did you mean 'level'?)")
+  spec.intervals = {level = 0.9, observations = 0}
+  T.raises(function() smi.calibrate(spec) end, "smi.calibrate intervals: observations must be >= 1, got 0")
+  spec.intervals = {delta = 1, observations = 5}
+  T.raises(function() smi.calibrate(spec) end, "goes with level, not delta")
+  spec.intervals = nil
+  spec.identifiability = {tolerance = 0}
+  T.raises(function() smi.calibrate(spec) end, "smi.calibrate identifiability: tolerance must be > 0, got 0")
+  spec.identifiability = {point = 5}
+  T.raises(function() smi.calibrate(spec) end, "smi.calibrate identifiability: unknown option 'point' (did you mean 'points'?)")
 end)
 
 T.case("bootstrap replicates are whole calibrations from their own starts, not warm starts", function()

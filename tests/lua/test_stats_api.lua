@@ -115,6 +115,27 @@ T.case("fit ranks families by AIC", function()
   T.raises(function() smi.dist.fit(X, {"normul"}) end, "unknown family 'normul'")
 end)
 
+T.case("distribution constructors read their parameters by their schemas", function()
+  T.near(smi.dist.beta{alpha = 2, beta = 2}:cdf(0.5), 0.5, 1e-12, "beta's default [0, 1]")
+  T.eq(smi.dist.gamma{shape = 2, rate = 0.5}:mean(), 4, "gamma's rate")
+  T.raises(function() smi.dist.normal{mean = 0, sd = 1} end, "smi.dist.normal: unknown option 'sd' (did you mean 'std'?)")
+  T.raises(function() smi.dist.normal{mean = 0} end, "missing field 'std' (a number)")
+  T.raises(function() smi.dist.normal{mean = 0 / 0, std = 1} end, "smi.dist.normal: mean must be finite, got nan")
+  T.raises(function() smi.dist.weibull{shape = 2, scale = 1, loc = "0"} end, "smi.dist.weibull: option 'loc' must be a number, got string")
+  T.raises(function() smi.dist.lognormal{mu_log = 1} end, "missing field 'sigma_log'")
+end)
+
+T.case("metrics: pr's and intersection's grid options are checked by their schemas", function()
+  local a, b = smi.dist.normal{mean = 0, std = 1}, smi.dist.normal{mean = 1, std = 1}
+  T.raises(function() smi.metric.pr(a, b, {nodez = 3}) end, "smi.metric.pr: unknown option 'nodez' (did you mean 'nodes'?)")
+  T.raises(function() smi.metric.intersection(a, b, {grid = {lowr = 1}}) end,
+    "smi.metric.intersection grid: unknown option 'lowr' (did you mean 'lower'?)")
+  T.raises(function() smi.metric.pr(a, b, {grid = {lower = "a", upper = 1}}) end, "option 'lower' must be a number, got string")
+  T.raises(function() smi.metric.pr(a, b, {grid = 3}) end, "option 'grid' must be a table")
+  -- a missing bound is a message naming it (it was a C++ exception escaping the binding: the options table as the error)
+  T.raises(function() smi.metric.pr(a, b, {grid = {lower = -1}}) end, "smi.metric.pr: missing field 'upper' (a number)")
+end)
+
 T.case("metrics: pr, area, upool verdicts (spec 8.2, 8.3)", function()
   T.near(smi.metric.pr(smi.dist.normal{mean = 0, std = 1}, smi.dist.normal{mean = 1, std = 1}, {nodes = 20001}),
     0.7658498451, 1e-7, "PR closed form")

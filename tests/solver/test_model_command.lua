@@ -78,6 +78,20 @@ T.case("hostile values and templates", function()
   T.raises(function() model("", {template = "/nonexistent/deck.tpl"}) end, "/nonexistent/deck.tpl")
 end)
 
+T.case("option mistakes are named by the schema: key, function, expected type or values", function()
+  T.raises(function() model("", {timout = 5}) end, "smi.model.command: unknown option 'timout' (did you mean 'timeout'?)")
+  T.raises(function() model("", {timeout = "5"}) end, "smi.model.command: option 'timeout' must be a number, got string")
+  T.raises(function() model("", {retries = 1.5}) end, "smi.model.command: option 'retries' must be an integer, got number")
+  T.raises(function() model("", {reuse_failed = 1}) end, "smi.model.command: option 'reuse_failed' must be a boolean, got number")
+  T.raises(function() model("", {on_failure = "ignore"}) end,
+    "smi.model.command: on_failure must be 'stop', 'skip' or 'retry', got 'ignore'")
+  -- the batch form has its own keys: a deck is the command form's
+  T.raises(function()
+    smi.model.batch{name = "bk", inputs = {"x1"}, outputs = {"f"}, command = {solver, "{deck}"}, deck = "run.deck",
+      parse = function() return {} end}
+  end, "smi.model.batch: unknown option 'deck'")
+end)
+
 T.case("batch model: one run per batch, per-point results", function()
   local m = smi.model.batch{
     name = "b", inputs = {"x1", "x2"}, outputs = {"f", "g"}, input_file = "points.csv",
