@@ -24,8 +24,17 @@ namespace smi {
 /// with fprintf(stderr): a warning then neither vanishes nor reaches stderr behind --quiet.
 class WarningSink {
  public:
+  /// Warnings kept (and printed) in full; past them each is only counted, so that a warning in
+  /// a loop of a million calls neither fills the memory nor the terminal. collected() ends with
+  /// a line saying how many were counted.
+  static constexpr std::size_t kKept = 1000;
+
   explicit WarningSink(bool print = false) : print_(print) {}
-  WarningSink(const WarningSink& o) : print_(o.print_), collected_(o.collected()) {}
+  WarningSink(const WarningSink& o) : print_(o.print_) {
+    const std::lock_guard<std::mutex> lock(o.mu_);
+    collected_ = o.collected_;
+    counted_ = o.counted_;
+  }
   WarningSink& operator=(const WarningSink& o);
   void warn(std::string_view source, std::string_view text);
   /// Every warning of the run so far, as "<source>: <text>", in order.
@@ -36,6 +45,7 @@ class WarningSink {
   bool print_;
   mutable std::mutex mu_;  // parallel kernels' bindings may warn from workers
   std::vector<std::string> collected_;
+  std::size_t counted_ = 0;  // warnings past kKept
 };
 
 /// Whether live progress lines are drawn (on stderr, redrawn in place): only when the run
