@@ -59,37 +59,12 @@ runs() {
 }
 
 # ---- 1. smi.improve on a Lua function model
+cp "$SMI_SOURCE_DIR/tests/lua/small_product.lua" .   # the test_improve product, beside the study
 cat > improve.lua <<'LUA'
-local improve = require "smi.improve"
-local function product(applied, unknowns, ctx)
-  local joint = ctx.form.joint == "spring"
-  return smi.model.lua{ name = ctx.name, inputs = unknowns, outputs = { "f1", "f2", "f3" }, fn = function(X)
-    local idx = {}
-    for j, n in ipairs(unknowns) do idx[n] = j end
-    local a = X:col(idx.a)
-    local k = joint and X:col(idx.k) or a * 0
-    return { f1 = a * 10 - k, f2 = a * 20 - k * 6, f3 = a * 10 + k * 2 }
-  end }
-end
+local small = require "small_product"
 local data_file = smi.out("data.csv")
-local a = smi.rng(7):normal(9, 1.05, 0.02)
-smi.csv.write(data_file, { f1 = a * 10 - 0.5, f2 = a * 20 - 3, f3 = a * 10 + 1 }, { header = { "f1", "f2", "f3" } })
-improve.run({
-  name = "determinism", data = data_file,
-  responses = { { name = "f1", unit = "Hz", role = "calibrate", grid_margin = 3 },
-                { name = "f2", unit = "Hz", role = "calibrate", grid_margin = 6 },
-                { name = "f3", unit = "", role = "validate" } },
-  unknowns = { { name = "a", dist = "normal", mean = { 0.8, 1.3, 1.05 }, std = { 0.005, 0.06, 0.03 }, unit = "-" } },
-  form = { joint = "none" },
-  design = { n = 12, trend = "linear", test_points = 0, solver_check = 10 },
-  model = product,
-  candidates = {
-    { name = "joint", implement_minutes = 30,
-      revision = { form = { joint = "spring" }, n_design = 20,
-                   unknowns = { { name = "k", dist = "normal", mean = { 0, 1, 0.5 }, std = { 0.001, 0.01, 0.005 } } } } },
-    { name = "nothing", implement_minutes = 500, revision = {} },
-  },
-}, arg)
+small.write_data(data_file)
+require("smi.improve").run(small.declaration("determinism", data_file), arg)
 LUA
 runs improve.lua --quick --only data,characterize,trial1_surrogate
 current="improve: the run made its files"

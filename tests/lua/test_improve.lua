@@ -1,53 +1,18 @@
 -- smi.improve: a declaration's mistakes are errors naming the field and the response or
 -- candidate (issue 30 item 6), the data step's units check stops before any solver budget
 -- (issue 28 item 3), and the whole loop runs on a small product whose truth needs one revision.
--- The product: two calibrated responses f1 = 10a - k, f2 = 20a - 6k and a validation-only one
--- f3 = 10a + 2k of a stiffness-like unknown a; the initial model has no joint (k = 0), the
--- candidate "joint" adds k. Truth: a ~ N(1.05, 0.02), k = 0.5, so f2/f1 = 1.8 where the
--- initial model can only give 2 (the check: trial 1 invalid, trial 2 applies "joint", valid).
+-- The product and its truth: tests/lua/small_product.lua.
 local T = require "smi.testing"
 local improve = require "smi.improve"
 
-local function product(applied, unknowns, ctx)
-  local joint = ctx.form.joint == "spring"
-  return smi.model.lua{ name = ctx.name, inputs = unknowns, outputs = { "f1", "f2", "f3" }, fn = function(X)
-    local idx = {}
-    for j, n in ipairs(unknowns) do idx[n] = j end
-    local a = X:col(idx.a)
-    local k = joint and X:col(idx.k) or a * 0
-    return { f1 = a * 10 - k, f2 = a * 20 - k * 6, f3 = a * 10 + k * 2 }
-  end }
-end
+local small = require "small_product"
+local product = small.model
 
 -- 9 specimens of the truth, written where the study reads them
 local data_file = smi.out("improve_data.csv")
-do
-  local rng = smi.rng(7)
-  local a = rng:normal(9, 1.05, 0.02)
-  smi.csv.write(data_file, { f1 = a * 10 - 0.5, f2 = a * 20 - 3, f3 = a * 10 + 1 }, { header = { "f1", "f2", "f3" } })
-end
+small.write_data(data_file)
 
-local function declaration(over)
-  local d = {
-    name = "improve_test",
-    data = data_file,
-    responses = { { name = "f1", unit = "Hz", role = "calibrate", grid_margin = 3 },
-                  { name = "f2", unit = "Hz", role = "calibrate", grid_margin = 6 },
-                  { name = "f3", unit = "", role = "validate" } },
-    unknowns = { { name = "a", dist = "normal", mean = { 0.8, 1.3, 1.05 }, std = { 0.005, 0.06, 0.03 }, unit = "-" } },
-    form = { joint = "none" },
-    design = { n = 12, trend = "linear", test_points = 0, solver_check = 10 },
-    model = product,
-    candidates = {
-      { name = "joint", implement_minutes = 30,
-        revision = { form = { joint = "spring" }, n_design = 20,
-                     unknowns = { { name = "k", dist = "normal", mean = { 0, 1, 0.5 }, std = { 0.001, 0.01, 0.005 } } } } },
-      { name = "nothing", implement_minutes = 500, revision = {} },
-    },
-  }
-  for k, v in pairs(over or {}) do d[k] = v end
-  return d
-end
+local function declaration(over) return small.declaration("improve_test", data_file, over) end
 
 -- each study its own results.json (they share the test's output folder)
 local function run(d, argv) return improve.run(d, argv, { results = smi.out(d.name .. "_results.json") }) end
