@@ -439,9 +439,8 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   for key, v in pairs(ret or {}) do result[key] = v end
   live[st.name] = result
   -- keep only what JSON can hold in the file
-  local skipped = {}
+  local skipped = {}  -- in the encoder's key order (the file's), the same every run
   local text = json.encode(result, { skip = true, skipped = skipped, root = st.name })
-  table.sort(skipped)  -- found in table traversal order, which changes from run to run
   -- a step that returned {skipped = true, reason = ...} did not run: its record (status "ok", so
   -- that later steps can read why) says not_run, and the report and the console say "not run"
   local not_run = result.skipped == true and tostring(result.reason or "no reason given") or nil
