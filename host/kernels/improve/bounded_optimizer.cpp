@@ -180,7 +180,7 @@ struct Run {
   // an accepted point (always computed).
   enum class Call { none, value, gradient, deferred };
   Call last = Call::none;
-  std::vector<double> x0, g0;
+  std::vector<double> x0{}, g0{};  // the last gradient request's point and gradient (defaults: no slot in the aggregate init)
   double f0 = 0.0;
   int deferred = 0;
   bool deferral_failed = false;
@@ -239,7 +239,7 @@ struct Run {
     return HUGE_VAL;
   }
   bool defer = false;
-  std::string failure_note;
+  std::string failure_note{};  // set when a deferral went wrong (above)
 };
 
 double trampoline(const std::vector<double>& u, std::vector<double>& grad, void* data) {
