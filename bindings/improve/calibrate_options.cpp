@@ -125,7 +125,9 @@ const Schema<CalibrateSpec>& calibrate_schema() {
       by_hand<S>("bootstrap", "nil",
          "replicates, or {replicates = ${boot_replicates}, level = ${boot_level},\n"
          "seed =, maxeval =, multistart =, warm = false}: full calibrations\n"
-         "on resampled data (model form; warm = true starts at the optimum)"),
+         "on resampled data (model form), each from the optimum, then its own\n"
+         "multistart points (warm = true: the optimum only), side by side for\n"
+         "a C++ model; percentile bounds with their Monte Carlo errors"),
       by_hand<S>("progress", "nil",
          "function(row) called after each optimizer step; false: no progress\n"
          "line (by default one line on stderr when it is a terminal and not\n"
@@ -186,7 +188,7 @@ const Schema<smi::improve::BootstrapOptions>& bootstrap_schema() {
                  "the calibration's"),
       integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(), "starts per replicate",
                  "the calibration's"),
-      boolean<S>("warm", &S::warm_start, "start each replicate at the optimum, one start only"),
+      boolean<S>("warm", &S::warm_start, "one start per replicate, the optimum (else the optimum then the multistart points)"),
   });
   return schema;
 }

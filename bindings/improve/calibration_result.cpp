@@ -238,15 +238,21 @@ void push_near_optimal(lua_State* L, const std::vector<std::string>& names, cons
   lua_setfield(L, -2, "near_optimal");
 }
 
-/// bootstrap: percentile bounds, standard deviations and the replicates' optima.
+/// bootstrap: percentile bounds, standard deviations, the endpoints' Monte Carlo errors, the
+/// replicates they need and the replicates' optima.
 void push_bootstrap(lua_State* L, const std::vector<std::string>& names, const CalibrateSpec& s, const BootstrapResult& b) {
-  lua_createtable(L, 0, 8);
+  lua_createtable(L, 0, 11);
   push_named(L, names, b.lower);
   lua_setfield(L, -2, "lower");
   push_named(L, names, b.upper);
   lua_setfield(L, -2, "upper");
   push_named(L, names, b.stddev);
   lua_setfield(L, -2, "std");
+  push_named(L, names, b.lower_mc_error);
+  lua_setfield(L, -2, "lower_mc_error");
+  push_named(L, names, b.upper_mc_error);
+  lua_setfield(L, -2, "upper_mc_error");
+  lua::set_integer(L, "replicates_needed", b.replicates_needed);
   lua::set_number(L, "level", s.bootstrap->level);
   lua::set_integer(L, "replicates", static_cast<lua_Integer>(b.thetas.rows()));
   lua::set_integer(L, "failed", b.failed);

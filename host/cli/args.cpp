@@ -163,6 +163,9 @@ terminal and runs stdin otherwise. The script gets its arguments as arg[1..n] an
 The options below go before the script: everything after it is the script's own (a study's
 --help lists them), so `smi-lua study.lua --out DIR` is refused by smi.options with
 "smi-lua's own option --out goes before the script: smi-lua --out DIR study.lua ...".
+A study (smi.study, smi.improve) run again reuses the steps whose inputs are unchanged (data,
+options, code, earlier results, this binary); its own options --only NAME and --from NAME run
+some steps, --force runs them all (smi-lua study.lua --force).
 
 Lua options (as the lua program):
   -e chunk            run the string 'chunk' (in order with -l, before the script)

@@ -167,10 +167,22 @@ int smi_inputs(lua_State* L) {
 
 /// smi._digest(path [, kind]) -> digest | nil, why: a recorded file's digest now, opened through
 /// the sandbox (without being recorded as read); "embedded:..." paths from this binary's stdlib;
-/// kind "program": a program --allow-exec allows.
+/// kind "program": a program --allow-exec allows; kind "binary": this smi-lua's own executable
+/// (path ignored), which smi.study's reuse of saved steps compares (a rebuilt smi-lua reruns them).
 int smi_digest(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
-  const bool program = std::strcmp(luaL_optstring(L, 2, ""), "program") == 0;
+  const char* kind = luaL_optstring(L, 2, "");
+  const bool program = std::strcmp(kind, "program") == 0;
+  if (std::strcmp(kind, "binary") == 0) {
+    FileDigest d;
+    // the running image, even if the file was replaced since it started
+    lua::protect(L, "smi._digest", [&] {
+      d = digest_path("/proc/self/exe");
+      return 0;
+    });
+    push_digest(L, d);
+    return 1;
+  }
   if (path.rfind("embedded:", 0) == 0) {
     const std::string rel = path.substr(std::strlen("embedded:"));
     for (const EmbeddedModule* m = kEmbeddedModules; m->name; ++m) {

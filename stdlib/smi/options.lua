@@ -9,7 +9,7 @@
 --     { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "calibration metric" },
 --     { name = "starts", type = "integer", default = 1, min = 1, meaning = "optimizer starts" },
 --     { name = "quick", type = "flag", meaning = "the reduced run CI uses" },
---     options.study_steps,                -- --only, --from, --quiet for smi.study's s:run(opt)
+--     options.study_steps,                -- --only, --from, --quiet, --force for smi.study's s:run(opt)
 --   })
 --   -- opt.data, opt.metric, opt.starts, opt.quick, opt.only, ...
 --
@@ -58,6 +58,7 @@ M.study_steps = {
   { name = "only", type = "list", needs = "a step name", meaning = "run only these steps (comma-separated); the others' results are read from results.json" },
   { name = "from", type = "string", needs = "a step name", meaning = "run this step and every later one; earlier results are read from results.json" },
   { name = "quiet", type = "flag", meaning = "no progress lines (also automatic when output is not a terminal)" },
+  { name = "force", type = "flag", meaning = "run every step again (a whole run otherwise reuses the saved steps whose inputs are unchanged)" },
 }
 
 -- The declarations in order, with the study_steps group (or any nested list) expanded.

@@ -12,7 +12,10 @@
 --   end)
 --   s:run()                                  -- all steps; writes results.json (+ report.html)
 --   s:run{only = "fit"}                      -- "data" comes from the saved results.json
---   s:run(study.parse_args(arg))             -- --only NAME[,NAME] --from NAME --quiet
+--   s:run(study.parse_args(arg))             -- --only NAME[,NAME] --from NAME --quiet --force
+--
+-- A whole run reuses every saved step whose inputs (options, data, code, earlier results, the
+-- smi-lua binary) are unchanged, up to the first that must run (smi.study_reuse); --force runs all.
 --
 -- results.json: {schema=2, study=, seed=, order={...}, steps={name={status=, seconds=, result={...},
 -- result_hash=, inputs={options=, files=, results=}, stale=}}, provenance=smi.provenance()} (every
@@ -25,6 +28,7 @@
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
+local reuse = require "smi.study_reuse"
 local sorted_keys = inputs.sorted_keys
 
 local doc = require "smi.doc"
@@ -41,7 +45,10 @@ results = {[earlier step] = hash}}, stale = {reason, command} when a partial run
 read, not_saved}; "provenance" (smi.provenance(): every file read, program, option, library and
 the build). A partial run (only, from) refuses to read a saved step whose inputs changed, naming
 the change and the command to run, and marks later steps stale when it recomputes what they
-read; a stale step's results are never returned as current.
+read; a stale step's results are never returned as current. A whole run reuses the saved steps
+whose inputs (options, data files, the script and every Lua file it loaded, earlier results, the
+smi-lua binary) are unchanged, in order up to the first step that must run; that step and every
+later one run again, and run{force = true} (--force) runs them all (docs/provenance.md).
 ]==]
 local M = {}
 
@@ -429,6 +436,7 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   self:_say("step %d/%d %s ...", k, nsel, st.name)
   local ctx = step_context(self, st, results)
   local seq0 = inputs.mark()
+  local report_mark = reuse.begin(self)
   self.reading = {} -- the earlier steps' results this step reads (results_view notes them)
   local ok, ret, trace, dt, clock = call_step(st, ctx)
   local reads = self.reading
@@ -454,6 +462,7 @@ function Study:_run_step(st, k, nsel, results, saved, live)
   saved.steps[st.name] = { status = "ok", seconds = dt, clock = clock, result = decoded, result_hash = result_hash,
                            inputs = { options = self.options, files = files, results = reads },
                            not_saved = #skipped > 0 and skipped or nil, not_run = not_run }
+  reuse.record(self, st, saved.steps[st.name], report_mark) -- what a later run compares to reuse it
   self.timings[#self.timings + 1] = { st.name, not_run and "not run" or "ok", dt, not_run }
   self:_save(saved)
   if not_run then
@@ -472,6 +481,7 @@ report (if any) is written at the end, report-partial.html after a partial run.
 options:
   only = nil     -- a step name or a list: run only these
   from = nil     -- run this step and every later one
+  force = nil    -- run every step, even those a whole run would reuse (inputs unchanged)
   quiet = nil    -- no progress lines for this run
 returns: a table {step name = results}
 errors: a step's error, with the step named; only/from naming an unknown step (the steps are
@@ -509,12 +519,30 @@ function Study:run(opts)
   for _, st in ipairs(self.steps) do if selected[st.name] then nsel = nsel + 1 end end
   local t_start = now()
   self.timings = {}
+  -- a whole run reuses the saved steps whose inputs are unchanged (smi.study_reuse); a partial
+  -- run runs the steps it names
+  local kept, why_run = {}, nil
+  if not partial then kept, why_run = reuse.plan(self, saved, opts.force) end
+  if next(kept) then
+    local n = 0
+    for _ in pairs(kept) do n = n + 1 end
+    self:_say("%d of %d step(s) reused: their inputs are unchanged (--force runs them all)", n, nsel)
+  end
+  if why_run and next(saved.steps) then self:_say("%s", why_run) end
   for _, st in ipairs(self.steps) do
     if selected[st.name] then
       k = k + 1
-      self:_run_step(st, k, nsel, results, saved, live)
+      if kept[st.name] then
+        reuse.reuse(self, st, saved, live)
+        self:_say("step %d/%d %s reused", k, nsel, st.name)
+      else
+        self:_run_step(st, k, nsel, results, saved, live)
+      end
     end
   end
+  local all_kept = true
+  for _, st in ipairs(self.steps) do all_kept = all_kept and kept[st.name] == true end
+  if all_kept then self:_save(saved) end -- nothing ran: the file still gets this run's provenance
   local total = now() - t_start
   if partial then self:_mark_stale(selected, saved) end
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
@@ -619,9 +647,10 @@ function Study:_finish_report(partial, selected, total, saved)
   r:section("Study steps")
   local rows = {}
   for _, t in ipairs(self.timings) do
-    local badge = ({ ok = { status = "pass", text = "ran" }, failed = { status = "fail", text = "failed" } })[t[2]]
+    local badge = ({ ok = { status = "pass", text = "ran" }, failed = { status = "fail", text = "failed" },
+                     reused = { status = "info", text = "reused: inputs unchanged" } })[t[2]]
       or { status = "skip", text = t[4] }
-    rows[#rows + 1] = { t[1], badge, t[2] == "not run" and "" or t[3] }
+    rows[#rows + 1] = { t[1], badge, (t[2] == "not run" or t[2] == "reused") and "" or t[3] }
   end
   r:table{ caption = ("Steps of this run, %s in total; a step not run says why."):format(fmt.seconds(total)),
            columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
@@ -654,8 +683,8 @@ end
 
 doc.add[==[
 @ smi.study.parse_args(argv) -> opts
-Splits command-line arguments: --only NAME[,NAME] (repeatable), --from NAME, --quiet; the rest is
-kept in opts.rest. (smi.options with options.study_steps does the same and also checks the
+Splits command-line arguments: --only NAME[,NAME] (repeatable), --from NAME, --quiet, --force; the
+rest is kept in opts.rest. (smi.options with options.study_steps does the same and also checks the
 study's own options.)
 returns: {only =, from =, quiet =, rest = {...}}
 errors: --only or --from without a step name

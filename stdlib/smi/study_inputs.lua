@@ -2,7 +2,7 @@
 -- mixes old and new inputs without saying so. A step's inputs, saved beside its result in
 -- results.json:
 --   inputs = {
---     options = {seed =, arguments = {...}},  -- the study's arguments (--only/--from/--quiet left out)
+--     options = {seed =, arguments = {...}},  -- the study's arguments (--only/--from/--quiet/--force left out)
 --     files   = {[path] = {kind =, hash =, size =}},  -- data files read before the steps and while it ran
 --     results = {[step] = "sha256:..."},       -- the saved results of earlier steps it read, hashed
 --   }
@@ -73,7 +73,7 @@ local function study_arguments()
   while i <= #args do
     local a = args[i]
     if a == "--only" or a == "--from" then i = i + 2
-    elseif a:match("^%-%-only=") or a:match("^%-%-from=") or a == "--quiet" then i = i + 1
+    elseif a:match("^%-%-only=") or a:match("^%-%-from=") or a == "--quiet" or a == "--force" then i = i + 1
     else out[#out + 1] = a; i = i + 1 end
   end
   return out, p.command, p.cwd
@@ -100,12 +100,18 @@ function M.options_change(old, new)
   return table.concat(parts, "; ")
 end
 
---- Why the recorded files differ from the files now (nil when they hash the same).
-function M.files_change(files)
+--- Why the recorded files differ from the files now (nil when they hash the same). cache (optional):
+-- a table of digests by path, filled as files are hashed, so a file several steps recorded is
+-- hashed once per run.
+function M.files_change(files, cache)
   for _, path in ipairs(M.sorted_keys(files)) do -- the first change named is the same every run
     local rec = files[path]
     if host then
-      local now, why = smi._digest(path, rec.kind)
+      local now, why
+      if cache and cache[path] then now, why = table.unpack(cache[path]) else
+        now, why = smi._digest(path, rec.kind)
+        if cache then cache[path] = { now, why } end
+      end
       if not now then return ("file %s, which is no longer readable (%s)"):format(path, tostring(why)) end
       local same = (rec.large or now.large) and (rec.large == now.large and rec.size == now.size and rec.mtime == now.mtime)
         or (not rec.large and not now.large and rec.hash == now.hash)

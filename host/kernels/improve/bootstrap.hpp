@@ -1,11 +1,19 @@
 #pragma once
-// Bootstrap confidence intervals on calibrated parameters (beyond the paper; issue 6 item 6).
-// Each replicate resamples the experimental data with replacement (seeded), rebuilds the
-// objective on the resampled data and re-runs the whole calibration: its own starts (the given
-// start and the seeded multistart points), not a warm start at the optimum, which would only
-// measure the local spread and miss the other optima of a flat or multimodal problem (issue 11
-// item 4). warm_start keeps the old, cheaper replicate. Percentile intervals summarise the spread. When every response has the same number of data they are
-// resampled as paired rows (one specimen gives all its responses), otherwise independently.
+// Bootstrap confidence intervals on calibrated parameters (beyond the paper).
+// Each replicate resamples the experimental data with replacement, rebuilds the objective on the
+// resampled data and re-runs the calibration from its own starts: the optimum first (a warm start:
+// a replicate's optimum is near the original one, so the first local run is short), then the
+// seeded multistart points, so a flat or multimodal problem still shows its other optima; a
+// warm start alone would only measure the local spread. warm_start keeps that one start only.
+// Replicates run side by side on the thread pool (threads); each draws its resample from its own
+// stream (Rng::derive(seed, "bootstrap/<b>")) and optimises from its own seed, so the numbers do
+// not depend on the thread count. Every evaluation is one model call on the whole CRN batch.
+// Percentile intervals summarise the spread, each endpoint with its Monte Carlo standard error
+// (an order statistic's: the spread of the quantiles at a ± sqrt(a(1 − a)/B)), and the number
+// of replicates that brings that error under a tenth of the interval's half-width: a percentile
+// interval from few replicates rests on the one or two most extreme ones, and says so.
+// When every response has the same number of data they are resampled as paired rows (one
+// specimen gives all its responses), otherwise independently.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -23,7 +31,12 @@ struct BootstrapOptions {
   double level = 0.95;          ///< two-sided percentile interval
   OptimizerOptions optimizer;   ///< the replicates' calibration (its starts, multistart, budget)
   bool warm_start = false;      ///< start each replicate at the optimum, one start only
-  /// Called after each replicate with (replicates done, replicates, evaluations so far).
+  /// Replicates optimised side by side (pool::run_tasks); the result does not depend on it. Above
+  /// 1 the factory and the replicates' objectives are called from several threads at once and
+  /// must be safe for that (C++ models: yes; anything that calls Lua: no).
+  int threads = 1;
+  /// Called after each replicate with (replicates done, replicates, evaluations so far), one call
+  /// at a time even when replicates run side by side.
   std::function<void(int, int, long)> progress;
 };
 
@@ -32,6 +45,11 @@ struct BootstrapResult {
   Eigen::VectorXd lower;    ///< percentile bounds, one per parameter
   Eigen::VectorXd upper;
   Eigen::VectorXd stddev;   ///< bootstrap standard error
+  Eigen::VectorXd lower_mc_error;  ///< Monte Carlo standard error of each lower endpoint
+  Eigen::VectorXd upper_mc_error;  ///< and of each upper endpoint
+  /// Replicates that would bring every endpoint's Monte Carlo error under a tenth of its
+  /// interval's half-width (and leave at least 5 replicates beyond each endpoint).
+  int replicates_needed = 0;
   int evaluations = 0;
   int failed = 0;           ///< replicates whose optimisation threw (their messages in warnings)
   bool paired = false;

@@ -113,6 +113,14 @@ Objective minimize_objective(const CalibrationProblem& p, const Extras& x, const
   return f;
 }
 
+/// Whether an evaluation calls no Lua (a native model, and no Lua metric, penalty, progress or
+/// prior), so that several may run at once on the thread pool.
+bool calls_no_lua(const CalibrationProblem& p) {
+  const bool callbacks_free = p.callbacks_thread_safe ||
+                              (!p.metric && !p.penalty && !p.progress && std::none_of(p.priors.begin(), p.priors.end(), [](const PriorTerm& t) { return bool(t.fn); }));
+  return p.native_model && callbacks_free;
+}
+
 /// The statistical form: builds the CRN objective in out.stat, chooses threads, gradient and
 /// start preparation, and minimises it. oo receives the gradient, which the profile intervals reuse.
 Objective minimize_statistical(const CalibrationProblem& p, const CalibrationOptions& o, const Extras& x, OptimizerOptions& oo,
@@ -123,10 +131,8 @@ Objective minimize_statistical(const CalibrationProblem& p, const CalibrationOpt
   // starts run side by side on `threads` threads (the same result as one after another), each
   // evaluation on one.
   StatisticalOptions so = p.stat;
-  const bool callbacks_free = p.callbacks_thread_safe ||
-                              (!p.metric && !p.penalty && !p.progress && std::none_of(p.priors.begin(), p.priors.end(), [](const PriorTerm& t) { return bool(t.fn); }));
   const int start_threads = std::min(p.stat.threads, o.optimizer.multistart);
-  const bool side_by_side = p.native_model && callbacks_free && start_threads > 1;
+  const bool side_by_side = calls_no_lua(p) && start_threads > 1;
   const Model model = p.native_model ? p.native_model(side_by_side ? 1 : 2) : p.model;
   if (!model) throw InvalidArgument("the calibration has neither an objective nor a model");
   if (side_by_side) {
@@ -234,6 +240,7 @@ void add_bootstrap(const CalibrationProblem& p, const CalibrationOptions& o, con
     return rep;
   };
   BootstrapOptions bo = *o.bootstrap;
+  if (calls_no_lua(p)) bo.threads = p.stat.threads;  // replicates side by side, the same numbers
   if (p.progress_line) {
     auto line = std::make_shared<ProgressTracker>(p.progress_line, "bootstrap", bo.replicates, 0);
     bo.progress = [line](int done, int, long evaluations) { line->unit_done(done, evaluations); };
