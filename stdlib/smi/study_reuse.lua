@@ -57,7 +57,15 @@ function M.replay_path(study)
   return ("%s/.%s.replay.json"):format(dir == "" and "/" or dir, (base:gsub("%.json$", "")))
 end
 
+-- The replay file is an output of the run, like results.json: never one of its inputs.
+local function not_input(study)
+  if study.replay_not_input or not (type(smi) == "table" and type(smi._not_input) == "function") then return end
+  smi._not_input(M.replay_path(study))
+  study.replay_not_input = true
+end
+
 local function load_replay(study)
+  not_input(study)
   local path = M.replay_path(study)
   local f = io.open(path, "rb")
   if not f then return {} end
@@ -106,9 +114,8 @@ function M.record(study, st, entry, mark)
     if render(back.items) == render(items) then replay[st.name] = back end
   end
   if type(smi) == "table" and smi.dry_run then return end
-  local path = M.replay_path(study)
-  if type(smi._not_input) == "function" then smi._not_input(path) end
-  require("smi.file").write(path, json.encode({ steps = replay }, { root = "replay" }) .. "\n", ("study '%s'"):format(study.name))
+  not_input(study)
+  require("smi.file").write(M.replay_path(study), json.encode({ steps = replay }, { root = "replay" }) .. "\n", ("study '%s'"):format(study.name))
 end
 
 -- Why saved step st cannot be reused now (nil: it can). `kept` holds the steps reused before it.

@@ -29,7 +29,7 @@ local function ran(name)
   f:write(name, "\n")
   f:close()
 end
-local s = study.new{ name = "reuse", report = { title = "Reuse" } }
+local s = study.new{ name = "reuse", quiet = false, report = { title = "Reuse" } } -- progress lines say why a step runs
 s:step("data", function(ctx)
   ran("data")
   local d = smi.csv.read("in/data.csv")
@@ -60,7 +60,8 @@ go() {
 # ran_is "STEPS": the steps that ran, in order, space-separated ("" for none)
 ran_is() {
   local got
-  got=$(tr '\n' ' ' < study/out/ran.log 2>/dev/null | sed 's/ $//')
+  got=""
+  [ -f study/out/ran.log ] && got=$(tr '\n' ' ' < study/out/ran.log | sed 's/ $//')
   if [ "$got" = "$1" ]; then ok; else bad "steps run: '$got', expected '$1'"; fi
 }
 
