@@ -84,6 +84,25 @@ local function report_state(r)
   return { counts = r.counts, ids = ids, prov = r.prov, results = r.results }
 end
 
+-- JSON has one kind of number: 6.0 is written "6" and reads back as the integer 6, which a
+-- report formats differently ("6" against "6.00"). A float with an integral value is saved as
+-- {["smi.float"] = 6} and read back as 6.0.
+local FLOAT = "smi.float"
+local function pack(v)
+  if math.type(v) == "float" and v == math.floor(v) and v - v == 0 then return { [FLOAT] = v } end
+  if type(v) ~= "table" or getmetatable(v) ~= nil then return v end
+  local c = {}
+  for k, x in pairs(v) do c[k] = pack(x) end
+  return c
+end
+local function unpack_floats(v)
+  if type(v) ~= "table" then return v end
+  local f = v[FLOAT]
+  if f ~= nil and next(v, next(v)) == nil then return f + 0.0 end
+  for k, x in pairs(v) do v[k] = unpack_floats(x) end
+  return v
+end
+
 local function render(items)
   return require("smi.report.html").render{ title = "replay", items = items }
 end
@@ -103,19 +122,22 @@ function M.record(study, st, entry, mark)
   local r = study.report
   local items = {}
   for i = mark.items + 1, #r.items do items[#items + 1] = r.items[i] end
-  local part = { result_hash = entry.result_hash, items = items, state = report_state(r) }
-  local o = { skip = true, skipped = {} }
-  local text = json.encode(part, o)
   local replay = study.replay or load_replay(study)
   study.replay = replay
   replay[st.name] = nil
-  if #o.skipped == 0 then
-    local back = json.decode(text)
-    if render(back.items) == render(items) then replay[st.name] = back end
-  end
-  if type(smi) == "table" and smi.dry_run then return end
-  not_input(study)
-  require("smi.file").write(M.replay_path(study), json.encode({ steps = replay }, { root = "replay" }) .. "\n", ("study '%s'"):format(study.name))
+  -- the part is kept only when it reads back exactly (rendering adds formatters to the tables it
+  -- renders, so each side renders its own copy); anything else leaves the step not reusable
+  local ok, why = pcall(function()
+    local o = { skip = true, skipped = {} }
+    local text = json.encode(pack({ result_hash = entry.result_hash, items = items, state = report_state(r) }), o)
+    local back = function() return unpack_floats(json.decode(text)) end
+    if #o.skipped == 0 and render(back().items) == render(items) then replay[st.name] = json.decode(text) end
+    if type(smi) == "table" and smi.dry_run then return end
+    not_input(study)
+    require("smi.file").write(M.replay_path(study), json.encode({ steps = replay }, { root = "replay" }) .. "\n", ("study '%s'"):format(study.name))
+  end)
+  -- reuse saves time; it never costs a result: a part that cannot be saved means the step runs next time
+  if not ok then study:_say("step %s will run again next time: its report part was not saved (%s)", st.name, tostring(why)) end
 end
 
 -- Why saved step st cannot be reused now (nil: it can). `kept` holds the steps reused before it.
@@ -184,7 +206,7 @@ function M.reuse(study, st, saved, live)
   study.live_hash[st.name] = s.result_hash
   local part = study.report and study.replay[st.name]
   if part then
-    part = json.decode(json.encode(part)) -- later steps change the report's tables: not the saved part
+    part = unpack_floats(json.decode(json.encode(part))) -- later steps change the report's tables: not the saved part
     local r = study.report
     for _, it in ipairs(part.items) do r.items[#r.items + 1] = it end
     for k, v in pairs(part.state.counts) do r.counts[k] = v end

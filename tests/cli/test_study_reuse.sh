@@ -45,6 +45,7 @@ s:step("summary", function(ctx)
   ran("summary")
   local lib = require "reflib"
   ctx.report:section("Summary"):text(("%s = %g"):format(lib.label, ctx.results.fit.fitted))
+  ctx.report:table{ caption = "Fit.", columns = { "Quantity", { title = "Value", digits = 3 } }, rows = { { "fitted", ctx.results.fit.fitted } } }
   return { line = ("%s = %g, draw %.6f"):format(lib.label, ctx.results.fit.fitted, ctx.results.data.draw) }
 end)
 print(s:run(opt).summary.line)
@@ -69,7 +70,8 @@ current="first run"; go "$SMI" reuse.lua; ran_is "data fit summary"; has_out "to
 first=$(head -1 .out)
 current="unchanged rerun"; go "$SMI" reuse.lua; ran_is ""; has_out "$first"; has_err "3 of 3 step(s) reused"
 # the report is the same page: the reused steps' sections are replayed
-current="report replayed"; if grep -q "Sum of the data: 6" study/out/report.html && grep -q "total = 6" study/out/report.html; then ok; else bad "report lacks the reused sections"; fi
+current="report replayed"; if grep -q "Sum of the data: 6" study/out/report.html && grep -q "total = 6" study/out/report.html \
+  && grep -q "Fit\." study/out/report.html; then ok; else bad "report lacks the reused sections"; fi
 
 current="a data value"; printf 'x\n1\n2\n4\n' > study/in/data.csv; go "$SMI" reuse.lua; ran_is "data fit summary"; has_out "total = 7,"
 has_err "step 'data' runs again: it read file"
