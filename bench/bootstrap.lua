@@ -15,13 +15,14 @@ local opt = options.parse(arg, {
 local function truth(a, b, c) return a * b + c, a + b * c * c, math.sin(a) + 0.3 * b end
 local g = smi.rng(11)
 local N = 60
-local X = smi.mat(N, 3)
+local rows = {}
 local Y1, Y2, Y3 = {}, {}, {}
 for i = 1, N do
   local a, b, c = 0.6 + 0.8 * g:uniform(1)[1], 1.2 + 1.6 * g:uniform(1)[1], 0.3 + 1.4 * g:uniform(1)[1]
-  X[i][1], X[i][2], X[i][3] = a, b, c
+  rows[i] = { a, b, c }
   Y1[i], Y2[i], Y3[i] = truth(a, b, c)
 end
+local X = smi.mat(rows)
 local model = { y1 = smi.kriging.fit(X, smi.vec(Y1)), y2 = smi.kriging.fit(X, smi.vec(Y2)), y3 = smi.kriging.fit(X, smi.vec(Y3)) }
 -- 12 specimens of a ~ N(1.0, 0.04), b ~ N(2.0, 0.08), c ~ N(0.9, 0.05)
 local d = { y1 = {}, y2 = {}, y3 = {} }

@@ -7,12 +7,11 @@
 #   --force    every step recomputed (solver runs come from the evaluation store)
 # Studies: the small Lua-model product of the tests (tests/lua/small_product.lua) in its --quick
 # and full modes, and the steering column --quick on column-fe.
-# usage: bash bench/run_rerun.sh [BUILD_DIR] [--no-column]
+# usage: bash bench/run_rerun.sh [BUILD_DIR] [all | small | column]   (default all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
-column=1
-[ "${2:-}" = "--no-column" ] && column=0
+which=${2:-all}
 cmake --build "$build" --target smi-lua column-fe > /dev/null
 smi=$(realpath "$build/smi-lua")
 fe=$(realpath "$build/column-fe")
@@ -64,11 +63,13 @@ series() {  # NAME LABEL FOLDER DATA COLUMN smi-lua args...
   rows+=("$(row "$n" "$label")")
 }
 rows=()
-cp "$work/small/in/data.csv" "$work/small/in/data.orig"
-series small-quick "small Lua-model study, --quick" "$work/small" "$work/small/in/data.csv" 1 --out out-quick study.lua --quick
-cp "$work/small/in/data.orig" "$work/small/in/data.csv"
-series small-full "small Lua-model study, full" "$work/small" "$work/small/in/data.csv" 1 --out out-full study.lua
-if [ "$column" = 1 ]; then
+if [ "$which" != column ]; then
+  cp "$work/small/in/data.csv" "$work/small/in/data.orig"
+  series small-quick "small Lua-model study, --quick" "$work/small" "$work/small/in/data.csv" 1 --out out-quick study.lua --quick
+  cp "$work/small/in/data.orig" "$work/small/in/data.csv"
+  series small-full "small Lua-model study, full" "$work/small" "$work/small/in/data.csv" 1 --out out-full study.lua
+fi
+if [ "$which" != small ]; then
   mkdir -p "$work/column"
   cp scripts/steering_column/data/tests.csv "$work/column/tests.csv"
   series column "steering column --quick (column-fe)" "$PWD" "$work/column/tests.csv" 4 \
@@ -86,5 +87,8 @@ fi
   echo "| study | first | unchanged rerun (of first) | one data value changed | --force |"
   echo "|---|---|---|---|---|"
   printf '%s\n' "${rows[@]}"
-} > "$out"
+} > "$out.new"
+# a partial run (small or column) keeps the other rows of the last file
+if [ "$which" != all ] && [ -f "$out" ]; then grep -E '^\| ' "$out" | grep -v -E '^\| (study|---)' | grep -v -F "$( [ "$which" = small ] && echo small || echo column)" >> "$out.new" || true; fi
+mv "$out.new" "$out"
 cat "$out"
