@@ -9,7 +9,8 @@
 --   result_hash = "sha256:..."                 -- its own saved result, hashed
 -- A saved step is current when its options equal this run's, its files hash the same now, and the
 -- steps it read are current with the results it read. Otherwise it is stale, and why is said.
--- Lua code (the script, modules) is not a step input: `smi-lua verify` checks it (docs/provenance.md).
+-- Lua code (the script, modules) is not a step input of a partial run: `smi-lua verify` checks it,
+-- and a whole run compares it before reusing a step (smi.study_reuse; docs/provenance.md).
 local json = require "smi.report.json"
 
 local M = {}
