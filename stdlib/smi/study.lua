@@ -45,6 +45,16 @@ read; a stale step's results are never returned as current.
 ]==]
 local M = {}
 
+-- An error in the user's data, options or declaration: one line, no traceback (smi.fail); with
+-- `trace`, an error in the user's code carried out of a step with its own traceback.
+local function fail(msg, trace)
+  if type(smi) == "table" and type(smi.fail) == "function" then smi.fail(msg, trace) end
+  error(msg, 0)
+end
+local function failure(e)
+  return type(smi) == "table" and type(smi.failure) == "function" and smi.failure(e) or nil
+end
+
 local Study = {}
 Study.__index = Study
 
@@ -161,14 +171,14 @@ function Study:load()
   local text = f:read("a")
   f:close()
   local ok, data = pcall(json.decode, text)
-  if not ok then error(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data), 0) end
+  if not ok then fail(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data)) end
   if type(data) ~= "table" or type(data.steps) ~= "table" then
-    error(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path), 0)
+    fail(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path))
   end
   local schema = M.SCHEMA
   if data.schema ~= nil and (math.type(data.schema) ~= "integer" or data.schema > schema) then
-    error(("study '%s': %s has schema %s, newer than this smi-lua reads (%d); run it with the smi-lua that wrote it, or run the whole study again"):format(
-      self.name, self.results_path, tostring(data.schema), schema), 0)
+    fail(("study '%s': %s has schema %s, newer than this smi-lua reads (%d); run it with the smi-lua that wrote it, or run the whole study again"):format(
+      self.name, self.results_path, tostring(data.schema), schema))
   end
   return data
 end
@@ -217,11 +227,13 @@ function Study:_selection(opts)
     if not self.by_name[name] then
       local names = {}
       for i, st in ipairs(self.steps) do names[i] = st.name end
-      error(("study '%s': %s names an unknown step '%s' (steps: %s)"):format(self.name, what, tostring(name), table.concat(names, ", ")), 0)
+      local near = type(smi) == "table" and type(smi._closest) == "function" and smi._closest(tostring(name), names) or {}
+      fail(("study '%s': --%s names an unknown step '%s'%s (steps: %s)"):format(self.name, what, tostring(name),
+        near[1] and (" (did you mean " .. near[1] .. "?)") or "", table.concat(names, ", ")))
     end
     return self.by_name[name]
   end
-  if opts.only ~= nil and opts.from ~= nil then error(("study '%s': give 'only' or 'from', not both"):format(self.name), 0) end
+  if opts.only ~= nil and opts.from ~= nil then fail(("study '%s': give --only or --from, not both"):format(self.name)) end
   if opts.only ~= nil then
     local list = type(opts.only) == "table" and opts.only or { opts.only }
     for _, n in ipairs(list) do selected[need(n, "only").name] = true end
@@ -321,8 +333,8 @@ local function results_view(study, selected, saved, live)
       if s and s.status == "ok" and s.result ~= nil then
         local why = study:_why_not_current(name, saved, study.live_hash)
         if why then
-          error(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
-            inputs.rerun_command(not study.old_schema and name or nil)), 2)
+          fail(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
+            inputs.rerun_command(not study.old_schema and name or nil)))
         end
         if study.reading then study.reading[name] = s.result_hash or study:_result_hash(name, s.result) end
         return s.result
@@ -330,7 +342,7 @@ local function results_view(study, selected, saved, live)
       local why = not study.by_name[name] and "there is no such step"
         or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
         or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
-      error(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why), 2)
+      fail(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why))
     end,
     __newindex = function() error("study: ctx.results is read-only; return a table from the step instead", 2) end,
   })
@@ -377,7 +389,9 @@ local function call_step(st, ctx)
   local t0, clock = now()
   local trace
   local ok, ret = xpcall(st.fn, function(e)
-    trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e)
+    -- a failure (bad data, options, declaration) is said in one line; an error in code keeps
+    -- where it happened
+    if not failure(e) then trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e) end
     return e
   end, ctx)
   local dt = now() - t0
@@ -401,7 +415,10 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   local saved_ok, save_err = pcall(self._save, self, saved)
   self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
   local also = saved_ok and "" or ("; and the failure was not recorded: " .. tostring(save_err))
-  error(("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also), 0)
+  if type(smi) == "table" and type(smi.progress_label) == "function" then smi.progress_label() end
+  local msg = ("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also)
+  -- an error in code goes on with the traceback of where it happened (not of this line)
+  fail(msg, not failure(ret) and trace and trace:gsub("^[^\n]*\n", "") or nil)
 end
 
 -- The hash of a step's saved result that later steps record when they read it: every key but the
@@ -427,6 +444,10 @@ end
 -- JSON can hold in results.json.
 function Study:_run_step(st, k, nsel, results, saved, live)
   self:_say("step %d/%d %s ...", k, nsel, st.name)
+  -- the progress lines of the step's work (calibration, solver runs) say whose they are
+  if type(smi) == "table" and type(smi.progress_label) == "function" then
+    smi.progress_label(("[%s] %s"):format(self.name, st.name))
+  end
   local ctx = step_context(self, st, results)
   local seq0 = inputs.mark()
   self.reading = {} -- the earlier steps' results this step reads (results_view notes them)
@@ -491,6 +512,7 @@ function Study:run(opts)
   opts = opts or {}
   if opts.quiet ~= nil then self.quiet = opts.quiet end
   if #self.steps == 0 then error(("study '%s': no steps; add some with study:step(name, fn)"):format(self.name), 2) end
+  self.console_warnings_from = type(smi) == "table" and type(smi.warnings) == "function" and #smi.warnings() or 0
   local selected = self:_selection(opts)
   -- one study per output folder at a time (the lock names the holder; it lasts until exit)
   if type(smi) == "table" and type(smi.lock_out) == "function" then smi.lock_out(self.out) end

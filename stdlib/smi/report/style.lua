@@ -42,6 +42,17 @@ nav.toc ol ol { padding-left: 18px; }
 .verdict .detail { color: var(--muted); font-size: 14px; margin-top: 2px; }
 .verdict .checks { margin: 4px 0 0; padding-left: 18px; font-size: 13.5px; }
 .verdict .governs { margin-top: 4px; font-size: 13.5px; }
+section.answer { border: 2px solid var(--accent); border-radius: 6px; padding: 12px 16px; margin: 0 0 18px; }
+section.answer h2 { margin: 0 0 8px; border: 0; font-size: 19px; }
+section.answer .conclusion { font-size: 16.5px; font-weight: 600; }
+section.answer ul { list-style: none; margin: 6px 0; padding: 0; }
+section.answer li { padding: 3px 0; }
+section.answer .sub, section.answer .settle { color: var(--muted); font-size: 13.5px; }
+section.answer .settle { display: block; margin-left: 18px; }
+ul.warnings { list-style: none; padding: 0; }
+ul.warnings li { padding: 5px 0; border-top: 1px solid #edf0f3; font-size: 14px; }
+ul.warnings .count { font-weight: 700; margin-right: 4px; }
+.callout.superseded { background: var(--info-bg); color: var(--muted); }
 .summary .counts { margin: 0 0 8px; font-size: 13.5px; color: var(--muted); }
 .summary .sub { color: var(--muted); font-size: 13px; }
 .badge.inconclusive { background: var(--warn-bg); color: var(--warn); border: 1px dashed var(--warn); }
