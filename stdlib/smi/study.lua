@@ -357,8 +357,6 @@ function Study:_fresh_report()
   ro.title = ro.title or self.name
   ro.out = ro.out or self.out
   self.report = report.new(ro)
-  -- the first section says what produced the numbers; its rows are written at the end
-  self.prov_section = require("smi.report.provenance").begin(self.report)
 end
 
 -- The ctx a step function receives.
@@ -541,7 +539,9 @@ function Study:run(opts)
   if partial then self:_mark_stale(selected, saved) end
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
   for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
+  if type(smi) == "table" and type(smi.progress_label) == "function" then smi.progress_label() end
   if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total, saved) end
+  self:_console_end()
 
   local out = {}
   for _, st in ipairs(self.steps) do
@@ -632,7 +632,6 @@ end
 -- (report-partial.html after a run of only some steps).
 function Study:_finish_report(partial, selected, total, saved)
   local r = self.report
-  self.prov_section:fill(self:_provenance(saved), { study = self.name, results = self.results_path })
   if partial then
     local names = {}
     for _, st in ipairs(self.steps) do if selected[st.name] then names[#names + 1] = st.name end end
@@ -647,6 +646,8 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   r:table{ caption = ("Steps of this run, %s in total; a step not run says why."):format(fmt.seconds(total)),
            columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
+  -- what produced the numbers comes last: every file and program with its hash
+  require("smi.report.provenance").begin(r):fill(self:_provenance(saved), { study = self.name, results = self.results_path })
   r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
   local p = provenance{ files = false }
   if p then
@@ -658,11 +659,11 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   -- a partial run must not overwrite the full report
   self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
-  self:_say("report: %s", self.report_path)
   -- the verdicts are the study's answer, not progress: printed on stdout even when quiet
   local words = require("smi.report.html").STATUS_TEXT
-  for _, it in ipairs(r.items) do
-    if it.kind == "verdict" then
+  local gone = r:_superseded()
+  for i, it in ipairs(r.items) do
+    if it.kind == "verdict" and not gone[i] then
       io.stdout:write(("%-7s %s%s\n"):format(words[it.status], it.name, it.detail and (": " .. it.detail) or ""))
       for _, c in ipairs(it.checks or {}) do
         io.stdout:write(("        %s: %s%s\n"):format(c.name, words[c.status]:lower(), c.detail and (" (" .. c.detail .. ")") or ""))
@@ -672,6 +673,31 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   local n, counted = r:tally()
   if n.pass + n.fail + n.warn + n.inconclusive + n.skip > 0 then io.stdout:write(counted, "\n") end
+end
+
+-- The end of a run on the console: the distinct warnings in full, grouped with their counts
+-- (on stderr, unless quiet: --quiet keeps them in the report and smi.warnings()), then, always,
+-- the files to open: results.json and the report (on stdout, piped or not).
+function Study:_console_end()
+  local groups
+  if self.report then
+    groups = self.report:warning_groups(true)
+  elseif type(smi) == "table" and type(smi.warnings) == "function" then
+    local entries, all = {}, smi.warnings()
+    for k = (self.console_warnings_from or 0) + 1, #all do entries[#entries + 1] = { text = all[k] } end
+    groups = require("smi.report.warnings").group(entries)
+  end
+  if groups and #groups > 0 and not self:_quiet() then
+    local total = 0
+    for _, g in ipairs(groups) do total = total + g.count end
+    io.stderr:write(("[%s] %d warning%s (%d distinct):\n"):format(self.name, total, total == 1 and "" or "s", #groups))
+    for _, line in ipairs(require("smi.report.warnings").lines(groups)) do io.stderr:write(line, "\n") end
+    io.stderr:flush()
+  end
+  if type(smi) == "table" and smi.dry_run then return end
+  io.stdout:write(("results: %s\n"):format(self.results_path))
+  if self.report_path then io.stdout:write(("report:  %s\n"):format(self.report_path)) end
+  io.stdout:flush()
 end
 
 doc.add[==[
