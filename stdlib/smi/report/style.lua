@@ -87,10 +87,10 @@ dl.prov { display: grid; grid-template-columns: max-content 1fr; gap: 4px 18px; 
 dl.prov dt { color: var(--muted); font-weight: 600; }
 dl.prov dd { margin: 0; font-family: "DejaVu Sans Mono", monospace; font-size: 12.5px; word-break: break-all; }
 footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line); color: var(--muted); font-size: 12px; }
-/* Printed: A4 or letter with 14 mm margins. Tables fit the page width (smaller type, cells wrap,
+/* Printed: A4 with 14 mm margins (smi-lua report --pdf). Tables fit the page width (smaller type, cells wrap,
    numbers too if they must), a figure or a verdict is never cut by a page break, headings stay
    with what follows, and long tables repeat their header on each page. */
-@page { margin: 14mm; }
+@page { size: A4; margin: 14mm; }
 @media print {
   html { background: #ffffff; }
   body { box-shadow: none; max-width: none; padding: 0; font-size: 11pt; min-height: 0; }
