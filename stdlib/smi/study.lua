@@ -718,7 +718,7 @@ function M.parse_args(argv)
   -- one parser (smi.options) over the one list of the steps' options (options.study_steps);
   -- everything else is kept in o.rest for the study's own parser
   local o, err = require("smi.options").check(argv, { rest = true, require("smi.options").study_steps })
-  if not o then error("study: " .. err, 0) end
+  if not o then fail("study: " .. err) end
   return o
 end
 
