@@ -5,7 +5,7 @@ return [[
         --warn: #8a5a00; --warn-bg: #fff4d6; --info: #3e4c59; --info-bg: #eef1f4; }
 * { box-sizing: border-box; }
 html { background: var(--bg); }
-body { margin: 0 auto; max-width: 1000px; padding: 0 28px 40px; background: #ffffff; color: var(--ink);
+body { margin: 0 auto; max-width: 1100px; padding: 0 28px 40px; background: #ffffff; color: var(--ink);
        font: 15px/1.55 "DejaVu Sans", "Liberation Sans", Helvetica, Arial, sans-serif;
        box-shadow: 0 0 0 1px var(--line); min-height: 100vh; }
 header.title-block { margin: 0 -28px 24px; padding: 28px 28px 20px; background: var(--accent); color: #ffffff; }
@@ -75,6 +75,12 @@ table.data td { border-bottom: 1px solid #e6eaee; padding: 4px 7px; }
 table.data tr:nth-child(even) td { background: #fafbfc; }
 table.data .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; overflow-wrap: normal; }
 table.data th.num { white-space: normal; }
+/* a table of many columns (a calibration's: bounds, starts, stages, intervals) is condensed on
+   screen too, so that it fits a 1280 px window without scrolling: smaller type, tighter cells,
+   headers that break inside words if they must */
+table.data.wide { font-size: 12px; }
+table.data.wide td, table.data.wide th { padding: 3px 4px; }
+table.data.wide th { overflow-wrap: break-word; }
 table.data th.num { text-align: right; }
 figure { margin: 16px 0 22px; }
 figure .chart { border: 1px solid var(--line); border-radius: 4px; padding: 6px; display: inline-block; max-width: 100%; background: #ffffff; }
