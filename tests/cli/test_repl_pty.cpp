@@ -140,29 +140,23 @@ void check_multiline_and_tables(Session& s) {
   CHECK(s.expect("vec(1000000)["));
 }
 
+// Runs `chunk`, stops it with Ctrl-C, then checks the session goes on: `probe` prints `want`.
+void interrupt_then(Session& s, const std::string& chunk, const std::string& probe, const std::string& want) {
+  s.type(chunk + "\n");
+  usleep(300 * 1000);
+  s.type("\x03");
+  CHECK(s.expect("interrupted!"));
+  s.type(probe + "\n");
+  CHECK(s.expect(want));
+}
+
 // Ctrl-C stops a running chunk (plain, under pcall, in a coroutine) and the session goes on.
 void check_interrupting_chunks(Session& s) {
-  // Ctrl-C stops a running chunk and the session goes on
-  s.type("while true do end\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("'still alive'\n");
-  CHECK(s.expect("still alive"));
+  interrupt_then(s, "while true do end", "'still alive'", "still alive");
   // ... even when the chunk swallows errors with pcall
-  s.type("while true do pcall(function() while true do end end) end\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("100 + 1\n");
-  CHECK(s.expect("101"));
+  interrupt_then(s, "while true do pcall(function() while true do end end) end", "100 + 1", "101");
   // ... and when the loop runs inside a coroutine
-  s.type("coroutine.wrap(function() while true do end end)()\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("100 + 2\n");
-  CHECK(s.expect("102"));
+  interrupt_then(s, "coroutine.wrap(function() while true do end end)()", "100 + 2", "102");
 }
 
 // Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk.
@@ -300,12 +294,7 @@ TEST_CASE("REPL: an error is one line; Ctrl-C says only what is true") {
     CHECK(s.expect("smi-lua: tests.csv: no column mode2_Hz"));
     s.type("'after the errors'\n");
     CHECK(s.expect("after the errors"));
-    s.type("while true do end\n");
-    usleep(300 * 1000);
-    s.type("\x03");
-    CHECK(s.expect("interrupted!"));
-    s.type("'after Ctrl-C'\n");
-    CHECK(s.expect("after Ctrl-C"));
+    interrupt_then(s, "while true do end", "'after Ctrl-C'", "after Ctrl-C");
     const std::string t = s.transcript();
     CHECK(t.find("stack traceback") == std::string::npos);  // one line each
     CHECK(t.find("evaluations.sqlite") == std::string::npos);  // no store was made: none is named
