@@ -40,8 +40,8 @@ int f_method(lua_State* L) {
 int f_index(lua_State* L) {
   // stack: [failure, key]
   if (lua_type(L, 2) != LUA_TSTRING) return 0;
-  lua_getglobal(L, "string");
-  if (!lua_istable(L, -1)) return 0;
+  lua_pushliteral(L, "");  // the string library, as strings reach it (whatever the globals hold)
+  if (luaL_getmetafield(L, -1, "__index") != LUA_TTABLE) return 0;
   lua_getfield(L, -1, lua_tostring(L, 2));
   if (!lua_isfunction(L, -1)) return 0;
   lua_pushcclosure(L, f_method, 1);
