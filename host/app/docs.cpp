@@ -93,8 +93,9 @@ error in the user's code), the failure carries that traceback, which is printed 
 returns: never (raises)
 errors: always: the failure
 example:
-  local ok, e = pcall(smi.fail, "tests.csv: no column 'mode2_Hz' (did you mean mode_2_Hz?)")
-  print(ok, smi.failure(e), e:find("mode2") ~= nil)
+  local msg = "tests.csv: no column 'mode2_Hz' (did you mean mode_2_Hz?); columns: mode_1_Hz, mode_2_Hz"
+  local ok, e = pcall(smi.fail, msg)
+  print(ok, smi.failure(e), e:find('mode2') ~= nil)
 
 @ smi.failure(e) -> message | nil
 The message of a failure raised by smi.fail (or by a smi check), nil for any other error value:
@@ -102,7 +103,9 @@ tells an error in the user's data or declaration from an error in code after a p
 returns: a string, or nil
 errors: none
 example:
-  print(smi.failure(select(2, pcall(smi.fail, "bad value"))), smi.failure("plain error"))
+  local _, e = pcall(smi.fail, 'bad value')
+  local _, plain = pcall(error, 'plain error')
+  print(smi.failure(e), smi.failure(plain))
 
 @ smi.progress_label([text]) -> nothing
 What the progress lines that follow belong to, written in front of each ("[beam] step 4/7
@@ -111,7 +114,7 @@ the step that runs.
 returns: nothing
 errors: none
 example:
-  smi.progress_label("[demo] step 1/1 fit")
+  smi.progress_label('[demo] fit')
   smi.progress_label()
   print("ok")
 
