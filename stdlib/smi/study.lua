@@ -416,7 +416,7 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   if type(smi) == "table" and type(smi.progress_label) == "function" then smi.progress_label() end
   local msg = ("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also)
   -- an error in code goes on with the traceback of where it happened (not of this line)
-  fail(msg, not failure(ret) and trace and trace:gsub("^[^\n]*\n", "") or nil)
+  fail(msg, not failure(ret) and trace and trace:match("stack traceback:.*$") or nil)
 end
 
 -- The hash of a step's saved result that later steps record when they read it: every key but the
