@@ -180,7 +180,16 @@ function M.help(spec)
   return table.concat(lines, "\n") .. "\n"
 end
 
---- The script as the user ran it (arg[0]), else the spec's name with ".lua".
+doc.add[==[
+@ smi.options.script_name(spec) -> string
+The script as the user ran it (arg[0], "scripts/frame.lua"), else the spec's name with ".lua": what
+--help and the option errors name, and what "{script}" in the spec's usage becomes.
+returns: a string
+errors: none
+example:
+  local options = require "smi.options"
+  print(options.script_name{name = "demo"} ~= "")
+]==]
 function M.script_name(spec)
   if type(arg) == "table" and type(arg[0]) == "string" and arg[0] ~= "" then return arg[0] end
   return (type(spec) == "table" and spec.name or "study") .. ".lua"

@@ -617,7 +617,7 @@ function Chart:render()
 end
 
 doc.add[==[
-@ smi.report.chart.before_after(opts) -> chart
+@ smi.report.svg.before_after(opts) -> chart
 The before/after figure of one response: the measured data, the initial model and the final
 (calibrated, revised) model as empirical CDFs on one axis, so that a reader sees at a glance
 what the study changed. The data are drawn solid in black, the initial model dashed in grey, the
@@ -635,8 +635,7 @@ options:
 returns: a chart (render it, or pass it to r:figure)
 errors: data, initial or final missing or not numbers
 example:
-  local chart = require "smi.report.chart"
-  local c = chart.before_after{title = "Mode 1", xlabel = "Hz", data = {29.6, 30.1, 30.4},
+  local c = require("smi.report").svg.before_after{title = "Mode 1", xlabel = "Hz", data = {29.6, 30.1, 30.4},
     initial = {27, 28, 29, 30, 31}, final = {29.5, 29.9, 30.2, 30.5}}
   print(#c.series, c:render():find("final model") ~= nil)
 ]==]
