@@ -43,6 +43,7 @@ M.host_options = {
   ["allow-read"] = "PATH", ["allow-write"] = "PATH", ["allow-exec"] = "PROG", ["allow-env"] = "NAME",
   lib = "DIR", ["stdlib-dir"] = "DIR", out = "DIR", seed = "N", ["max-memory"] = "MB", timeout = "SECONDS",
   store = "PATH", executor = "KIND", ["slurm-opt"] = "K=V", quiet = false, ["dry-run"] = false, detach = false,
+  pdf = false, traceback = false,
 }
 
 -- The refusal of smi-lua's own option given after the script.
