@@ -681,7 +681,7 @@ end
 function Study:_console_end()
   local groups
   if self.report then
-    groups = self.report:warning_groups(true)
+    groups = self.report:warning_groups()  -- superseded sections' too: each group names its sections
   elseif type(smi) == "table" and type(smi.warnings) == "function" then
     local entries, all = {}, smi.warnings()
     for k = (self.console_warnings_from or 0) + 1, #all do entries[#entries + 1] = { text = all[k] } end

@@ -89,7 +89,9 @@ has_err "did you mean smi-lua's own --allow-exec?"
 cat > warn_study.lua <<'LUA'
 local study = require "smi.study"
 -- --loud: print as on a terminal (the test's output is piped, which makes a run quiet)
-local s = study.new{name = "w", quiet = arg[1] == "--loud" and false or nil, report = {title = "W"}}
+local quiet
+if arg[1] == "--loud" then quiet = false end
+local s = study.new{name = "w", quiet = quiet, report = {title = "W"}}
 s:step("trials", function(ctx)
   for t = 1, 3 do
     ctx.report:section("Trial " .. t)
