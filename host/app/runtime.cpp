@@ -67,6 +67,11 @@ int msghandler(lua_State* L) {
     luaL_traceback(L, L, msg.c_str(), 1);
     return 1;
   }
+  if (lua::push_stdlib_failure(L, 1, 1)) {  // the stdlib's error(message, 0): a failure
+    if (!always) return 1;
+    luaL_traceback(L, L, lua_tostring(L, 1), 1);
+    return 1;
+  }
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
@@ -212,6 +217,8 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "fail");
   lua_pushcfunction(L, lua::l_failure);
   lua_setfield(L, -2, "failure");
+  lua_pushcfunction(L, lua::l_as_failure);
+  lua_setfield(L, -2, "_as_failure");
   lua_pushboolean(L, cfg.pdf);  // --pdf: a study prints its report to PDF too
   lua_setfield(L, -2, "pdf");
   lua_pushboolean(L, ctx.dry_run);  // a study neither saves results nor writes a report then

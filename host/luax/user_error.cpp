@@ -113,6 +113,33 @@ bool called_from_stdlib(lua_State* L, int level) {
   return in_dir;
 }
 
+bool push_stdlib_failure(lua_State* L, int idx, int level) {
+  if (lua_type(L, idx) != LUA_TSTRING) return false;
+  lua_Debug ar;
+  if (!lua_getstack(L, level, &ar) || !lua_getinfo(L, "Sn", &ar)) return false;
+  if (std::strcmp(ar.what, "C") != 0 || !ar.name || std::strcmp(ar.name, "error") != 0) return false;
+  if (!called_from_stdlib(L, level + 1)) return false;
+  const char* msg = lua_tostring(L, idx);
+  // "chunk:12: ..." (a position added by error's level): the name before the first ':' holds no
+  // newline, and digits then ':' follow it
+  const char* colon = std::strchr(msg, ':');
+  const char* nl = std::strchr(msg, '\n');
+  if (colon && (!nl || colon < nl)) {
+    const char* p = colon + 1;
+    while (*p >= '0' && *p <= '9') ++p;
+    if (p > colon + 1 && *p == ':') return false;
+  }
+  push_failure(L, msg);
+  return true;
+}
+
+int l_as_failure(lua_State* L) {
+  // level 0 is this function, 1 the Lua handler that calls it, 2 the function that raised
+  lua_settop(L, 1);
+  if (!push_stdlib_failure(L, 1, 2)) lua_settop(L, 1);
+  return 1;
+}
+
 int l_fail(lua_State* L) {
   std::size_t n = 0;
   const char* msg = luaL_tolstring(L, 1, &n);

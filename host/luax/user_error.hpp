@@ -30,6 +30,17 @@ bool called_from_stdlib(lua_State* L, int level = 1);
 /// "@stdlib/...".
 void set_stdlib_source(lua_State* L, const std::string& dir);
 
+/// Called by a message handler while the stack is as the error left it: when the error value at
+/// `idx` is a string raised by `error(message, 0)` in a stdlib chunk (the raising function, `level`
+/// frames up, is `error`, its caller a stdlib chunk, and the message carries no file:line), a
+/// failure with that message is pushed and true returned: the stdlib's own messages for the user.
+/// An error the stdlib raised with a position (error(msg, 2): the user's line) stays an error in code.
+bool push_stdlib_failure(lua_State* L, int idx, int level);
+
+/// smi._as_failure(e): inside an xpcall handler (smi.study's), e as a failure when the stdlib raised
+/// it with error(message, 0), else e unchanged.
+int l_as_failure(lua_State* L);
+
 /// smi.fail(message [, traceback]): raises a failure. Bound as smi.fail.
 int l_fail(lua_State* L);
 /// smi.failure(e) -> message | nil: the message of a failure, nil for any other value.

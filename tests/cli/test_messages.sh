@@ -45,6 +45,13 @@ has_err "attempt to index a nil value (field 'missing')"
 has_err "stack traceback"
 has_err "code_study.lua:3"
 
+# the stdlib's own error(message, 0) is a failure too: a header typo in the steering column's data
+sed '1s/mode2_hz/mode_2_hz/' "$SMI_SOURCE_DIR/scripts/steering_column/data/tests.csv" > typo.csv
+run stdlib_error 1 "$SMI" --allow-read . "$SMI_SOURCE_DIR/scripts/steering_column.lua" --data typo.csv --quick
+has_err "step 'data' failed: typo.csv: response 'mode2': no column 'mode2_hz'"
+lacks_err "stack traceback"
+[ "$(wc -l < "$WORK/.err")" = 1 ] && ok || bad "the failure is not one line"
+
 # a bound function called by the stdlib: a failure without the stdlib's file:line in front
 cat > refused.lua <<'LUA'
 local s = require("smi.study").new{name = "x", out = "/proc/no-such-place"}
