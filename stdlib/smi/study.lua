@@ -678,8 +678,9 @@ function Study:_finish_report(partial, selected, total, saved)
 end
 
 -- The end of a run on the console: the distinct warnings in full, grouped with their counts
--- (on stderr, unless quiet: --quiet keeps them in the report and smi.warnings()), then, always,
--- the files to open: results.json and the report (on stdout, piped or not).
+-- (on stderr, unless quiet: --quiet keeps them in the report and smi.warnings()), then the files
+-- to open, results.json and the report, on stdout, piped or not, --quiet or not (only a study
+-- made with quiet = true prints nothing).
 function Study:_console_end()
   local groups
   if self.report then
@@ -696,7 +697,8 @@ function Study:_console_end()
     for _, line in ipairs(require("smi.report.warnings").lines(groups)) do io.stderr:write(line, "\n") end
     io.stderr:flush()
   end
-  if type(smi) == "table" and smi.dry_run then return end
+  -- (a study its code made silent, quiet = true, prints nothing: a doc example, a test)
+  if (type(smi) == "table" and smi.dry_run) or self.quiet == true then return end
   io.stdout:write(("results: %s\n"):format(self.results_path))
   if self.report_path then io.stdout:write(("report:  %s\n"):format(self.report_path)) end
   io.stdout:flush()
