@@ -141,10 +141,10 @@ int l_as_failure(lua_State* L) {
 }
 
 int l_fail(lua_State* L) {
+  std::size_t tn = 0;
+  const char* tb = lua_type(L, 2) == LUA_TSTRING ? lua_tolstring(L, 2, &tn) : "";  // before tolstring pushes
   std::size_t n = 0;
   const char* msg = luaL_tolstring(L, 1, &n);
-  std::size_t tn = 0;
-  const char* tb = lua_type(L, 2) == LUA_TSTRING ? lua_tolstring(L, 2, &tn) : "";
   push_failure(L, std::string_view(msg, n), std::string_view(tb, tn));
   return lua_error(L);
 }

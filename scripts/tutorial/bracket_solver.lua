@@ -33,7 +33,7 @@ local tried, solver = {}, nil
 for _, program in ipairs(opt.solver and {opt.solver} or {"build/beam-solver", "build/smi-beam-solver", "smi-beam-solver", "beam-solver"}) do
   local ok, m = pcall(beam_model, program)
   if ok then solver = m break end
-  tried[#tried + 1] = ("  %s: %s"):format(program, tostring(m):gsub("^smi%.model%.command: ", ""))
+  tried[#tried + 1] = ("  %s: %s"):format(program, tostring(m):gsub("^.-smi%.model%.command: ", ""))
 end
 if not solver then
   smi.fail(("no beam solver found; tried:\n%s\nGive its path to both options: smi-lua --allow-exec PATH %s --solver PATH"):format(

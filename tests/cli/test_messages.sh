@@ -130,6 +130,13 @@ run study_end_quiet 0 "$SMI" --quiet warn_study.lua
 lacks_err "warnings"
 [ "$(tail -n 1 "$WORK/.out")" = "report:  smi-out/warn_study/report.html" ] && ok || bad "report is not the last line when quiet"
 
+# the installed tutorial: no solver where the source tree builds it nor on PATH: what it tried, and --solver
+run tutorial_solver 1 "$SMI" "$SMI_SOURCE_DIR/scripts/tutorial/bracket_solver.lua"
+has_err "smi-lua: no beam solver found; tried:"
+has_err "  smi-beam-solver: program 'smi-beam-solver' not found on PATH"
+has_err "--solver PATH"
+[ "$(grep -c 'no beam solver found' "$WORK/.err")" = 1 ] && ok || bad "the message is printed more than once"
+
 # --help lists every command
 run help 0 "$SMI" --help
 has_out "  doc [NAME]"
