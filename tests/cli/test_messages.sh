@@ -137,6 +137,18 @@ has_err "  smi-beam-solver: program 'smi-beam-solver' not found on PATH"
 has_err "--solver PATH"
 [ "$(grep -c 'no beam solver found' "$WORK/.err")" = 1 ] && ok || bad "the message is printed more than once"
 
+# doc --html renders the guides, escaping everything: no markup of the text reaches the page
+mkdir -p guides
+printf '# A guide <b>\n\nSee [the sandbox](sandbox.md) and [x](javascript:alert(1)).\n\n<script>alert(1)</script>\n\n| a | b |\n|---|---|\n| `x|y` | **z** |\n' > guides/intro.md
+run doc_guides 0 "$SMI" --quiet doc --html html --guides guides
+grep -q '<h1 id="a-guide-b">A guide &lt;b&gt;</h1>' html/guides/intro.html && ok || bad "heading escaped"
+grep -q '<a href="sandbox.html">the sandbox</a>' html/guides/intro.html && ok || bad "a guide's link to another guide"
+grep -q 'javascript' html/guides/intro.html && bad "a javascript: link kept" || ok
+grep -q '<script' html/guides/intro.html && bad "markup passed through" || ok
+grep -q '&lt;script&gt;alert(1)&lt;/script&gt;' html/guides/intro.html && ok || bad "text escaped"
+grep -q '<td><code>x|y</code></td><td><strong>z</strong></td>' html/guides/intro.html && ok || bad "table cells"
+grep -q 'href="guides/intro.html"' html/index.html && ok || bad "the index lists the guide"
+
 # --help lists every command
 run help 0 "$SMI" --help
 has_out "  doc [NAME]"
