@@ -148,7 +148,13 @@ local function toc_html(items, has_warnings)
   end
   local function link(it) return ('<a href="#%s">%s</a>'):format(esc(it.id), esc(it.title)) end
   local out = { '<nav class="toc"><h2>Contents</h2><ol>' }
+  local warned = false
   for _, e in ipairs(top) do
+    -- the warnings stand before the study's Provenance section, as on the page
+    if has_warnings and not warned and e.it.title == "Provenance" then
+      out[#out + 1] = '<li><a href="#warnings">Warnings</a></li>'
+      warned = true
+    end
     local subs = ""
     if #e.subs > 0 then
       local li = {}
@@ -157,7 +163,7 @@ local function toc_html(items, has_warnings)
     end
     out[#out + 1] = "<li>" .. link(e.it) .. subs .. "</li>"
   end
-  if has_warnings then out[#out + 1] = '<li><a href="#warnings">Warnings</a></li>' end
+  if has_warnings and not warned then out[#out + 1] = '<li><a href="#warnings">Warnings</a></li>' end
   out[#out + 1] = '<li><a href="#run-details">Run details</a></li></ol></nav>'
   return table.concat(out, "\n")
 end
