@@ -38,6 +38,7 @@ struct Table {
   std::vector<std::string> header;
   std::vector<Column> columns;
   std::vector<std::pair<long, long>> duplicates;  // (line of the first, line of the repeat)
+  std::vector<long> lines;  // the file line of each data row (messages name rows by it)
 };
 
 /// A cell as a number, with ',' as the decimal mark when decimal == ','.
@@ -54,9 +55,9 @@ std::vector<std::string> header_names(const csv::Record& head, const std::string
   std::vector<std::string> out;
   for (std::size_t j = 0; j < head.fields.size(); ++j) {
     std::string name = csv::trim(head.fields[j]);
-    if (name.empty()) throw Error(fmt::format("{}:{}: column {} has an empty name", file, head.line, j + 1));
+    if (name.empty()) throw Error(fmt::format("line {} of {}: column {} has an empty name", head.line, file, j + 1));
     for (const auto& h : out)
-      if (h == name) throw Error(fmt::format("{}:{}: column name '{}' appears twice", file, head.line, name));
+      if (h == name) throw Error(fmt::format("line {} of {}: column name '{}' appears twice", head.line, file, name));
     out.push_back(std::move(name));
   }
   return out;
@@ -72,7 +73,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   // spreadsheet's "CSV" in a locale with decimal commas): say what the file uses.
   const std::string hint = csv::sniff(raw, sep);
   if (recs[0].fields.size() == 1 && !hint.empty())
-    throw Error(fmt::format("{}:{}: {} (the header '{}' reads as one column name)", file, recs[0].line, hint,
+    throw Error(fmt::format("line {} of {}: {} (the header '{}' reads as one column name)", recs[0].line, file, hint,
                             csv::trim(recs[0].fields[0]).substr(0, 60)));  // literal: the excerpt a message quotes
   Table t;
   t.header = header_names(recs[0], file);
@@ -85,7 +86,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   }
   for (std::size_t r = 1; r < recs.size(); ++r)
     if (recs[r].fields.size() != ncol)
-      throw Error(fmt::format("{}:{}: {} fields, but the header has {} columns{}", file, recs[r].line,
+      throw Error(fmt::format("line {} of {}: {} fields, but the header has {} columns{}", recs[r].line, file,
                               recs[r].fields.size(), ncol, hint.empty() ? "" : "; " + hint));
   for (std::size_t j = 0; j < ncol; ++j) {
     // A column is numeric when its first non-empty cell is a number (and it is not listed in
@@ -97,10 +98,10 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
         double v;
         numeric = cell_number(recs[r].fields[j], decimal, v);
         if (!numeric && decimal != ',' && csv::decimal_comma(recs[r].fields[j]))
-          throw Error(fmt::format("{}:{}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
+          throw Error(fmt::format("line {} of {}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
                                   "or save the file with '.' decimals (or read the column as text with "
                                   "{{strings = {{\"{}\"}}}})",
-                                  file, recs[r].line, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
+                                  recs[r].line, file, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
         break;
       }
     if (numeric) {
@@ -110,13 +111,13 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
         double v = 0;
         if (!cell_number(recs[r].fields[j], decimal, v)) {
           if (decimal != ',' && csv::decimal_comma(recs[r].fields[j]))
-            throw Error(fmt::format("{}:{}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
+            throw Error(fmt::format("line {} of {}: column {} ('{}'): '{}' is written with a decimal comma: pass decimal = ',' "
                                     "or save the file with '.' decimals",
-                                    file, recs[r].line, j + 1, t.header[j], recs[r].fields[j]));
+                                    recs[r].line, file, j + 1, t.header[j], recs[r].fields[j]));
           throw Error(fmt::format(
-              "{}:{}: column {} ('{}'): bad number '{}' (the column holds numbers above; fix the cell, or "
+              "line {} of {}: column {} ('{}'): bad number '{}' (the column holds numbers above; fix the cell, or "
               "read the column as text with {{strings = {{\"{}\"}}}})",
-              file, recs[r].line, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
+              recs[r].line, file, j + 1, t.header[j], recs[r].fields[j], t.header[j]));
         }
         col.push_back(v);
       }
@@ -130,6 +131,7 @@ Table parse_table(const std::string& raw, char sep, char decimal, const std::str
   // Rows entered twice weigh double in every fit and every validation: say so (not an error,
   // repeated measurements can be real).
   std::map<std::vector<std::string>, long> first_line;
+  for (std::size_t r = 1; r < recs.size(); ++r) t.lines.push_back(recs[r].line);
   for (std::size_t r = 1; r < recs.size(); ++r) {
     std::vector<std::string> key;
     for (const auto& f : recs[r].fields) key.push_back(csv::trim(f));
@@ -186,6 +188,12 @@ int csv_read(lua_State* L) {
       if (k < 5) lines += fmt::format("{}line {} repeats line {}", k ? ", " : "", t.duplicates[k].second, t.duplicates[k].first);
     }
     lua_setfield(L, -3, "duplicates");
+    lua_createtable(L, static_cast<int>(t.lines.size()), 0);  // notes.lines[i]: the file line of data row i
+    for (std::size_t k = 0; k < t.lines.size(); ++k) {
+      lua_pushinteger(L, t.lines[k]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+    }
+    lua_setfield(L, -3, "lines");
     if (!t.duplicates.empty()) {
       const std::string w = fmt::format(
           "{}: {} duplicated data row{} ({}{}); a row entered twice counts twice in every fit and validation: "

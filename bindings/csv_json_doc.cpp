@@ -11,14 +11,16 @@ DocText doc_csv_json() {
 @ module smi.csv
 CSV files as columns by name: smi.csv.read and smi.csv.write (RFC 4180 quoting).
 
-@ smi.csv.read(path [, opts]) -> columns, header
+@ smi.csv.read(path [, opts]) -> columns, header, notes
 Reads a CSV file with a header row. A column whose every cell is a number becomes a vec; any
 other column a table of strings. Quoted fields may hold the separator, "" and newlines.
 options:
 ${csv_read}
-returns: columns (a table {name = vec or {strings}}) and header (the names in file order)
+returns: columns (a table {name = vec or {strings}}), header (the names in file order) and notes
+  {warnings = {texts}, duplicates = {{first line, repeated line}, ...}, lines = {the file line of
+  each data row}}: a message about data row i names it as "line notes.lines[i] of FILE"
 errors: the sandbox refuses the path (--allow-read); the file cannot be opened; a ragged row or a
-  bad number, named by file, line and column; an unknown option; a file that uses ';' or a tab
+  bad number, named by line, file and column ("line 3 of bad.csv: column 2 ('y'): bad number 'abc'"); an unknown option; a file that uses ';' or a tab
   between fields, or decimal commas, says so ("the file uses ';' between fields: pass sep = ';'
   or save as CSV")
 example:

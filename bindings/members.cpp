@@ -60,10 +60,8 @@ int member_index(lua_State* L) {
       msg += " (help(" + prefix + ") lists its members)";
     }
   }
-  luaL_where(L, 1);
-  lua_pushstring(L, msg.c_str());
-  lua_concat(L, 2);
-  return lua_error(L);
+  // the user's file:line in front, or, asked by the stdlib, a failure (no internal path)
+  lua::raise_from_binding(L, msg.c_str());
 }
 
 /// Sets the suggesting __index on the table at the top of the stack (named `name`) and on its

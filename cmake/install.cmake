@@ -25,11 +25,13 @@ if(SMI_BUILD_DOCS)
   # Both follow the built program: a new option or reference entry appears in them on the next
   # build. The HTML reference runs every example (a few seconds); its outputs stay in the build.
   set(_html ${CMAKE_BINARY_DIR}/doc/html)
+  file(GLOB _guides CONFIGURE_DEPENDS ${SMI_SOURCE_DIR}/docs/*.md)  # rendered into html/guides/
   add_custom_command(
     OUTPUT ${_html}/index.html
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${_html}
-    COMMAND $<TARGET_FILE:smi-lua> --quiet doc --html ${_html} --out ${CMAKE_BINARY_DIR}/doc/example-out > /dev/null
-    DEPENDS smi-lua
+    COMMAND $<TARGET_FILE:smi-lua> --quiet doc --html ${_html} --guides ${SMI_SOURCE_DIR}/docs
+            --out ${CMAKE_BINARY_DIR}/doc/example-out > /dev/null
+    DEPENDS smi-lua ${_guides}
     WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
     COMMENT "Writing the HTML reference (smi-lua doc --html)")
   add_custom_command(

@@ -468,11 +468,11 @@ namespace {
 // A progress line on the terminal (none when quiet or piped), redrawn at most ten times a second.
 se::ProgressFn terminal_progress(const Model& m, const RunContext& ctx) {
   if (!ctx.progress.live) return {};
-  return [&m, shown_at = -1.0](const se::Progress& p, bool final) mutable {
+  return [&m, prefix = ctx.progress.prefix(), shown_at = -1.0](const se::Progress& p, bool final) mutable {
     const double now = se::monotonic_seconds();
     if (!final && now - shown_at < 0.1) return;  // literal: a terminal line ten times a second is plenty
     shown_at = now;
-    se::show_progress(stderr, se::format_progress(m.name, p), final);
+    se::show_progress(stderr, prefix + se::format_progress(m.name, p), final);
   };
 }
 

@@ -28,7 +28,9 @@ std::string format_progress_row(const smi::improve::ProgressRow& r) {
 
 smi::improve::ProgressLine terminal_progress_line(lua_State* L, bool wanted) {
   if (!wanted || !lua::run_context(L).progress.live) return {};
-  return [](const smi::improve::ProgressRow& r) { smi::eval::show_progress(stderr, format_progress_row(r), r.final); };
+  return [prefix = lua::run_context(L).progress.prefix()](const smi::improve::ProgressRow& r) {
+    smi::eval::show_progress(stderr, prefix + format_progress_row(r), r.final);
+  };
 }
 
 }  // namespace smi::bind::improve

@@ -143,13 +143,13 @@ std::function<void(double)> mc_progress(lua_State* L, int n, std::int64_t replic
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last{};
   };
   auto line = std::make_shared<Line>();
-  return [line, n, replications](double done) {
+  return [line, n, replications, prefix = lua::run_context(L).progress.prefix()](double done) {
     std::lock_guard<std::mutex> lock(line->mu);
     const auto now = std::chrono::steady_clock::now();
     if (done < 1.0 && now - line->last < std::chrono::milliseconds(100)) return;  // literal: progress line refresh (ms) and percent
     line->last = now;
     const double elapsed = std::chrono::duration<double>(now - line->start).count();
-    smi::eval::show_progress(stderr,
+    smi::eval::show_progress(stderr, prefix +
                              fmt::format("u-pooling H0 Monte Carlo, n = {}: {} sets, {:.0f} %, ETA {}", n, replications,
                                          100.0 * done, smi::eval::format_duration(elapsed * (1.0 - done) / done)),  // literal: percent
                              done >= 1.0);

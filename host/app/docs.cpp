@@ -19,7 +19,8 @@ const char* const kHostDoc = R"(
 The smi-lua runtime: every kernel is a field of this table (help() lists them).
 Values set by the command line: smi.seed (--seed, default ${seed}), smi.quiet (--quiet, or
 output not a terminal), smi.out_dir (--out, default smi-out/<script>), smi.script_dir (the
-script's folder), smi.version (the program's version).
+script's folder), smi.version (the program's version), smi.dry_run (--dry-run), smi.pdf (--pdf:
+a study also prints its report to PDF).
 
 @ smi.out([name]) -> path
 A path in the run's output folder (--out, default smi-out/<script>/), which is created on
@@ -79,6 +80,43 @@ errors: none
 example:
   for _, w in ipairs(smi.warnings()) do print(w) end
   print(#smi.warnings() >= 0)
+
+@ smi.fail(message [, traceback]) -> never returns
+Raises a failure: an error in the user's data, options or declaration (a missing column, a bad
+option value, an unknown distribution family), as opposed to an error in code. smi-lua prints a
+failure as one line, "smi-lua: <message>", with no Lua traceback (--traceback adds it); an error
+in code keeps its traceback. The message names the culprit (file, line, field, value) and the
+fix. The error value is a table whose tostring is the message; string methods (e:find, e:match)
+and `..` act on the message, and smi.failure(e) returns it. Every check of smi's own raises one,
+and so does a smi function called by the stdlib. With a traceback (a step of smi.study catching an
+error in the user's code), the failure carries that traceback, which is printed under it.
+returns: never (raises)
+errors: always: the failure
+example:
+  local msg = "tests.csv: no column 'mode2_Hz' (did you mean mode_2_Hz?); columns: mode_1_Hz, mode_2_Hz"
+  local ok, e = pcall(smi.fail, msg)
+  print(ok, smi.failure(e), e:find('mode2') ~= nil)
+
+@ smi.failure(e) -> message | nil
+The message of a failure raised by smi.fail (or by a smi check), nil for any other error value:
+tells an error in the user's data or declaration from an error in code after a pcall.
+returns: a string, or nil
+errors: none
+example:
+  local _, e = pcall(smi.fail, 'bad value')
+  local _, plain = pcall(error, 'plain error')
+  print(smi.failure(e), smi.failure(plain))
+
+@ smi.progress_label([text]) -> nothing
+What the progress lines that follow belong to, written in front of each ("[beam] step 4/7
+calibrate: calibration: start 2/4, 310 evaluations"); no text clears it. smi.study sets it to
+the step that runs.
+returns: nothing
+errors: none
+example:
+  smi.progress_label('[demo] fit')
+  smi.progress_label()
+  print("ok")
 
 @ smi.provenance([opts]) -> table
 What this run's numbers depend on so far: every file it read (Lua modules, dofile/loadfile

@@ -12,6 +12,7 @@
 #include "luax/luax.hpp"
 #include "luax/policy.hpp"
 #include "luax/run_context.hpp"
+#include "luax/user_error.hpp"
 #include "platform/core/atomic_file.hpp"
 #include "platform/core/cancel.hpp"
 #include "platform/core/printable.hpp"
@@ -46,16 +47,41 @@ const char* removed_hint(const char* msg) {
   return nullptr;
 }
 
-/// Message handler of every chunk: message plus traceback. An os.exit request passes through
-/// untouched; a non-string error is described; a call of a removed function says why.
+/// Message handler of every chunk (upvalue: the Runtime). An os.exit request passes through
+/// untouched. A failure (an error in the user's data, options or declaration: luax/user_error)
+/// passes through too and prints as one line; --traceback turns it into its message plus the
+/// traceback. An error in code gets the traceback (in the REPL, one line unless --traceback); a
+/// non-string error is described; a call of a removed function says why.
 int msghandler(lua_State* L) {
   if (lua_touserdata(L, 1) == lua::exit_sentinel()) return 1;
+  const auto* rt = static_cast<const Runtime*>(lua_touserdata(L, lua_upvalueindex(1)));
+  const bool always = rt->config().traceback;
+  if (lua::is_failure(L, 1)) {
+    if (!always) return 1;
+    const std::string msg = lua::failure_message(L, 1);
+    const std::string tb = lua::failure_traceback(L, 1);
+    if (!tb.empty()) {
+      lua_pushfstring(L, "%s\n%s", msg.c_str(), tb.c_str());
+      return 1;
+    }
+    luaL_traceback(L, L, msg.c_str(), 1);
+    return 1;
+  }
+  if (lua::push_stdlib_failure(L, 1, 1)) {  // the stdlib's error(message, 0): a failure
+    if (!always) return 1;
+    luaL_traceback(L, L, lua_tostring(L, 1), 1);
+    return 1;
+  }
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
     msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
   } else if (const char* hint = removed_hint(msg)) {
     msg = lua_pushfstring(L, "%s\n(%s)", msg, hint);
+  }
+  if (rt->one_line_errors() && !always) {
+    lua_pushstring(L, msg);
+    return 1;
   }
   luaL_traceback(L, L, msg, 1);
   return 1;
@@ -139,6 +165,14 @@ int smi_lock_out(lua_State* L) {
   return 0;
 }
 
+/// smi.progress_label([text]): what the progress lines that follow belong to ("[beam] step 2/5
+/// calibrate"), written in front of each; nil clears it. Stack: [text] -> [].
+int smi_progress_label(lua_State* L) {
+  const char* text = luaL_optstring(L, 1, "");
+  lua::run_context(L).progress.label = text;
+  return 0;
+}
+
 /// smi.warnings(): the run's warnings so far ("<function>: <text>", in order), the ones printed on
 /// a terminal and the ones --quiet kept off stderr alike. Stack: [] -> [list].
 int smi_warnings(lua_State* L) {
@@ -177,6 +211,16 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "lock_out");
   lua_pushcfunction(L, smi_warnings);
   lua_setfield(L, -2, "warnings");
+  lua_pushcfunction(L, smi_progress_label);
+  lua_setfield(L, -2, "progress_label");
+  lua_pushcfunction(L, lua::l_fail);  // smi.fail(message): an error in the user's data (luax/user_error)
+  lua_setfield(L, -2, "fail");
+  lua_pushcfunction(L, lua::l_failure);
+  lua_setfield(L, -2, "failure");
+  lua_pushcfunction(L, lua::l_as_failure);
+  lua_setfield(L, -2, "_as_failure");
+  lua_pushboolean(L, cfg.pdf);  // --pdf: a study prints its report to PDF too
+  lua_setfield(L, -2, "pdf");
   lua_pushboolean(L, ctx.dry_run);  // a study neither saves results nor writes a report then
   lua_setfield(L, -2, "dry_run");
   lua_pushstring(L, host_version());
@@ -324,6 +368,7 @@ Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings
     throw std::runtime_error("cannot set up the Lua state: " + msg);
   }
   install_searchers(L_, &modules_);
+  if (!modules_.stdlib_dir.empty()) lua::set_stdlib_source(L_, modules_.stdlib_dir.string());
   install_libraries(L_, &libs_);
   if (cfg_.sandbox) {
     // Last: the globals become a table built from the allow-list (sandbox/sandbox_environment.cpp).
@@ -367,7 +412,8 @@ void Runtime::set_arg(int argc, char** argv, int script_index) {
 
 int Runtime::docall(int nargs, int nresults) {
   const int base = lua_gettop(L_) - nargs;  // the function
-  lua_pushcfunction(L_, msghandler);
+  lua_pushlightuserdata(L_, this);
+  lua_pushcclosure(L_, msghandler, 1);
   lua_insert(L_, base);
   begin_chunk(L_);
   catch_sigint(L_);
@@ -388,8 +434,14 @@ int Runtime::report(int status) {
     return token.detail();
   }
   char buf[256];
-  const char* msg = lua_tostring(L_, -1);
-  if (status < 0) {
+  const bool failure = lua::is_failure(L_, -1);
+  if (failure) {  // one line (and the traceback of the user's code it carries)
+    const std::string m = lua::failure_message(L_, -1), tb = lua::failure_traceback(L_, -1);
+    std::fprintf(stderr, "smi-lua: %s\n", printable(m).c_str());
+    if (!tb.empty() && !one_line_) std::fprintf(stderr, "%s\n", printable(tb).c_str());
+  }
+  const char* msg = failure ? nullptr : lua_tostring(L_, -1);
+  if (!failure && status < 0) {
     // Lua's C++ build turns a foreign C++ exception that left a bound function into status -1
     // with whatever value was on top of the stack as the "message" (it printed a bare number).
     std::fprintf(stderr,
@@ -399,7 +451,9 @@ int Runtime::report(int status) {
     lua_pop(L_, 1);
     return 1;
   }
-  if (token.raised() == cancel::Reason::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
+  if (failure) {
+    // printed above
+  } else if (token.raised() == cancel::Reason::memory && !(msg && std::strstr(msg, "memory limit exceeded"))) {
     // "not enough memory" comes from the allocator refusing: say which limit and how to raise it
     std::fprintf(stderr, "smi-lua: %s\n", abort_message(token, buf, sizeof buf));
     if (msg && std::strcmp(msg, "not enough memory") != 0) std::fprintf(stderr, "%s\n", printable(msg).c_str());
@@ -410,12 +464,21 @@ int Runtime::report(int status) {
   lua_pop(L_, 1);
   if (token.raised() == cancel::Reason::signal && token.detail() > 0) {
     const int sig = token.detail();
-    // Stopped by a signal: say what survives and how to go on; exit 128 + signal, as a shell does.
-    const std::string store = (policy_.out_dir / "evaluations.sqlite").string();  // the local store of the runs
-    std::fprintf(stderr,
-                 "smi-lua: stopped by %s. Kept: every finished solver run (in %s) and the study steps that "
-                 "finished (a study keeps them in %s). To resume, run the same command again: stored runs are reused, not rerun.\n",
-                 signal_name(sig), store.c_str(), (policy_.out_dir / "results.json").string().c_str());
+    // Stopped by a signal: say what survives (only what exists) and how to go on; exit 128 +
+    // signal, as a shell does.
+    std::error_code ec;
+    const fs::path store = policy_.out_dir / "evaluations.sqlite";  // the local store of the runs
+    const fs::path results = policy_.out_dir / "results.json";
+    const bool has_store = fs::exists(store, ec), has_results = fs::exists(results, ec);
+    std::string kept;
+    if (has_store) kept += "every finished solver run (in " + store.string() + ")";
+    if (has_results) kept += std::string(has_store ? " and " : "") + "the study steps that finished (in " + results.string() + ")";
+    if (kept.empty()) {
+      std::fprintf(stderr, "smi-lua: stopped by %s.\n", signal_name(sig));
+    } else {
+      std::fprintf(stderr, "smi-lua: stopped by %s. Kept: %s. To resume, %s again: stored runs are reused, not rerun.\n",
+                   signal_name(sig), kept.c_str(), one_line_ ? "enter the same line" : "run the same command");
+    }
     std::fflush(stderr);
     return 128 + sig;
   }

@@ -36,6 +36,8 @@ struct Config {
   std::string executor;               // --executor ("" = local)
   std::vector<std::string> slurm_opts;  // --slurm-opt KEY=VALUE, in order
   bool detach = false;                // --detach
+  bool traceback = false;             // --traceback: a Lua traceback under failures too
+  bool pdf = false;                   // --pdf: a study also prints its report to PDF
   double timeout_s = 0;               // --timeout; 0 = none
   std::size_t max_memory_mb = 0;      // --max-memory; 0 = none
   bool sandbox = true;                // false only in tests of the runtime itself
@@ -81,6 +83,9 @@ class Runtime {
   /// Prints the error at the top of the stack (pops it) unless it is an os.exit request;
   /// returns the exit status for `status`.
   int report(int status);
+  /// The REPL's errors: one line, without a traceback (--traceback brings it back).
+  void set_one_line_errors(bool on) { one_line_ = on; }
+  bool one_line_errors() const { return one_line_; }
   /// True once os.exit was called; the host must stop running chunks.
   bool exit_requested() const { return context_.cancel->raised() == cancel::Reason::exit; }
 
@@ -96,6 +101,7 @@ class Runtime {
   vm::Watchdog watchdog_{cancel::process_token()};  // ends a run stuck in C code past --timeout or Ctrl-C
   vm::ModuleSearch modules_;
   lua_State* L_;
+  bool one_line_ = false;  // set_one_line_errors
   vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
   RunRecord record_;  // what the run read and ran: smi.provenance() (issue 24)
 

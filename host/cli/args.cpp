@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
+#include "platform/core/closest.hpp"
 #include "platform/core/defaults.hpp"
 
 namespace smi::cli {
@@ -15,6 +17,20 @@ namespace {
 const char* const kValued[] = {"--allow-read", "--allow-write", "--allow-exec", "--allow-env", "--lib",
                                "--out",        "--seed",        "--max-memory", "--timeout",   "--store",
                                "--stdlib-dir", "--executor",    "--slurm-opt"};
+
+/// Options that take no value, for the "did you mean" of an unrecognized one.
+const char* const kFlags[] = {"--version", "--help",   "--quiet",  "--dry-run",
+                              "--detach",  "--traceback", "--pdf"};
+
+/// "unrecognized option '--alow-exec' (did you mean --allow-exec?)".
+std::string unrecognized(const std::string& s) {
+  const std::string name = s.substr(0, s.find('='));
+  std::vector<std::string> names;
+  for (const char* k : kValued) names.emplace_back(k);
+  for (const char* k : kFlags) names.emplace_back(k);
+  const std::vector<std::string> near = closest(name, names, 1);
+  return "unrecognized option '" + s + "'" + (near.empty() ? "" : " (did you mean " + near.front() + "?)");
+}
 
 bool parse_u64(const std::string& s, std::uint64_t& out) {
   if (s.empty() || s[0] == '-') return false;
@@ -99,6 +115,10 @@ Args parse(int argc, char** argv) {
       a.cfg.dry_run = true;
     } else if (s == "--detach") {
       a.cfg.detach = true;
+    } else if (s == "--traceback") {
+      a.cfg.traceback = true;
+    } else if (s == "--pdf") {
+      a.cfg.pdf = true;
     } else if (s.rfind("-e", 0) == 0 || s.rfind("-l", 0) == 0) {
       // -e chunk, -echunk, -l mod, -lmod (as lua.c)
       std::string v = s.substr(2);
@@ -116,7 +136,7 @@ Args parse(int argc, char** argv) {
       bool known = false;
       for (const char* k : kValued) known = known || name == k;
       if (!known) {
-        a.error = "unrecognized option '" + s + "'";
+        a.error = unrecognized(s);
         return a;
       }
       std::string v;
@@ -132,7 +152,7 @@ Args parse(int argc, char** argv) {
       a.error = apply(a, name, v);
       if (!a.error.empty()) return a;
     } else {
-      a.error = "unrecognized option '" + s + "'";
+      a.error = unrecognized(s);
       return a;
     }
   }
@@ -203,6 +223,9 @@ Run:
   --store PATH        evaluation store (database of solver runs) to use
   --dry-run           count the solver runs a study would launch; launch none (with
                       --executor slurm: print the job script, the sbatch lines, the cost plan)
+  --pdf               a study also prints its report.html to report.pdf (headless Chromium)
+  --traceback         print the Lua traceback under an error in the data, options or
+                      declaration too (errors in the script's own code always have one)
 
 Cluster (solver runs of smi.model.command / smi.model.batch):
   --executor KIND     where solver runs execute: local (default) or slurm (job arrays through
@@ -218,6 +241,9 @@ Cluster (solver runs of smi.model.command / smi.model.batch):
   -h, --help          print this help and exit
 
 Commands (sharing libraries; options such as --lib go before or after them):
+  doc [NAME]          the reference of a function or module (smi-lua doc smi.kde); doc --html
+                      DIR writes the reference and the guides as HTML pages
+  report --pdf HTML   print a report.html to PDF beside it (headless Chromium)
   libs                the libraries a study would see: name, version, git commit, path
   libs add SRC[@REF]  install a library (git URL, folder or .tar.gz; REF a tag, branch or
                       commit) and what it requires into ./smi-libs (--into DIR); records
@@ -235,8 +261,9 @@ Commands (sharing libraries; options such as --lib go before or after them):
                       difference, 2 not a results file (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
-Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
-stderr), 2 usage error; os.exit(n) exits with n.
+Exit status: 0 success, 1 error (an error in the data, options or declaration: one line
+naming the culprit; an error in the script's code: its message with file:line and a Lua
+traceback), 2 usage error; os.exit(n) exits with n.
 )");
   return text.c_str();
 }

@@ -6,7 +6,7 @@
 
 namespace smi::cli {
 
-bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify" || w == "doc"; }
+bool is_command(const std::string& w) { return w == "libs" || w == "new-lib" || w == "test" || w == "verify" || w == "doc" || w == "report"; }
 
 vm::LibrarySet current_libraries(const Args& a) {
   const vm::ProjectLibraries project = vm::project_libraries(std::filesystem::current_path());
@@ -50,7 +50,7 @@ int run_command(const Args& first, int argc, char** argv) {
       for (++i; i < argc; ++i) pos.push_back(argv[i]);
       break;
     }
-    if (word == "verify" && s == "--json") {  // verify's own option
+    if ((word == "verify" && s == "--json") || (word == "report" && s == "--pdf")) {  // the command's own option
       pos.push_back(s);
     } else if (s.size() > 1 && s[0] == '-') {
       char* probe[] = {argv[0], const_cast<char*>(s.c_str()), nullptr};
@@ -78,6 +78,7 @@ int run_command(const Args& first, int argc, char** argv) {
     if (word == "libs") return cmd_libs(a, pos);
     if (word == "new-lib") return cmd_new_lib(a, pos);
     if (word == "test") return cmd_test(a, pos, argv[0]);
+    if (word == "report") return cmd_report(a, pos);
     return cmd_verify(a, pos);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "smi-lua %s: %s\n", word.c_str(), e.what());

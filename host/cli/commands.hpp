@@ -10,6 +10,7 @@
 //   smi-lua verify RESULTS.json  does everything a study recorded (files, programs, libraries,
 //                                build) still hash the same? (--json for tools)
 //   smi-lua doc [NAME]           the reference (help() text); doc --html DIR writes it as pages
+//   smi-lua report --pdf HTML    prints a report.html to PDF beside it (headless Chromium)
 // Options such as --lib, --allow-read and --seed may come before or after the command word.
 #include <string>
 #include <vector>
@@ -36,6 +37,12 @@ int cmd_new_lib(const Args& a, const std::vector<std::string>& args);
 int cmd_test(const Args& a, const std::vector<std::string>& args, const char* argv0);
 int cmd_verify(const Args& a, const std::vector<std::string>& args);
 int cmd_doc(const Args& first, int argc, char** argv);
+int cmd_report(const Args& a, const std::vector<std::string>& args);
+
+/// Prints `html` to a PDF of the same name (report.html -> report.pdf) through headless
+/// Chromium (commands_report.cpp); says where it went, or why not and how to get it. Returns 0
+/// when written, 1 when not.
+int print_report_pdf(const std::string& html);
 
 /// The library set the options and environment describe (SMI_PATH unless -E).
 vm::LibrarySet current_libraries(const Args& a);

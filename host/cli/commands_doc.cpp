@@ -2,12 +2,15 @@
 //                                list of modules (the same text help() prints in the REPL)
 // smi-lua doc --html DIR         a browsable, self-contained reference in DIR (index.html, one
 //                                page per module, search in plain JavaScript, the examples with
-//                                the output they printed when the reference was made)
+//                                the output they printed when the reference was made), and the
+//                                guides (docs/*.md) rendered in DIR/guides/: from --guides FOLDER,
+//                                else the installed ones (<prefix>/share/doc/smi-lua beside bin/)
 // smi-lua doc --check            runs every example and fails (status 1) when one fails or when
 //                                a public function, method or module has no doc text
 // smi-lua doc --missing          lists the public names without a doc text (status 1 if any)
 // The work is done by stdlib/smi/doc.lua and smi/doc/cli.lua in a sandboxed runtime that may
 // write only DIR (and the examples' output folder).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -23,13 +26,34 @@ namespace fs = std::filesystem;
 
 namespace {
 const char* const kDocUsage =
-    "usage: smi-lua doc [NAME|WORD] | doc --html DIR | doc --check | doc --missing  [--out DIR] [--stdlib-dir DIR]\n";
+    "usage: smi-lua doc [NAME|WORD] | doc --html DIR [--guides FOLDER] | doc --check | doc --missing  [--out DIR] "
+    "[--stdlib-dir DIR]\n";
+
+/// The installed guides: <prefix>/share/doc/smi-lua when the program runs from <prefix>/bin.
+fs::path installed_guides() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  const fs::path dir = exe.parent_path().parent_path() / "share" / "doc" / "smi-lua";
+  return fs::is_directory(dir, ec) ? dir : fs::path();
+}
+
+/// The guides' *.md files of `folder`, sorted by name.
+std::vector<std::string> guide_files(const fs::path& folder) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec))
+    if (e.is_regular_file(ec) && e.path().extension() == ".md") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
 }
 
 int cmd_doc(const Args& first, int argc, char** argv) {
   app::Config cfg = first.cfg;
   std::vector<std::string> words;
   std::string html_dir;
+  fs::path guides;
   for (int i = first.script_index + 1; i < argc; ++i) {
     const std::string s = argv[i];
     auto value = [&](const char* what) -> std::string {
@@ -37,6 +61,7 @@ int cmd_doc(const Args& first, int argc, char** argv) {
       return argv[++i];
     };
     if (s == "--html") html_dir = value("a folder");
+    else if (s == "--guides") guides = value("a folder of guides (docs/*.md)");
     else if (s == "--out") cfg.out_dir = value("a folder");
     else if (s == "--stdlib-dir") cfg.stdlib_dir = value("a folder");
     else if (s == "--help" || s == "-h") {
@@ -53,7 +78,16 @@ int cmd_doc(const Args& first, int argc, char** argv) {
     fs::create_directories(html_dir);
     cfg.allow_write.push_back(html_dir);
     if (cfg.out_dir.empty()) cfg.out_dir = (fs::path(html_dir) / "example-files").string();
+    if (guides.empty()) guides = installed_guides();
+    std::vector<std::string> g;
+    if (!guides.empty()) {
+      if (!fs::is_directory(guides)) throw Error("--guides " + guides.string() + ": not a folder");
+      fs::create_directories(fs::path(html_dir) / "guides");
+      cfg.allow_read.push_back(guides.string());
+      for (const auto& f : guide_files(guides)) g.insert(g.end(), {"--guide", f});
+    }
     words.insert(words.begin(), {"--html", html_dir});
+    words.insert(words.begin() + 2, g.begin(), g.end());
   }
   if (cfg.out_dir.empty()) cfg.out_dir = (fs::path("smi-out") / "doc").string();
   cfg.script.clear();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -47,6 +48,14 @@ int run(smi::cli::Args& a, int argc, char** argv) {
     std::vector<std::string> args(argv + a.script_index + 1, argv + argc);
     const int st = rt.run_file(a.cfg.script, args);
     if (st != 0 || rt.exit_requested()) return st;
+    if (a.cfg.pdf && !a.cfg.dry_run) {  // the study's report.html, printed (commands_report.cpp)
+      const std::string html = (rt.policy().out_dir / "report.html").string();
+      if (!std::filesystem::exists(html)) {
+        std::fprintf(stderr, "smi-lua: --pdf: the script wrote no %s, so there is nothing to print\n", html.c_str());
+        return 1;
+      }
+      if (const int pst = smi::cli::print_report_pdf(html); pst != 0) return pst;
+    }
   }
   if (a.interactive) return smi::repl::run(rt);
   if (!a.script_index && a.actions.empty() && !a.version) {

@@ -3,6 +3,7 @@
 #include <mutex>
 #include <set>
 #include "platform/core/closest.hpp"
+#include "luax/user_error.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -305,6 +306,15 @@ void set_vec(lua_State* L, const char* key, Eigen::VectorXd v) {
   lua_setfield(L, -2, key);
 }
 void set_funcs(lua_State* L, const luaL_Reg* funcs) { luaL_setfuncs(L, funcs, 0); }
+
+void raise_from_binding(lua_State* L, const char* msg) {
+  if (called_from_stdlib(L, 1)) {
+    push_failure(L, msg);
+    lua_error(L);
+  }
+  luaL_error(L, "%s", msg);
+  std::abort();  // not reached: luaL_error does not return
+}
 
 void error_message(char* buf, std::size_t size, const char* fname, const char* what) {
   const std::string mark = std::string(fname) + ": ";

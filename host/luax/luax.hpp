@@ -38,8 +38,13 @@ namespace smi::lua {
 /// prefixes cut off before the cause.
 void error_message(char* buf, std::size_t size, const char* fname, const char* what);
 
+/// Raises "<msg>" from a bound function: with the caller's file:line when the caller is the
+/// user's code, as a failure (luax/user_error.hpp: one line, no internal path) when the caller is
+/// the stdlib, whose checks are about the user's data and declaration.
+[[noreturn]] void raise_from_binding(lua_State* L, const char* msg);
+
 /// Runs body() (returns the number of Lua results). A std::exception thrown by it becomes the
-/// Lua error "<fname>: <what>" carrying the caller's file:line.
+/// Lua error "<fname>: <what>" (raise_from_binding).
 template <class F>
 int protect(lua_State* L, const char* fname, F&& body) {
   char msg[2048];  // trivially destructible: nothing to unwind when luaL_error throws
@@ -48,7 +53,7 @@ int protect(lua_State* L, const char* fname, F&& body) {
   } catch (const std::exception& e) {
     error_message(msg, sizeof msg, fname, e.what());
   }
-  return luaL_error(L, "%s", msg);
+  raise_from_binding(L, msg);
 }
 
 /// A Lua error met while C++ called into Lua; what() is the Lua message (with traceback when

@@ -51,6 +51,7 @@ bool incomplete(lua_State* L, int status) {
 
 int run(app::Runtime& rt) {
   lua_State* L = rt.state();
+  rt.set_one_line_errors(true);  // an error is one line at the prompt (--traceback: with its traceback)
   LineReader reader(L);
   const char* p1 = reader.interactive() ? kPrompt : "";
   const char* p2 = reader.interactive() ? kPrompt2 : "";

@@ -8,8 +8,9 @@ local report = require "smi.report"
 local opt = options.parse(arg, {
   name = "bracket_solver",
   summary = "calibrates the bracket's modulus through beam-solver and writes a report",
-  usage = "smi-lua --allow-exec build/beam-solver scripts/tutorial/bracket_solver.lua [options]",
-  { name = "solver", type = "path", default = "build/beam-solver", meaning = "the beam-solver program (allow it with --allow-exec)" },
+  usage = "smi-lua --allow-exec SOLVER {script} [--solver SOLVER] [options]",
+  { name = "solver", type = "path", meaning = "the beam solver program, also given to --allow-exec (default: the"
+    .. " first of build/beam-solver, build/smi-beam-solver, smi-beam-solver and beam-solver on PATH that is allowed)" },
   { name = "points", type = "integer", default = 20, min = 5, meaning = "solver runs in the design of the surrogate" },
   { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "the calibration metric" },
 })
@@ -18,12 +19,26 @@ local measured = smi.csv.read(smi.script_dir .. "/bracket_tests.csv").freq_hz
 
 -- 1. The solver as a model: a deck per point from the template, the program run in its own
 -- folder, the result read back by a parser. Every run is kept in an evaluation store.
-local solver = smi.model.command{
-  name = "beam", inputs = {"E", "h"}, outputs = {"freq_hz"},
-  template = smi.script_dir .. "/beam.tpl", constants = {b = 20, L = 100}, deck = "beam.deck",
-  command = {opt.solver, "{deck}"},
-  parse = function(dir, h) return {freq_hz = h.regex("beam.out", "freq_hz = (\\S+)")} end,
-}
+-- The solver is looked for where the source tree builds it and on PATH (an installed package),
+-- unless --solver names it; a program must also be allowed with --allow-exec.
+local function beam_model(program)
+  return smi.model.command{
+    name = "beam", inputs = {"E", "h"}, outputs = {"freq_hz"},
+    template = smi.script_dir .. "/beam.tpl", constants = {b = 20, L = 100}, deck = "beam.deck",
+    command = {program, "{deck}"},
+    parse = function(dir, h) return {freq_hz = h.regex("beam.out", "freq_hz = (\\S+)")} end,
+  }
+end
+local tried, solver = {}, nil
+for _, program in ipairs(opt.solver and {opt.solver} or {"build/beam-solver", "build/smi-beam-solver", "smi-beam-solver", "beam-solver"}) do
+  local ok, m = pcall(beam_model, program)
+  if ok then solver = m break end
+  tried[#tried + 1] = ("  %s: %s"):format(program, tostring(m):gsub("^.-smi%.model%.command: ", ""))
+end
+if not solver then
+  smi.fail(("no beam solver found; tried:\n%s\nGive its path to both options: smi-lua --allow-exec PATH %s --solver PATH"):format(
+    table.concat(tried, "\n"), arg[0]))
+end
 
 -- 2. A design over the inputs' plausible range, run once through the solver.
 local X = smi.doe.lhs(opt.points, {{120000, 280000}, {1.85, 2.15}}, {seed = 1})

@@ -43,6 +43,7 @@ M.host_options = {
   ["allow-read"] = "PATH", ["allow-write"] = "PATH", ["allow-exec"] = "PROG", ["allow-env"] = "NAME",
   lib = "DIR", ["stdlib-dir"] = "DIR", out = "DIR", seed = "N", ["max-memory"] = "MB", timeout = "SECONDS",
   store = "PATH", executor = "KIND", ["slurm-opt"] = "K=V", quiet = false, ["dry-run"] = false, detach = false,
+  pdf = false, traceback = false,
 }
 
 -- The refusal of smi-lua's own option given after the script.
@@ -144,11 +145,14 @@ example:
 ]==]
 --- The --help text of a spec (what options.parse prints for --help).
 function M.help(spec)
-  local decl = declarations(spec)
+  local all = declarations(spec)
+  local decl = {}
+  for _, d in ipairs(all) do if d.applies ~= false then decl[#decl + 1] = d end end
   local lines = {}
-  local name = spec.name or "study"
-  lines[#lines + 1] = name .. (spec.summary and (": " .. spec.summary) or "")
-  if spec.usage then lines[#lines + 1] = "usage: " .. spec.usage end
+  local script = M.script_name(spec)
+  lines[#lines + 1] = script .. (spec.summary and (": " .. spec.summary) or "")
+  lines[#lines + 1] = "usage: " .. (spec.usage and spec.usage:gsub("{script}", (script:gsub("%%", "%%%%")))
+    or ("smi-lua [smi-lua options] " .. script .. " [options]"))
   lines[#lines + 1] = ""
   lines[#lines + 1] = "options:"
   local heads, width = {}, 0
@@ -172,11 +176,25 @@ function M.help(spec)
   lines[#lines + 1] = "  --help" .. (" "):rep(math.max(2, width - 8 + 2)) .. "this list"
   if spec.args then lines[#lines + 1] = "arguments: " .. spec.args end
   lines[#lines + 1] = ""
-  lines[#lines + 1] = "smi-lua's own options (--out DIR, --seed N, --quiet, --timeout SECONDS, --allow-exec PROG, ...;"
-  local script = type(arg) == "table" and type(arg[0]) == "string" and arg[0] or (name .. ".lua")
+  lines[#lines + 1] = "smi-lua's own options (--out DIR, --seed N, --quiet, --timeout SECONDS, --pdf, ...;"
   lines[#lines + 1] = "smi-lua --help lists them) go before the script: smi-lua --out DIR " .. script .. " [options]"
   if spec.epilog then lines[#lines + 1] = ""; lines[#lines + 1] = spec.epilog end
   return table.concat(lines, "\n") .. "\n"
+end
+
+doc.add[==[
+@ smi.options.script_name(spec) -> string
+The script as the user ran it (arg[0], "scripts/frame.lua"), else the spec's name with ".lua": what
+--help and the option errors name, and what "{script}" in the spec's usage becomes.
+returns: a string
+errors: none
+example:
+  local options = require "smi.options"
+  print(options.script_name{name = "demo"} ~= "")
+]==]
+function M.script_name(spec)
+  if type(arg) == "table" and type(arg[0]) == "string" and arg[0] ~= "" then return arg[0] end
+  return (type(spec) == "table" and spec.name or "study") .. ".lua"
 end
 
 -- Converts and checks one value; returns it or nil, message.
@@ -221,6 +239,12 @@ local function convert(d, raw)
 end
 
 local function suggest(by, name)
+  if type(smi) == "table" and type(smi._closest) == "function" then  -- the one suggestion logic
+    local names = {}
+    for n in pairs(by) do names[#names + 1] = n end
+    table.sort(names)
+    return smi._closest(name, names)[1]
+  end
   local best, bestd
   for n in pairs(by) do
     -- a cheap closeness: common prefix length, then length difference
@@ -236,7 +260,8 @@ end
 doc.add[==[
 @ smi.options.check(argv, spec) -> opt | nil, message
 Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
-ending the run. The spec is a list of declarations plus name, summary, usage, epilog and args;
+ending the run. The spec is a list of declarations plus name, summary, usage ("{script}" stands for the script as
+it was run), epilog and args;
 with rest = true, every argument the spec does not declare is kept, in order, in opt.rest (for
 another parser: smi.study.parse_args is check(argv, {rest = true, options.study_steps})).
 options:
@@ -253,6 +278,9 @@ options:
   input = nil           -- (path) true: the file must exist and be readable; checked at parse,
                         -- so a missing one is named by its option before anything runs
   needs = nil           -- how a missing value is named: "--only needs a step name"
+  applies = true        -- false: the option does not apply to this study (a solver option for a Lua
+                        -- model): left out of --help, and refused when given, with why_not
+  why_not = nil         -- the reason given when an option that does not apply is given
 returns: the options table (with opt.help = true when --help was given, opt.args for the spec's
   positional arguments), or nil and a message naming the option and the allowed values; one of
   smi-lua's own options (--out, --seed, --quiet, --timeout, ...) that the spec does not declare is
@@ -313,10 +341,19 @@ function M.check(argv, spec)
     elseif a:sub(1, 2) == "--" then
       local d = by[name]
       if not d and M.host_options[name] ~= nil then return nil, host_option_message(name, argv) end
+      if d and d.applies == false then
+        return nil, ("--%s does not apply to this study%s"):format(name, d.why_not and (": " .. d.why_not) or "")
+      end
       if not d then
-        local names = {}
-        for _, e in ipairs(decl) do names[#names + 1] = "--" .. e.name end
-        local s = suggest(by, name)
+        local names, shown = {}, {}
+        for _, e in ipairs(decl) do
+          if e.applies ~= false then names[#names + 1] = "--" .. e.name; shown[e.name] = true end
+        end
+        local s = suggest(shown, name)
+        local h = not s and suggest(M.host_options, name)
+        if h then
+          return nil, ("unknown option '%s' (did you mean smi-lua's own --%s? %s)"):format(a, h, host_option_message(h, argv))
+        end
         return nil, ("unknown option '%s'%s; options: %s (--help explains them)"):format(a, s and (" (did you mean --" .. s .. "?)") or "", table.concat(names, ", "))
       end
       if d.type == "flag" then
@@ -379,7 +416,7 @@ example:
 -- the option and its allowed values, and ends the run with status 2 (a usage error).
 function M.parse(argv, spec)
   local opt, err = M.check(argv, spec)
-  local name = type(spec) == "table" and spec.name or "study"
+  local name = M.script_name(spec)
   if not opt then
     io.stderr:write(name, ": ", err, "\n")
     io.stderr:flush()

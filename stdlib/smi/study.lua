@@ -52,6 +52,16 @@ later one run again, and run{force = true} (--force) runs them all (docs/provena
 ]==]
 local M = {}
 
+-- An error in the user's data, options or declaration: one line, no traceback (smi.fail); with
+-- `trace`, an error in the user's code carried out of a step with its own traceback.
+local function fail(msg, trace)
+  if type(smi) == "table" and type(smi.fail) == "function" then smi.fail(msg, trace) end
+  error(msg, 0)
+end
+local function failure(e)
+  return type(smi) == "table" and type(smi.failure) == "function" and smi.failure(e) or nil
+end
+
 local Study = {}
 Study.__index = Study
 
@@ -168,14 +178,14 @@ function Study:load()
   local text = f:read("a")
   f:close()
   local ok, data = pcall(json.decode, text)
-  if not ok then error(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data), 0) end
+  if not ok then fail(("study '%s': %s is not valid JSON (%s); delete it and run the whole study"):format(self.name, self.results_path, data)) end
   if type(data) ~= "table" or type(data.steps) ~= "table" then
-    error(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path), 0)
+    fail(("study '%s': %s has no 'steps' table; is it a results file of smi.study?"):format(self.name, self.results_path))
   end
   local schema = M.SCHEMA
   if data.schema ~= nil and (math.type(data.schema) ~= "integer" or data.schema > schema) then
-    error(("study '%s': %s has schema %s, newer than this smi-lua reads (%d); run it with the smi-lua that wrote it, or run the whole study again"):format(
-      self.name, self.results_path, tostring(data.schema), schema), 0)
+    fail(("study '%s': %s has schema %s, newer than this smi-lua reads (%d); run it with the smi-lua that wrote it, or run the whole study again"):format(
+      self.name, self.results_path, tostring(data.schema), schema))
   end
   return data
 end
@@ -224,11 +234,13 @@ function Study:_selection(opts)
     if not self.by_name[name] then
       local names = {}
       for i, st in ipairs(self.steps) do names[i] = st.name end
-      error(("study '%s': %s names an unknown step '%s' (steps: %s)"):format(self.name, what, tostring(name), table.concat(names, ", ")), 0)
+      local near = type(smi) == "table" and type(smi._closest) == "function" and smi._closest(tostring(name), names) or {}
+      fail(("study '%s': --%s names an unknown step '%s'%s (steps: %s)"):format(self.name, what, tostring(name),
+        near[1] and (" (did you mean " .. near[1] .. "?)") or "", table.concat(names, ", ")))
     end
     return self.by_name[name]
   end
-  if opts.only ~= nil and opts.from ~= nil then error(("study '%s': give 'only' or 'from', not both"):format(self.name), 0) end
+  if opts.only ~= nil and opts.from ~= nil then fail(("study '%s': give --only or --from, not both"):format(self.name)) end
   if opts.only ~= nil then
     local list = type(opts.only) == "table" and opts.only or { opts.only }
     for _, n in ipairs(list) do selected[need(n, "only").name] = true end
@@ -328,8 +340,8 @@ local function results_view(study, selected, saved, live)
       if s and s.status == "ok" and s.result ~= nil then
         local why = study:_why_not_current(name, saved, study.live_hash)
         if why then
-          error(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
-            inputs.rerun_command(not study.old_schema and name or nil)), 2)
+          fail(("study '%s': the saved results of step '%s' cannot be used: %s. Run: %s"):format(study.name, name, why,
+            inputs.rerun_command(not study.old_schema and name or nil)))
         end
         if study.reading then study.reading[name] = s.result_hash or study:_result_hash(name, s.result) end
         return s.result
@@ -337,7 +349,7 @@ local function results_view(study, selected, saved, live)
       local why = not study.by_name[name] and "there is no such step"
         or (selected[name] and "it has not run yet in this run (steps run in the order they were added)")
         or ("it did not run now and " .. (study.load_problem or (study.results_path .. " holds no successful result of it")))
-      error(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why), 2)
+      fail(("study '%s': results of step '%s' are needed but %s"):format(study.name, tostring(name), why))
     end,
     __newindex = function() error("study: ctx.results is read-only; return a table from the step instead", 2) end,
   })
@@ -352,8 +364,6 @@ function Study:_fresh_report()
   ro.title = ro.title or self.name
   ro.out = ro.out or self.out
   self.report = report.new(ro)
-  -- the first section says what produced the numbers; its rows are written at the end
-  self.prov_section = require("smi.report.provenance").begin(self.report)
 end
 
 -- The ctx a step function receives.
@@ -384,7 +394,11 @@ local function call_step(st, ctx)
   local t0, clock = now()
   local trace
   local ok, ret = xpcall(st.fn, function(e)
-    trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e)
+    -- a failure (bad data, options, declaration) is said in one line; an error in code keeps
+    -- where it happened
+    -- (the stdlib's own error(message, 0) is a failure too: smi._as_failure looks at who raised it)
+    if type(smi) == "table" and type(smi._as_failure) == "function" then e = smi._as_failure(e) end
+    if not failure(e) then trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e) end
     return e
   end, ctx)
   local dt = now() - t0
@@ -408,7 +422,10 @@ function Study:_step_failed(st, k, nsel, saved, ret, trace, dt, clock)
   local saved_ok, save_err = pcall(self._save, self, saved)
   self:_say("step %d/%d %s FAILED after %s", k, nsel, st.name, fmt.seconds(dt))
   local also = saved_ok and "" or ("; and the failure was not recorded: " .. tostring(save_err))
-  error(("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also), 0)
+  if type(smi) == "table" and type(smi.progress_label) == "function" then smi.progress_label() end
+  local msg = ("study '%s': step '%s' failed: %s%s"):format(self.name, st.name, tostring(ret), also)
+  -- an error in code goes on with the traceback of where it happened (not of this line)
+  fail(msg, not failure(ret) and trace and trace:match("stack traceback:.*$") or nil)
 end
 
 -- The hash of a step's saved result that later steps record when they read it: every key but the
@@ -434,6 +451,10 @@ end
 -- JSON can hold in results.json.
 function Study:_run_step(st, k, nsel, results, saved, live)
   self:_say("step %d/%d %s ...", k, nsel, st.name)
+  -- the progress lines of the step's work (calibration, solver runs) say whose they are
+  if type(smi) == "table" and type(smi.progress_label) == "function" then
+    smi.progress_label(("[%s] %s"):format(self.name, st.name))
+  end
   local ctx = step_context(self, st, results)
   local seq0 = inputs.mark()
   local report_mark = reuse.begin(self)
@@ -501,6 +522,7 @@ function Study:run(opts)
   opts = opts or {}
   if opts.quiet ~= nil then self.quiet = opts.quiet end
   if #self.steps == 0 then error(("study '%s': no steps; add some with study:step(name, fn)"):format(self.name), 2) end
+  self.console_warnings_from = type(smi) == "table" and type(smi.warnings) == "function" and #smi.warnings() or 0
   local selected = self:_selection(opts)
   -- one study per output folder at a time (the lock names the holder; it lasts until exit)
   if type(smi) == "table" and type(smi.lock_out) == "function" then smi.lock_out(self.out) end
@@ -547,7 +569,9 @@ function Study:run(opts)
   if partial then self:_mark_stale(selected, saved) end
   self:_say("%d step(s) in %s; results in %s", nsel, fmt.seconds(total), self.results_path)
   for _, t in ipairs(self.timings) do self:_say("  %-24s %-6s %s", t[1], t[2], fmt.seconds(t[3])) end
+  if type(smi) == "table" and type(smi.progress_label) == "function" then smi.progress_label() end
   if self.report and not (type(smi) == "table" and smi.dry_run) then self:_finish_report(partial, selected, total, saved) end
+  self:_console_end()
 
   local out = {}
   for _, st in ipairs(self.steps) do
@@ -638,7 +662,6 @@ end
 -- (report-partial.html after a run of only some steps).
 function Study:_finish_report(partial, selected, total, saved)
   local r = self.report
-  self.prov_section:fill(self:_provenance(saved), { study = self.name, results = self.results_path })
   if partial then
     local names = {}
     for _, st in ipairs(self.steps) do if selected[st.name] then names[#names + 1] = st.name end end
@@ -654,6 +677,8 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   r:table{ caption = ("Steps of this run, %s in total; a step not run says why."):format(fmt.seconds(total)),
            columns = { "Step", "Status", { title = "Time (s)", format = "%.2f" } }, rows = rows }
+  -- what produced the numbers comes last: every file and program with its hash
+  require("smi.report.provenance").begin(r):fill(self:_provenance(saved), { study = self.name, results = self.results_path })
   r:provenance{ study = self.name, seed = self.seed, results = self.results_path }
   local p = provenance{ files = false }
   if p then
@@ -665,11 +690,11 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   -- a partial run must not overwrite the full report
   self.report_path = r:write(self.out .. (partial and "/report-partial.html" or "/report.html"))
-  self:_say("report: %s", self.report_path)
   -- the verdicts are the study's answer, not progress: printed on stdout even when quiet
   local words = require("smi.report.html").STATUS_TEXT
-  for _, it in ipairs(r.items) do
-    if it.kind == "verdict" then
+  local gone = r:_superseded()
+  for i, it in ipairs(r.items) do
+    if it.kind == "verdict" and not gone[i] then
       io.stdout:write(("%-7s %s%s\n"):format(words[it.status], it.name, it.detail and (": " .. it.detail) or ""))
       for _, c in ipairs(it.checks or {}) do
         io.stdout:write(("        %s: %s%s\n"):format(c.name, words[c.status]:lower(), c.detail and (" (" .. c.detail .. ")") or ""))
@@ -679,6 +704,33 @@ function Study:_finish_report(partial, selected, total, saved)
   end
   local n, counted = r:tally()
   if n.pass + n.fail + n.warn + n.inconclusive + n.skip > 0 then io.stdout:write(counted, "\n") end
+end
+
+-- The end of a run on the console: the distinct warnings in full, grouped with their counts
+-- (on stderr, unless quiet: --quiet keeps them in the report and smi.warnings()), then the files
+-- to open, results.json and the report, on stdout, piped or not, --quiet or not (only a study
+-- made with quiet = true prints nothing).
+function Study:_console_end()
+  local groups
+  if self.report then
+    groups = self.report:warning_groups()  -- superseded sections' too: each group names its sections
+  elseif type(smi) == "table" and type(smi.warnings) == "function" then
+    local entries, all = {}, smi.warnings()
+    for k = (self.console_warnings_from or 0) + 1, #all do entries[#entries + 1] = { text = all[k] } end
+    groups = require("smi.report.warnings").group(entries)
+  end
+  if groups and #groups > 0 and not self:_quiet() then
+    local total = 0
+    for _, g in ipairs(groups) do total = total + g.count end
+    io.stderr:write(("[%s] %d warning%s (%d distinct):\n"):format(self.name, total, total == 1 and "" or "s", #groups))
+    for _, line in ipairs(require("smi.report.warnings").lines(groups)) do io.stderr:write(line, "\n") end
+    io.stderr:flush()
+  end
+  -- (a study its code made silent, quiet = true, prints nothing: a doc example, a test)
+  if (type(smi) == "table" and smi.dry_run) or self.quiet == true then return end
+  io.stdout:write(("results: %s\n"):format(self.results_path))
+  if self.report_path then io.stdout:write(("report:  %s\n"):format(self.report_path)) end
+  io.stdout:flush()
 end
 
 doc.add[==[
@@ -699,7 +751,7 @@ function M.parse_args(argv)
   -- one parser (smi.options) over the one list of the steps' options (options.study_steps);
   -- everything else is kept in o.rest for the study's own parser
   local o, err = require("smi.options").check(argv, { rest = true, require("smi.options").study_steps })
-  if not o then error("study: " .. err, 0) end
+  if not o then fail("study: " .. err) end
   return o
 end
 

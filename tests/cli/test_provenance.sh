@@ -6,7 +6,7 @@
 #   - --only after --data changed refuses to use the saved data step (names what changed and the
 #     command to run); --only that recomputes a step marks later steps stale and no conclusion is
 #     printed from them;
-#   - --version prints the build line; the report's first section is the provenance.
+#   - --version prints the build line; the report's last section is the provenance.
 source "${SMI_SOURCE_DIR:?}/tests/cli/lib.sh"   # run / has_out / has_err / finish; cd's to a temp dir
 
 mkdir -p study
@@ -138,10 +138,10 @@ run big 0 "$SMI" big.lua
 has_out "BIG true true 1153433600"
 rm -f big.bin
 
-# --- the report's first section is the provenance ---------------------------------------------
+# --- the report's last section is the provenance (the answer and the story come first) ----------
 html=out/report.html
-first_h2=$(sed -n '/<main>/,$p' $html | tr '\n' ' ' | sed 's|</h2>.*||; s|.*<main>||')
-case "$first_h2" in *Provenance*) ok ;; *) bad "first section is '$first_h2', not Provenance" ;; esac
+last_h2=$(sed -n '/<main>/,/<\/main>/p' $html | grep -o '<h2 id="[^"]*"><span class="num">[0-9]*</span>[^<]*</h2>' | tail -n 1)
+case "$last_h2" in *Provenance*) ok ;; *) bad "last section is '$last_h2', not Provenance" ;; esac
 for want in "To reproduce this run: cd " "--seed 11" "helpers.lua" "a.csv" "solver-copy.sh" "twice 1.0 (test solver)" "eigen" "nlopt"; do
   if grep -q -- "$want" $html; then ok; else bad "report lacks $want"; fi
 done

@@ -21,7 +21,8 @@ namespace {
 /// smi-lua running on the slave side of a pty; we read and type on the master side.
 class Session {
  public:
-  explicit Session(const std::string& history) {
+  /// `cwd`: the folder the REPL runs in (default: the test's own).
+  explicit Session(const std::string& history, const std::string& cwd = "") {
     struct winsize ws {};
     ws.ws_row = 40;
     ws.ws_col = 200;
@@ -30,6 +31,7 @@ class Session {
     if (pid_ == 0) {
       setenv("TERM", "dumb", 1);
       setenv("SMI_HISTORY", history.c_str(), 1);
+      if (!cwd.empty() && chdir(cwd.c_str()) != 0) _exit(126);
       execl(SMI_LUA_PATH, "smi-lua", static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -138,29 +140,23 @@ void check_multiline_and_tables(Session& s) {
   CHECK(s.expect("vec(1000000)["));
 }
 
+// Runs `chunk`, stops it with Ctrl-C, then checks the session goes on: `probe` prints `want`.
+void interrupt_then(Session& s, const std::string& chunk, const std::string& probe, const std::string& want) {
+  s.type(chunk + "\n");
+  usleep(300 * 1000);
+  s.type("\x03");
+  CHECK(s.expect("interrupted!"));
+  s.type(probe + "\n");
+  CHECK(s.expect(want));
+}
+
 // Ctrl-C stops a running chunk (plain, under pcall, in a coroutine) and the session goes on.
 void check_interrupting_chunks(Session& s) {
-  // Ctrl-C stops a running chunk and the session goes on
-  s.type("while true do end\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("'still alive'\n");
-  CHECK(s.expect("still alive"));
+  interrupt_then(s, "while true do end", "'still alive'", "still alive");
   // ... even when the chunk swallows errors with pcall
-  s.type("while true do pcall(function() while true do end end) end\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("100 + 1\n");
-  CHECK(s.expect("101"));
+  interrupt_then(s, "while true do pcall(function() while true do end end) end", "100 + 1", "101");
   // ... and when the loop runs inside a coroutine
-  s.type("coroutine.wrap(function() while true do end end)()\n");
-  usleep(300 * 1000);
-  s.type("\x03");
-  CHECK(s.expect("interrupted!"));
-  s.type("100 + 2\n");
-  CHECK(s.expect("102"));
+  interrupt_then(s, "coroutine.wrap(function() while true do end end)()", "100 + 2", "102");
 }
 
 // Ctrl-C at the prompt drops the half-typed line, also inside a multi-line chunk.
@@ -281,5 +277,32 @@ TEST_CASE("REPL: help(), ?name, help \"word\" and completion inside help(") {
   std::stringstream all;
   all << h.rdbuf();
   CHECK(all.str().find("?smi.rng") != std::string::npos);
+  std::remove(history.c_str());
+}
+
+TEST_CASE("REPL: an error is one line; Ctrl-C says only what is true") {
+  const std::string history = temp_history();
+  char dir[] = "/tmp/smi_repl_cwd_XXXXXX";  // a fresh folder: no output folder, no store exists
+  REQUIRE(mkdtemp(dir) != nullptr);
+  {
+    Session s(history, dir);
+    INFO(s.transcript());
+    REQUIRE(s.expect("> "));
+    s.type("error('boom in my code')\n");
+    CHECK(s.expect("boom in my code"));
+    s.type("smi.fail('tests.csv: no column mode2_Hz')\n");
+    CHECK(s.expect("smi-lua: tests.csv: no column mode2_Hz"));
+    s.type("'after the errors'\n");
+    CHECK(s.expect("after the errors"));
+    interrupt_then(s, "while true do end", "'after Ctrl-C'", "after Ctrl-C");
+    const std::string t = s.transcript();
+    CHECK(t.find("stack traceback") == std::string::npos);  // one line each
+    CHECK(t.find("evaluations.sqlite") == std::string::npos);  // no store was made: none is named
+    CHECK(t.find("results.json") == std::string::npos);
+    CHECK(s.expect("> "));  // ^D typed before readline owns the terminal could be lost
+    s.type("\x04");
+    CHECK(s.wait_exit() == 0);
+  }
+  rmdir(dir);
   std::remove(history.c_str());
 }

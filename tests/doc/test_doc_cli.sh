@@ -57,7 +57,7 @@ has_out '[default: pr]'
 has_out '--multistart=N'
 has_out '--only=A[,B...]'
 run "study: a wrong value names the option and the allowed values" 2 "$SMI" "$SC" --metric rmse
-has_err "steering_column: --metric: 'rmse' is not allowed; allowed values: pr, loglik"
+has_err "$SC: --metric: 'rmse' is not allowed; allowed values: pr, loglik"  # the script as it was run
 run "study: a number below its minimum" 2 "$SMI" "$SC" --multistart 0
 has_err '--multistart: 0 is below the minimum 1'
 run "study: an unknown option" 2 "$SMI" "$SC" --metirc pr

@@ -59,4 +59,16 @@ T.case("a solver path that does not exist is refused when the model is declared"
   end, "not an executable file")
 end)
 
+T.case("csv: a data row is named by its line in the file (notes.lines), a quoted field over two lines counted", function()
+  local p = smi.out("lines.csv")
+  local f = assert(io.open(p, "wb"))
+  -- line 1 header, line 2 row 1, lines 3-4 row 2 (a quoted newline), line 5 row 3
+  f:write('id,hz\na,29.6\n"b\nc",30.1\nd,nan\n')
+  f:close()
+  local d, _, notes = smi.csv.read(p)
+  T.eq(#notes.lines, 3)
+  T.eq(notes.lines[1], 2) T.eq(notes.lines[2], 3) T.eq(notes.lines[3], 5)
+  T.truthy(d.hz[3] ~= d.hz[3], "nan reads as NaN, for the study to name by its line")
+end)
+
 T.finish()

@@ -78,4 +78,39 @@ T.case("data far outside the model's range: a units warning naming the likely fa
   T.truthy(w and w:find("2π (rad/s vs Hz?)", 1, true), tostring(w))
 end)
 
+T.case("smi.fail: a failure reads as its message (tostring, string methods, ..) and smi.failure tells it apart", function()
+  local ok, e = pcall(smi.fail, "tests.csv: no column 'mode2_Hz'")
+  T.eq(ok, false)
+  T.eq(smi.failure(e), "tests.csv: no column 'mode2_Hz'")
+  T.eq(tostring(e), "tests.csv: no column 'mode2_Hz'")
+  T.eq(rawget(e, "traceback"), nil, "no traceback given, none carried")
+  T.eq(e:match("column '(.-)'"), "mode2_Hz", "string methods act on the message")
+  T.eq("study: " .. e, "study: tests.csv: no column 'mode2_Hz'")
+  T.eq(("[%s]"):format(e), "[tests.csv: no column 'mode2_Hz']")
+  local _, plain = pcall(error, "a plain error", 0)
+  T.eq(smi.failure(plain), nil, "an error in code is not a failure")
+end)
+
+T.case("a smi function called by the stdlib fails without the stdlib's file:line in front", function()
+  local s = require("smi.study").new{name = "refused", out = "/proc/no-such-place"}
+  s:step("a", function() return {} end)
+  local ok, e = pcall(s.run, s)  -- smi.study calls smi.lock_out on its folder, refused by the sandbox
+  T.eq(ok, false)
+  T.truthy(smi.failure(e), "a failure: " .. tostring(e))
+  T.truthy(tostring(e):find("smi.lock_out: ", 1, true) == 1, tostring(e))
+  T.truthy(not tostring(e):find("stdlib/", 1, true), tostring(e))
+  -- called by the user's code, the same function's error names the user's line
+  local ok2, e2 = pcall(smi.write_file, "/proc/no-such-place/x.txt", "x")
+  T.eq(ok2, false)
+  T.eq(smi.failure(e2), nil, "an error with the caller's file:line")
+end)
+
+T.case("a misspelt smi member asked by the user's code names the closest and the user's line", function()
+  local ok, e = pcall(function() return smi.dist.gaussian end)
+  T.eq(ok, false)
+  T.eq(smi.failure(e), nil, "an error in the user's code")
+  T.truthy(tostring(e):find("no smi.dist.gaussian", 1, true), tostring(e))
+  T.truthy(tostring(e):find("test_messages.lua", 1, true), "the user's line is named: " .. tostring(e))
+end)
+
 T.finish()

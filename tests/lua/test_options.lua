@@ -49,7 +49,9 @@ T.case("--help lists every option with its default and allowed values", function
   local o = assert(options.check({ "--help" }, spec))
   T.eq(o.help, true)
   local h = options.help(spec)
-  for _, want in ipairs { "demo: a demo study", "--data=PATH", "[default: data/tests.csv]", "--metric=pr|loglik", "[default: pr]",
+  -- the first line names the script as it was run (arg[0]), not the declaration
+  T.eq(h:match("^[^\n]*"), arg[0] .. ": a demo study")
+  for _, want in ipairs { ": a demo study", "--data=PATH", "[default: data/tests.csv]", "--metric=pr|loglik", "[default: pr]",
                           "--multistart=N", "(a whole number >= 1)", "--quick", "--only=A[,B...]", "--help" } do
     T.truthy(h:find(want, 1, true), "help shows " .. want .. "\n" .. h)
   end

@@ -57,7 +57,8 @@ T.case("contents link to every section, numbered", function()
   for _, tag in ipairs{ "h2", "h3" } do for _, h in ipairs(X.find_all(root, tag)) do if h.attrs.id then ids[h.attrs.id] = X.text(h) end end end
   local nav = X.find_all(root, "nav")[1]
   local links = X.find_all(nav, "a")
-  T.eq(#links, 4, "Data, Plots, Validation and Run details")
+  T.eq(#links, 5, "Data, Plots, Validation, Warnings and Run details")
+  T.eq(links[4].attrs.href, "#warnings", "the warnings, listed at the end")
   for _, a in ipairs(links) do T.truthy(ids[a.attrs.href:sub(2)], "target exists: " .. a.attrs.href) end
   T.eq(ids[links[2].attrs.href:sub(2)], "1.1Plots", "subsection numbered 1.1")
 end)

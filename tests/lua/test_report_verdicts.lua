@@ -82,11 +82,52 @@ T.case("a step that did not run says 'not run' and why", function()
   T.eq(saved.steps.c.not_run, "nothing to refine", "the plain record too")
   T.eq(saved.steps.a.not_run, nil, "a ran")
   local root = X.parse(s.report:html())
-  local tables = X.find_all(root, "table")
-  local rows = X.find_all(X.find_all(tables[#tables], "tbody")[1], "tr")
+  local steps  -- the study's step table (the Provenance table comes after it)
+  for _, t in ipairs(X.find_all(root, "table")) do
+    if X.text(X.find_all(t, "caption")[1]):find("Steps of this run", 1, true) then steps = t end
+  end
+  local rows = X.find_all(X.find_all(steps, "tbody")[1], "tr")
   local function status(tr) return X.text(X.find_all(tr, "td")[2]) end
   T.eq(status(rows[1]), "PASSran", "a")
   T.eq(status(rows[2]), "NOT RUNtrial 2 is valid", "b")
   T.eq(status(rows[3]), "NOT RUNnothing to refine", "c")
 end)
+T.case("superseded sections: kept, headed, not counted; the header counts the final trial", function()
+  local r = require("smi.report").new{ title = "trials" }
+  r:section("Trial 1"):verdict{ name = "Mode 1, trial 1", pass = false }:verdict{ name = "Mode 2, trial 1", pass = false }
+  r:callout("input 'E' at its bound 1.5", "warn")
+  r:section("Trial 2"):verdict{ name = "Mode 1, trial 2", pass = true }:verdict{ name = "Mode 2, trial 2", pass = true }
+  r:callout("input 'E' at its bound 2.5", "warn")
+  r:callout("input 'nu' at its bound 0.3", "warn")
+  T.eq(select(2, r:tally()), "2 passed, 2 failed, 1 warning, 0 inconclusive", "before: every trial counts")
+  r:supersede("Trial 1", "revised in trial 2")
+  T.eq(select(2, r:tally()), "2 passed, 0 failed, 1 warning, 0 inconclusive", "after: the final trial only")
+  local g = r:warning_groups()
+  T.eq(#g, 1, "one warning, given per trial and per input")
+  T.eq(g[1].count, 3) T.eq(#g[1].texts, 3) T.eq(table.concat(g[1].where, "; "), "1 Trial 1; 2 Trial 2")
+  local root = X.parse(r:html())
+  local note = X.text(by_class(root, "div", "superseded")[1])
+  T.truthy(note:find("revised in trial 2", 1, true), note)
+  T.raises(function() r:supersede("Trial 9") end, "no section 'Trial 9' (sections: Trial 1, Trial 2)")
+end)
+
+T.case("the summary opens the page: conclusion, form, verdicts, parameters with intervals and priors, what is open", function()
+  local r = require("smi.report").new{ title = "answer" }
+  r:section("Data"):text("...")
+  r:summary{ conclusion = "The model is valid after one revision.", form = "trial 2: E and t calibrated",
+             verdicts = { { name = "Mode 1", status = "pass", detail = "U = 0.05" } },
+             parameters = { { name = "E", unit = "GPa", mean = 207.25, std = 3.125, interval = { 201, 213.5 }, prior = "normal(210, 10)" },
+                            { name = "t", unit = "mm", mean = 3.8, std = 0.02, interval = { 3.76, 3.84 } } },
+             open = { { question = "Mode 4 rests on 9 tests", settle = "nine more tests of mode 4" } } }
+  local html = r:html()
+  local at_summary, at_data = html:find('id="summary"', 1, true), html:find(">Data</h2>", 1, true)
+  T.truthy(at_summary and at_data and at_summary < at_data, "the summary comes before the story")
+  local root = X.parse(html)
+  local t = X.find_all(by_class(root, "section", "answer")[1], "table")[1]
+  local cells = {}
+  for _, td in ipairs(X.find_all(X.find_all(t, "tbody")[1], "td")) do cells[#cells + 1] = X.text(td) end
+  T.eq(table.concat(cells, "|"), "E (GPa)|207.2|3.125|[201, 213.5]|normal(210, 10)|t (mm)|3.8|0.02|[3.76, 3.84]|not declared")
+  T.raises(function() r:summary{ form = "x" } end, "'conclusion' is missing")
+end)
+
 T.finish()

@@ -45,7 +45,7 @@ std::vector<Record> read(std::string_view text, const std::string& source, const
         const long start_line = line;
         ++i;
         for (;;) {
-          if (i >= n) throw Error(fmt::format("{}:{}: a quoted field never ends (missing '\"')", source, start_line));
+          if (i >= n) throw Error(fmt::format("line {} of {}: a quoted field never ends (missing '\"')", start_line, source));
           if (text[i] == '"') {
             if (i + 1 < n && text[i + 1] == '"') {
               field += '"';

@@ -52,6 +52,11 @@ class WarningSink {
 /// prints (not --quiet) and stderr is a terminal.
 struct ProgressSink {
   bool live = false;
+  /// What the lines belong to ("[study] step 4/7 calibrate"): set by smi.progress_label (smi.study
+  /// sets it per step), written in front of every progress line; "" for none.
+  std::string label;
+  /// "label: " or "".
+  std::string prefix() const { return label.empty() ? std::string() : label + ": "; }
 };
 
 struct RunContext {

@@ -616,4 +616,43 @@ function Chart:render()
   return table.concat(out, "\n")
 end
 
+doc.add[==[
+@ smi.report.svg.before_after(opts) -> chart
+The before/after figure of one response: the measured data, the initial model and the final
+(calibrated, revised) model as empirical CDFs on one axis, so that a reader sees at a glance
+what the study changed. The data are drawn solid in black, the initial model dashed in grey, the
+final model solid in the accent colour.
+options:
+  data = (required)    -- the measurements (vec or table)
+  initial = (required) -- samples of the initial model's response (its propagated prior)
+  final = (required)   -- samples of the final model's response
+  title = nil          -- the chart title (the response's name)
+  xlabel = nil         -- the response with its unit ("Mode 1 (Hz)")
+  labels = nil         -- {data =, initial =, final =}: the legend entries (defaults: "data (n = 9)",
+                       -- "initial model", "final model")
+  width = 640          -- pixels
+  height = 360         -- pixels
+returns: a chart (render it, or pass it to r:figure)
+errors: data, initial or final missing or not numbers
+example:
+  local c = require("smi.report").svg.before_after{title = "Mode 1", xlabel = "Hz", data = {29.6, 30.1, 30.4},
+    initial = {27, 28, 29, 30, 31}, final = {29.5, 29.9, 30.2, 30.5}}
+  print(#c.series, c:render():find("final model") ~= nil)
+]==]
+function M.before_after(o)
+  if type(o) ~= "table" then error("chart.before_after: expects {data =, initial =, final =, title =, xlabel =}", 2) end
+  for _, k in ipairs({ "data", "initial", "final" }) do
+    if o[k] == nil then error(("chart.before_after: '%s' is missing (the %s)"):format(k,
+      ({ data = "measurements", initial = "initial model's samples", final = "final model's samples" })[k]), 2) end
+  end
+  local labels = o.labels or {}
+  local c = M.new{ title = o.title, xlabel = o.xlabel, ylabel = "cumulative probability", width = o.width or 640,
+                   height = o.height or 360, ylim = { 0, 1 }, legend = "auto" }
+  c:ecdf(o.initial, { label = labels.initial or "initial model", color = "#8a94a0", dash = "6 4" })
+  c:ecdf(o.final, { label = labels.final or "final model", color = draw.palette[1], width = 2.5 })
+  c:ecdf(o.data, { label = labels.data or ("data (n = %d)"):format(#o.data), color = "#1f2933", width = 1.5 })
+  c:rug(o.data, { color = "#1f2933" })
+  return c
+end
+
 return M

@@ -4,6 +4,8 @@
 local xml = require "smi.report.xml"
 local fmt = require "smi.report.format"
 local style = require "smi.report.style"
+local summary = require "smi.report.summary"
+local warnings = require "smi.report.warnings"
 
 local M = {}
 local esc = xml.escape
@@ -53,7 +55,7 @@ local function table_html(t)
   -- a table of many columns is printed in smaller type (style.lua's table.wide)
   local wide = #t.columns >= 9 and " wide" or ""
   local out = { '<div class="table-wrap"><table class="data' .. wide .. '" id="' .. esc(t.id) .. '">' }
-  out[#out + 1] = ("<caption><b>Table %d.</b> %s</caption>"):format(t.number, tesc(t.caption or ""))
+  out[#out + 1] = ("<caption>%s%s</caption>"):format(t.number and ("<b>Table %d.</b> "):format(t.number) or "", tesc(t.caption or ""))
   local head = {}
   for j, col in ipairs(t.columns) do
     local numeric = false
@@ -114,7 +116,12 @@ end
 local function item_html(it)
   if it.kind == "section" then
     local tag = it.level == 1 and "h2" or "h3"
-    return ('<%s id="%s"><span class="num">%s</span>%s</%s>'):format(tag, esc(it.id), esc(it.number), esc(it.title), tag)
+    local head = ('<%s id="%s"><span class="num">%s</span>%s</%s>'):format(tag, esc(it.id), esc(it.number), esc(it.title), tag)
+    if it.superseded then
+      head = head .. ('<div class="callout superseded">%s<span>Superseded: %s. Its verdicts are not counted.</span></div>')
+        :format('<span class="badge skip">SUPERSEDED</span>', tesc(it.superseded))
+    end
+    return head
   elseif it.kind == "text" then return paragraphs(it.text)
   elseif it.kind == "table" then return table_html(it)
   elseif it.kind == "figure" then return figure_html(it)
@@ -130,7 +137,7 @@ local function item_html(it)
   error("smi.report.html: unknown item kind " .. tostring(it.kind))
 end
 
-local function toc_html(items)
+local function toc_html(items, has_warnings)
   -- two levels: sections, and their subsections (a subsection before any section is a section)
   local top = {}
   for _, it in ipairs(items) do
@@ -141,7 +148,13 @@ local function toc_html(items)
   end
   local function link(it) return ('<a href="#%s">%s</a>'):format(esc(it.id), esc(it.title)) end
   local out = { '<nav class="toc"><h2>Contents</h2><ol>' }
+  local warned = false
   for _, e in ipairs(top) do
+    -- the warnings stand before the study's Provenance section, as on the page
+    if has_warnings and not warned and e.it.title == "Provenance" then
+      out[#out + 1] = '<li><a href="#warnings">Warnings</a></li>'
+      warned = true
+    end
     local subs = ""
     if #e.subs > 0 then
       local li = {}
@@ -150,16 +163,18 @@ local function toc_html(items)
     end
     out[#out + 1] = "<li>" .. link(e.it) .. subs .. "</li>"
   end
+  if has_warnings and not warned then out[#out + 1] = '<li><a href="#warnings">Warnings</a></li>' end
   out[#out + 1] = '<li><a href="#run-details">Run details</a></li></ol></nav>'
   return table.concat(out, "\n")
 end
 
 -- The one verdict list: every verdict once, with its one status (its checks and the sentence on
 -- which governs beside it), the counts by status, then the warnings raised along the way.
-local function summary_html(items, counts)
-  local out, warns = {}, {}
-  for _, it in ipairs(items) do
-    if it.kind == "verdict" then
+local function summary_html(items, counts, gone)
+  local out, warns, old = {}, {}, 0
+  for i, it in ipairs(items) do
+    if it.kind == "verdict" and gone[i] then old = old + 1
+    elseif it.kind == "verdict" then
       local sub = ""
       if it.checks and #it.checks > 0 then
         local c = {}
@@ -167,20 +182,65 @@ local function summary_html(items, counts)
         sub = ' <span class="sub">(' .. table.concat(c, "; ") .. (it.disagrees and "; see which governs" or "") .. ")</span>"
       end
       out[#out + 1] = ('<li>%s<a href="#%s">%s</a>%s</li>'):format(M.badge(it.status), esc(it.id), tesc(it.name), sub)
-    elseif it.kind == "callout" and it.status == "warn" then
-      -- the list names each warning in a line; the whole text stays where it was raised
-      local text = fmt.tidy(it.text)
-      if #text > 110 then text = text:sub(1, 100):gsub("[%s,;:]+%S*$", "") .. " ..." end
-      warns[#warns + 1] = ('<li>%s<a href="#%s">%s</a></li>'):format(M.badge("warn"), esc(it.id), esc(text))
     end
   end
-  if #out == 0 and #warns == 0 then return "" end
+  if #out == 0 and not counts then return "" end
   local html = { '<section class="summary"><h2>Verdicts</h2>' }
-  if counts then html[#html + 1] = '<p class="counts">' .. esc(counts) .. "</p>" end
+  if counts then
+    html[#html + 1] = '<p class="counts">' .. esc(counts) .. (counts:find("warning") and ' (<a href="#warnings">listed at the end</a>)' or "")
+      .. (old > 0 and ("; " .. old .. " verdict" .. (old == 1 and "" or "s") .. " of superseded sections not counted") or "") .. "</p>"
+  end
   if #out > 0 then html[#html + 1] = "<ul>" .. table.concat(out) .. "</ul>" end
-  if #warns > 0 then html[#html + 1] = '<h2>Warnings</h2><ul>' .. table.concat(warns) .. "</ul>" end
   html[#html + 1] = "</section>"
   return table.concat(html)
+end
+
+-- The opening (smi.report:summary): the conclusion, the chosen form, each response's verdict,
+-- the calibrated parameters, what is open and what would settle it.
+local function answer_html(s, digits)
+  if not s then return "" end
+  local out = { '<section class="answer" id="summary"><h2>Summary</h2>', '<p class="conclusion">' .. tesc(s.conclusion) .. "</p>" }
+  if s.form then out[#out + 1] = '<p class="form"><b>Chosen form:</b> ' .. tesc(s.form) .. "</p>" end
+  if #s.verdicts > 0 then
+    local li = {}
+    for i, v in ipairs(s.verdicts) do
+      li[i] = "<li>" .. M.badge(v.status) .. '<span class="name">' .. tesc(v.name) .. "</span>"
+        .. (v.detail and (' <span class="sub">' .. tesc(v.detail) .. "</span>") or "") .. "</li>"
+    end
+    out[#out + 1] = '<ul class="verdicts">' .. table.concat(li) .. "</ul>"
+  end
+  local t = summary.parameter_table(s, digits)
+  if t then
+    out[#out + 1] = table_html{ columns = t.columns, rows = t.rows, digits = digits, number = nil, id = "summary-parameters",
+                                caption = "Calibrated parameters: mean and standard deviation with their interval, and the prior where one was declared." }
+  end
+  if #s.open > 0 then
+    local li = {}
+    for i, o in ipairs(s.open) do
+      li[i] = "<li>" .. tesc(o.question) .. (o.settle and (' <span class="settle">What would settle it: ' .. tesc(o.settle) .. "</span>") or "") .. "</li>"
+    end
+    out[#out + 1] = '<h3>Open</h3><ul class="open">' .. table.concat(li) .. "</ul>"
+  end
+  if s.notes then out[#out + 1] = paragraphs(s.notes) end
+  out[#out + 1] = "</section>"
+  return table.concat(out, "\n")
+end
+
+-- Warnings, grouped and counted (smi.report:warning_groups), with the sections they concern.
+local function warnings_html(groups)
+  if not groups or #groups == 0 then return "" end
+  local total = 0
+  for _, g in ipairs(groups) do total = total + g.count end
+  local out = { '<h2 id="warnings">Warnings</h2>',
+    ("<p>%d distinct warning%s (%d in all), each once with how often it came and where.</p>"):format(#groups,
+      #groups == 1 and "" or "s", total), '<ul class="warnings">' }
+  for _, g in ipairs(groups) do
+    local where = #g.where > 0 and (' <span class="sub">(' .. esc(table.concat(g.where, "; ")) .. ")</span>") or ""
+    local times = g.count > 1 and ('<span class="count">' .. g.count .. "&#215;</span> ") or ""
+    out[#out + 1] = "<li>" .. M.badge("warn") .. times .. tesc(g.text) .. esc(warnings.similar(g)) .. where .. "</li>"
+  end
+  out[#out + 1] = "</ul>"
+  return table.concat(out, "\n")
 end
 
 -- Run details (report:provenance): ordered groups of key/value pairs; nested tables are flattened
@@ -220,10 +280,20 @@ function M.render(doc)
     out[#out + 1] = '<p class="meta">' .. table.concat(m, " · ") .. "</p>"
   end
   out[#out + 1] = "</header>"
-  out[#out + 1] = summary_html(doc.items, doc.counts)
-  out[#out + 1] = toc_html(doc.items)
+  out[#out + 1] = answer_html(doc.summary, doc.digits)
+  out[#out + 1] = summary_html(doc.items, doc.counts, doc.superseded or {})
+  out[#out + 1] = toc_html(doc.items, doc.warnings and #doc.warnings > 0)
   out[#out + 1] = "<main>"
-  for _, it in ipairs(doc.items) do out[#out + 1] = item_html(it) end
+  -- the story; then the warnings; the study's Provenance section is its last item
+  local prov_at
+  for i, it in ipairs(doc.items) do
+    if it.kind == "section" and it.title == "Provenance" and it.level == 1 then prov_at = i end
+  end
+  for i, it in ipairs(doc.items) do
+    if i == prov_at then out[#out + 1] = warnings_html(doc.warnings) end
+    out[#out + 1] = item_html(it)
+  end
+  if not prov_at then out[#out + 1] = warnings_html(doc.warnings) end
   out[#out + 1] = "</main>"
   out[#out + 1] = prov_html(doc.provenance or {})
   out[#out + 1] = "<footer>" .. esc(doc.footer or "Generated by smi-lua. Self-contained: no scripts, no network resources.") .. "</footer>"

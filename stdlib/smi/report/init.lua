@@ -13,6 +13,8 @@
 local html = require "smi.report.html"
 local json = require "smi.report.json"
 local xmlcheck = require "smi.report.xmlcheck"
+local warnings = require "smi.report.warnings"
+local summary = require "smi.report.summary"
 
 local doc = require "smi.doc"
 doc.add[==[
@@ -53,6 +55,8 @@ function M.new(opts)
     error("smi.report.new: 'title' is required (a non-empty string), e.g. smi.report.new{title = \"My study\"}", 2)
   end
   local r = setmetatable({ opts = opts, items = {}, prov = {}, results = {}, ids = {},
+                           -- the run's warnings from here on are this report's too
+                           warnings_from = type(smi) == "table" and type(smi.warnings) == "function" and #smi.warnings() or 0,
                            counts = { section = 0, sub = 0, table = 0, figure = 0, verdict = 0 } }, Report)
   return r
 end
@@ -318,7 +322,9 @@ end
 doc.add[==[
 @ smi.report:tally() -> table, string
 The verdicts counted by status, and the header's sentence ("4 passed, 1 failed, 2 warnings,
-1 inconclusive, 2 not run"). Warnings are the verdicts with status "warn" plus the warning callouts.
+1 inconclusive, 2 not run"). Warnings are the verdicts with status "warn" plus the distinct warning
+callouts (smi.report:warning_groups). What lies in a superseded section (smi.report:supersede) is
+not counted: the header counts what the study declares final.
 returns: {pass =, fail =, warn =, inconclusive =, skip =, info =}, a string
 errors: none
 example:
@@ -328,10 +334,11 @@ example:
 ]==]
 function Report:tally()
   local n = { pass = 0, fail = 0, warn = 0, inconclusive = 0, skip = 0, info = 0 }
-  for _, it in ipairs(self.items) do
-    if it.kind == "verdict" then n[it.status] = n[it.status] + 1
-    elseif it.kind == "callout" and it.status == "warn" then n.warn = n.warn + 1 end
+  local gone = self:_superseded()
+  for i, it in ipairs(self.items) do
+    if it.kind == "verdict" and not gone[i] then n[it.status] = n[it.status] + 1 end
   end
+  n.warn = n.warn + #self:warning_groups(true)
   local function plural(k, one, many) return ("%d %s"):format(n[k], n[k] == 1 and one or many) end
   local parts = { ("%d passed"):format(n.pass), ("%d failed"):format(n.fail), plural("warn", "warning", "warnings"),
                   ("%d inconclusive"):format(n.inconclusive) }
@@ -354,6 +361,111 @@ function Report:callout(text, status)
   status = status or "info"
   status_of({ status = status }, "report:callout")
   self.items[#self.items + 1] = { kind = "callout", text = tostring(text), status = status, id = self:_id("note", #self.items) }
+  return self
+end
+
+doc.add[==[
+@ smi.report:supersede(section, reason) -> report
+Marks a section (by its title or number, "Trial 1" or "3") and its subsections as superseded:
+replaced by a later one (a revised trial). It stays in the page, headed by the reason, but its
+verdicts and warnings are not counted in the header nor printed as the study's answer.
+returns: the report
+errors: no section with that title or number
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:section("Trial 1"):verdict{name = "Mode 1", pass = false}
+  r:section("Trial 2"):verdict{name = "Mode 1 (revised)", pass = true}
+  r:supersede("Trial 1", "revised in trial 2: the boundary stiffness is calibrated")
+  print(select(2, r:tally()))
+]==]
+function Report:supersede(which, reason)
+  for _, it in ipairs(self.items) do
+    if it.kind == "section" and it.level == 1 and (it.title == tostring(which) or it.number == tostring(which)) then
+      it.superseded = tostring(reason or "superseded by a later section")
+      return self
+    end
+  end
+  local titles = {}
+  for _, it in ipairs(self.items) do if it.kind == "section" and it.level == 1 then titles[#titles + 1] = it.title end end
+  error(("report:supersede: no section '%s' (sections: %s)"):format(tostring(which), table.concat(titles, ", ")), 2)
+end
+
+-- {[item index] = reason} for the items inside a superseded section.
+function Report:_superseded()
+  local out, reason = {}, nil
+  for i, it in ipairs(self.items) do
+    if it.kind == "section" and it.level == 1 then reason = it.superseded end
+    if reason then out[i] = reason end
+  end
+  return out
+end
+
+-- The title of the level-1 section each item lies in.
+function Report:_section_of()
+  local out, title = {}, nil
+  for i, it in ipairs(self.items) do
+    if it.kind == "section" and it.level == 1 then title = it.number .. " " .. it.title end
+    out[i] = title
+  end
+  return out
+end
+
+doc.add[==[
+@ smi.report:warning_groups([final]) -> list
+The report's warnings (callouts with status "warn", and the run's smi.warnings() raised since the
+report was made), grouped: the same warning raised per trial or per parameter is one group, with
+how often it came and the sections it concerns. The page lists them in its Warnings section, and
+smi.study prints them at the end of a run.
+final = false   -- true: leave out those in superseded sections
+returns: {{text =, count =, where = {section titles}, texts = {each distinct text}}, ...}
+errors: none
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:section("Trial 1"):callout("input 'E' at its bound 2.1", "warn")
+  r:section("Trial 2"):callout("input 'E' at its bound 2.3", "warn")
+  local g = r:warning_groups()
+  print(#g, g[1].count, g[1].where[2])
+]==]
+function Report:warning_groups(final)
+  local gone, where = self:_superseded(), self:_section_of()
+  local entries = {}
+  for i, it in ipairs(self.items) do
+    if it.kind == "callout" and it.status == "warn" and not (final and gone[i]) then
+      entries[#entries + 1] = { text = it.text, where = where[i] }
+    end
+  end
+  if type(smi) == "table" and type(smi.warnings) == "function" then
+    local all = smi.warnings()
+    for k = (self.warnings_from or 0) + 1, #all do entries[#entries + 1] = { text = all[k], where = "run" } end
+  end
+  return warnings.group(entries)
+end
+
+doc.add[==[
+@ smi.report:summary(s) -> report
+The report's opening: the answer before the story. Rendered first, under the title, whenever it
+is given (a study gives it at its end); given again, it replaces the first.
+options:
+  conclusion = (required) -- one sentence: what the study found
+  form = nil              -- the chosen form of the model (the final trial's unknowns, revisions)
+  verdicts = nil          -- {{name =, status = | pass =, detail =}, ...}: each response in the final trial
+  parameters = nil        -- {{name =, unit =, mean =, std =, interval = {lo, hi}, level = 0.95, prior =}, ...}:
+                          -- the calibrated parameters (prior: text such as "normal(2.1e11, 1e10)")
+  open = nil              -- {{question =, settle =}, ...} (or strings): what is open and what would settle it
+  notes = nil             -- a paragraph under the rest
+returns: the report
+errors: no conclusion; a verdict without a name or status; a parameter without a name
+example:
+  local r = require("smi.report").new{title = "t"}
+  r:summary{conclusion = "The model is valid for modes 1 to 4 after one revision.",
+            form = "trial 2: E and t calibrated",
+            verdicts = {{name = "Mode 1", status = "pass", detail = "U = 0.05 <= 0.19"}},
+            parameters = {{name = "E", unit = "GPa", mean = 207, std = 3.1, interval = {201, 213}, prior = "normal(210, 10)"}},
+            open = {{question = "Mode 4 rests on 9 tests", settle = "nine more tests of mode 4"}}}
+  print(r:data().summary.parameters[1].mean)
+]==]
+function Report:summary(s)
+  self.summary_data = summary.check(s, 2)
   return self
 end
 
@@ -443,7 +555,8 @@ function Report:html()
   local prov = {}
   flatten("", self.prov, prov)
   return html.render{ title = o.title, subtitle = o.subtitle, meta = meta, items = self.items, provenance = prov,
-                      footer = o.footer, counts = any and counted or nil }
+                      footer = o.footer, counts = any and counted or nil, summary = self.summary_data,
+                      superseded = self:_superseded(), warnings = self:warning_groups(), digits = o.digits or 4 }
 end
 
 -- Where to write: an explicit path, else <out>/<name> with out from the options or the host.
@@ -486,9 +599,10 @@ example:
 --- Everything the report holds as numbers: tables, verdicts, provenance, recorded results.
 function Report:data()
   local d = { title = self.opts.title, tables = {}, verdicts = {}, figures = {}, provenance = self.prov, results = self.results,
-              counts = (self:tally()) }
+              counts = (self:tally()), summary = self.summary_data, warnings = self:warning_groups() }
+  local gone = self:_superseded()
   local section = nil
-  for _, it in ipairs(self.items) do
+  for i, it in ipairs(self.items) do
     if it.kind == "section" then section = it.number .. " " .. it.title
     elseif it.kind == "table" then
       local cols, rows = {}, {}
@@ -505,7 +619,7 @@ function Report:data()
       end
       d.tables[#d.tables + 1] = { number = it.number, caption = it.caption, section = section, columns = cols, rows = rows }
     elseif it.kind == "verdict" then
-      local v = { section = section }
+      local v = { section = section, superseded = gone[i] }
       for k, x in pairs(it) do if k ~= "kind" and k ~= "id" then v[k] = x end end
       d.verdicts[#d.verdicts + 1] = v
     elseif it.kind == "figure" or it.kind == "figrow" then

@@ -1,13 +1,13 @@
---- The report's first section: what produced these numbers (issue 24). The script, the data
+--- The report's last section: what produced these numbers. The script, the data
 -- and other files read, the solver programs, the libraries, the versions of smi-lua and what it
 -- was built with, and the command line that reproduces the run, from smi.provenance().
 --
---   local section = require("smi.report.provenance").begin(report)  -- first, before any step
---   ...                                                               -- the steps fill the report
---   section:fill(smi.provenance(), {study = "beam", results = path})  -- at the end
+--   local section = require("smi.report.provenance").begin(report)  -- after the story
+--   section:fill(smi.provenance(), {study = "beam", results = path})  -- once the run has read all
 --
--- begin() places the section and its table first; fill() writes their rows once everything the
--- run read is known. smi.study does both for any study that has a report. The same table goes
+-- begin() places the section and its table where the report stands (smi.study: last, after the
+-- steps and before the run details); fill() writes their rows. smi.study does both for any study
+-- that has a report. The same table goes
 -- into the report's JSON (r:data().tables) like any other.
 local M = {}
 
@@ -96,8 +96,7 @@ end
 local Section = {}
 Section.__index = Section
 
---- Places the provenance section first in `report` (call before anything else is added) and
--- returns a handle whose :fill(p, extra) writes its rows at the end of the run.
+--- Places the provenance section in `report` where it stands (a study: last) and returns a handle whose :fill(p, extra) writes its rows at the end of the run.
 function M.begin(report)
   report:section("Provenance")
   report:text("What produced these numbers: filled in when the run ends.")

@@ -5,7 +5,7 @@ return [[
         --warn: #8a5a00; --warn-bg: #fff4d6; --info: #3e4c59; --info-bg: #eef1f4; }
 * { box-sizing: border-box; }
 html { background: var(--bg); }
-body { margin: 0 auto; max-width: 1000px; padding: 0 28px 40px; background: #ffffff; color: var(--ink);
+body { margin: 0 auto; max-width: 1100px; padding: 0 28px 40px; background: #ffffff; color: var(--ink);
        font: 15px/1.55 "DejaVu Sans", "Liberation Sans", Helvetica, Arial, sans-serif;
        box-shadow: 0 0 0 1px var(--line); min-height: 100vh; }
 header.title-block { margin: 0 -28px 24px; padding: 28px 28px 20px; background: var(--accent); color: #ffffff; }
@@ -42,6 +42,17 @@ nav.toc ol ol { padding-left: 18px; }
 .verdict .detail { color: var(--muted); font-size: 14px; margin-top: 2px; }
 .verdict .checks { margin: 4px 0 0; padding-left: 18px; font-size: 13.5px; }
 .verdict .governs { margin-top: 4px; font-size: 13.5px; }
+section.answer { border: 2px solid var(--accent); border-radius: 6px; padding: 12px 16px; margin: 0 0 18px; }
+section.answer h2 { margin: 0 0 8px; border: 0; font-size: 19px; }
+section.answer .conclusion { font-size: 16.5px; font-weight: 600; }
+section.answer ul { list-style: none; margin: 6px 0; padding: 0; }
+section.answer li { padding: 3px 0; }
+section.answer .sub, section.answer .settle { color: var(--muted); font-size: 13.5px; }
+section.answer .settle { display: block; margin-left: 18px; }
+ul.warnings { list-style: none; padding: 0; }
+ul.warnings li { padding: 5px 0; border-top: 1px solid #edf0f3; font-size: 14px; }
+ul.warnings .count { font-weight: 700; margin-right: 4px; }
+.callout.superseded { background: var(--info-bg); color: var(--muted); }
 .summary .counts { margin: 0 0 8px; font-size: 13.5px; color: var(--muted); }
 .summary .sub { color: var(--muted); font-size: 13px; }
 .badge.inconclusive { background: var(--warn-bg); color: var(--warn); border: 1px dashed var(--warn); }
@@ -64,6 +75,12 @@ table.data td { border-bottom: 1px solid #e6eaee; padding: 4px 7px; }
 table.data tr:nth-child(even) td { background: #fafbfc; }
 table.data .num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; overflow-wrap: normal; }
 table.data th.num { white-space: normal; }
+/* a table of many columns (a calibration's: bounds, starts, stages, intervals) is condensed on
+   screen too, so that it fits a 1280 px window without scrolling: smaller type, tighter cells,
+   headers that break inside words if they must */
+table.data.wide { font-size: 12px; }
+table.data.wide td, table.data.wide th { padding: 3px 4px; }
+table.data.wide th { overflow-wrap: break-word; }
 table.data th.num { text-align: right; }
 figure { margin: 16px 0 22px; }
 figure .chart { border: 1px solid var(--line); border-radius: 4px; padding: 6px; display: inline-block; max-width: 100%; background: #ffffff; }
@@ -76,10 +93,10 @@ dl.prov { display: grid; grid-template-columns: max-content 1fr; gap: 4px 18px; 
 dl.prov dt { color: var(--muted); font-weight: 600; }
 dl.prov dd { margin: 0; font-family: "DejaVu Sans Mono", monospace; font-size: 12.5px; word-break: break-all; }
 footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line); color: var(--muted); font-size: 12px; }
-/* Printed: A4 or letter with 14 mm margins. Tables fit the page width (smaller type, cells wrap,
+/* Printed: A4 with 14 mm margins (smi-lua report --pdf). Tables fit the page width (smaller type, cells wrap,
    numbers too if they must), a figure or a verdict is never cut by a page break, headings stay
    with what follows, and long tables repeat their header on each page. */
-@page { margin: 14mm; }
+@page { size: A4; margin: 14mm; }
 @media print {
   html { background: #ffffff; }
   body { box-shadow: none; max-width: none; padding: 0; font-size: 11pt; min-height: 0; }

@@ -57,6 +57,8 @@ example:
 ]==]
 --- A chart with x/y axes (see smi.report.chart for the options and methods).
 M.chart = chart.new
+--- The before/after figure of a response: data, initial and final model (see its doc text).
+M.before_after = chart.before_after
 doc.add[==[
 @ smi.report.svg.bars(opts) -> svg
 Horizontal bars, one row per label (screening indices, decision-matrix ratings).

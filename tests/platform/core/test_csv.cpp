@@ -22,7 +22,7 @@ TEST_CASE("csv reads RFC 4180 records") {
   const auto c = csv::read("  # note\nx;y\n1;2\n", "t.csv", o);
   REQUIRE(c.size() == 2);
   CHECK(c[1].fields == std::vector<std::string>{"1", "2"});
-  CHECK_THROWS_WITH(csv::read("a\n\"open\nstill", "t.csv"), "t.csv:2: a quoted field never ends (missing '\"')");
+  CHECK_THROWS_WITH(csv::read("a\n\"open\nstill", "t.csv"), "line 2 of t.csv: a quoted field never ends (missing '\"')");
 }
 
 TEST_CASE("csv writes cells that read back, numbers whole") {
