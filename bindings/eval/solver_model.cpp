@@ -408,7 +408,6 @@ int make_solver_model(lua_State* L, bool batch) {
   int deck_fn = 0;
   if (c.deck_function) {
     lua_getfield(L, 1, "template");
-    push_pure_function(L, -1, fname);
     deck_fn = lua_gettop(L);
   }
   Model m;
@@ -418,9 +417,10 @@ int make_solver_model(lua_State* L, bool batch) {
   m.outputs = c.outputs;
   lua::protect(L, fname, [&] {
     m.ev = std::make_unique<se::Evaluator>(std::move(c));
+    if (deck_fn) m.ev->set_deck_function(deck_renderer(L, deck_fn, m.ev->config(), fname));
     return 0;
   });
-  push_model(L, std::move(m), fn, deck_fn);
+  push_model(L, std::move(m), fn);
   return 1;
 }
 
@@ -569,7 +569,6 @@ int evaluate_solver(lua_State* L, Model& m) {
   // the memory ceiling or os.exit: the evaluator reads the run's token itself between runs.
   m.ev->set_cancel(ctx.cancel);
 
-  const DeckFunctionScope decks(L, 1, m);
   se::EvalResult r;
   std::string summary;
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored

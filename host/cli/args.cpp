@@ -229,7 +229,8 @@ Commands (sharing libraries; options such as --lib go before or after them):
   test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
   verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,
                       solvers, libraries, build; lists each difference; exit 0 all match, 1 a
-                      difference, 2 not a results file (--json: the same as JSON)
+                      difference, 2 not a results file or not done within --timeout (default
+                      600 s); only regular files are read (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error in the script (message with file:line and a traceback on
