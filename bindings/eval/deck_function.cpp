@@ -14,7 +14,7 @@
 
 namespace smi::bind::eval {
 
-std::function<std::string(const Eigen::VectorXd&)> deck_renderer(lua_State* L, int idx, const se::CommandConfig& cfg,
+std::function<std::string(const Eigen::VectorXd&)> deck_renderer(lua_State* L, int idx, const smi::eval::CommandConfig& cfg,
                                                                   const char* fname) {
   idx = lua_absindex(L, idx);
   if (lua_type(L, idx) != LUA_TFUNCTION || lua_iscfunction(L, idx))

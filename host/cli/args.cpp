@@ -181,7 +181,10 @@ Sandbox (each option may be repeated):
                       the library folders)
   --allow-write PATH  let the script write under PATH (it always may write under --out)
   --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
-  --allow-env NAME    let os.getenv read the environment variable NAME (no other is readable)
+  --allow-env NAME    let os.getenv read the environment variable NAME, pass your NAME to
+                      solvers, and let a model's env = {NAME = ...} set it (no other name);
+                      allow only names a solver reads as data (OMP_NUM_THREADS), never
+                      ones its interpreter reads at start-up (docs/sandbox.md)
 
 Modules:
   --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too);

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 
 #include "platform/core/errors.hpp"
 
@@ -11,15 +12,28 @@ namespace {
 constexpr int kCheckEvery = 1000;  // instructions between two looks at the token
 constexpr int kMaxDepth = 64;      // nesting of copied tables and functions
 
-const char* const kPureBase[] = {"assert",   "error",    "ipairs",       "next",         "pairs",  "pcall",
-                                 "rawequal", "rawget",   "rawlen",       "rawset",       "select", "setmetatable",
-                                 "getmetatable", "tonumber", "tostring", "type",         "xpcall", "_VERSION"};
-const char* const kPureLibs[] = {"string", "math", "table", "utf8"};
+// What the state's globals hold: an allow-list, as the sandbox's (a function a new Lua adds is
+// not there). No setmetatable: nothing in the state gets a __gc or __close to run outside a call.
+const char* const kPureBase[] = {"assert", "error",    "ipairs",   "next",   "pairs",    "pcall",
+                                 "rawequal", "rawget", "rawlen",   "rawset", "select",   "getmetatable",
+                                 "tonumber", "tostring", "type",   "xpcall", "_VERSION"};
 
-/// Left out of the state's math: a deck is a function of its point, never of a random draw.
-bool left_out(const char* lib, const char* name) {
-  return std::strcmp(lib, "math") == 0 && (std::strcmp(name, "random") == 0 || std::strcmp(name, "randomseed") == 0);
-}
+struct Lib {
+  const char* name;
+  std::initializer_list<const char*> fields;
+};
+
+// string without dump; math without random and randomseed (a deck is a function of its point).
+const Lib kPureLibs[] = {
+    {"string",
+     {"byte", "char", "find", "format", "gmatch", "gsub", "len", "lower", "match", "pack", "packsize", "rep",
+      "reverse", "sub", "unpack", "upper"}},
+    {"math",
+     {"abs", "acos", "asin", "atan", "ceil", "cos", "deg", "exp", "floor", "fmod", "huge", "log", "max",
+      "maxinteger", "min", "mininteger", "modf", "pi", "rad", "sin", "sqrt", "tan", "tointeger", "type", "ult"}},
+    {"table", {"concat", "insert", "move", "pack", "remove", "sort", "unpack"}},
+    {"utf8", {"char", "charpattern", "codes", "codepoint", "len", "offset"}},
+};
 
 const char kFunctionKey = 0;  // registry key of the adopted function
 
@@ -60,20 +74,14 @@ int setup(lua_State* L) {
     lua_getfield(L, 1, n);
     lua_setfield(L, 2, n);
   }
-  for (const char* lib : kPureLibs) {
-    lua_getfield(L, 1, lib);  // 3: the library
-    lua_newtable(L);          // 4: its copy
-    lua_pushnil(L);
-    while (lua_next(L, 3)) {
-      if (lua_type(L, -2) == LUA_TSTRING && left_out(lib, lua_tostring(L, -2))) {
-        lua_pop(L, 1);
-        continue;
-      }
-      lua_pushvalue(L, -2);
-      lua_insert(L, -2);
-      lua_rawset(L, 4);
+  for (const Lib& lib : kPureLibs) {
+    lua_getfield(L, 1, lib.name);  // 3: the library
+    lua_createtable(L, 0, static_cast<int>(lib.fields.size()));  // 4: the state's copy
+    for (const char* f : lib.fields) {
+      lua_getfield(L, 3, f);
+      lua_setfield(L, 4, f);
     }
-    if (std::strcmp(lib, "string") == 0) {
+    if (std::strcmp(lib.name, "string") == 0) {
       guard_gmatch(L, 4);
       lua_pushliteral(L, "");  // strings' methods ("x"):upper() come from this copy
       if (lua_getmetatable(L, -1)) {
@@ -83,7 +91,7 @@ int setup(lua_State* L) {
       }
       lua_pop(L, 1);
     }
-    lua_setfield(L, 2, lib);
+    lua_setfield(L, 2, lib.name);
     lua_pop(L, 1);
   }
   lua_createtable(L, 0, 1);
@@ -317,7 +325,8 @@ int pure_index(lua_State* L) {
       lua_pop(L, 1);
     }
   }
-  for (const char* lib : kPureLibs) {
+  for (const Lib& l : kPureLibs) {
+    const char* lib = l.name;
     lua_pushstring(L, lib);
     if (lua_rawget(L, g) != LUA_TTABLE) {
       lua_pop(L, 1);
@@ -420,8 +429,10 @@ std::string IsolatedState::call(const std::vector<Field>& fields, const char* wh
   lua_pushlightuserdata(L_, &args);
   const int status = lua_pcall(L_, 1, 1, 0);
   std::size_t n = 0;
-  const char* s = lua_tolstring(L_, -1, &n);
-  std::string out = s ? std::string(s, n) : std::string(status == LUA_OK ? "" : "not enough memory");
+  // an error value that is not a string is not converted (its __tostring would run unprotected)
+  const char* s = lua_type(L_, -1) == LUA_TSTRING ? lua_tolstring(L_, -1, &n) : nullptr;
+  std::string out = s ? std::string(s, n)
+                      : std::string(what) + " raised an error that is not a string (a " + luaL_typename(L_, -1) + ")";
   lua_settop(L_, 0);
   lua_gc(L_, LUA_GCCOLLECT);  // what the call made is garbage now: give it back to the study's budget
   if (status != LUA_OK) throw Error(out);

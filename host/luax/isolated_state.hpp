@@ -5,9 +5,9 @@
 // Here nothing crosses but values: what goes in is copied (numbers, strings, booleans, plain
 // tables, Lua functions with their upvalues copied the same way), and what comes out is text.
 //
-// The state's globals are the pure base functions (no load, require, print, collectgarbage),
-// and fresh string (gmatch guarded), math (without random: a deck is a function of its point),
-// table and utf8 tables; any other global name raises an error naming it. Its heap comes from
+// The state's globals are the pure base functions (no load, require, print, collectgarbage,
+// setmetatable), and fresh string (gmatch guarded, no dump), math (without random: a deck is a
+// function of its point), table and utf8 tables; any other global name raises an error naming it. Its heap comes from
 // the study's allocator, so --max-memory counts it; a count hook polls the run's cancellation
 // token, so --timeout and Ctrl-C stop a loop in it.
 #include <string>

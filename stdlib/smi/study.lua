@@ -22,6 +22,7 @@
 -- and the command to run, and marks later steps stale when it recomputes what they read.
 -- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
 -- same run, are left out of the file, and are listed under the step's "not_saved".
+local internal = select(3, ...)  -- host functions for the stdlib only (the stdlib searcher passes them)
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
@@ -98,7 +99,7 @@ function M.new(opts)
     report_opts = opts.report, volatile = opts.volatile or {},
   }, Study)
   -- the results file is this study's output: reading it back is not an input of the run
-  if type(smi) == "table" and type(smi._not_input) == "function" then smi._not_input(s.results_path) end
+  if type(internal) == "table" then internal.not_input(s.results_path) end
   return s
 end
 

@@ -14,7 +14,10 @@ local json = require "smi.report.json"
 
 local M = {}
 
-local host = type(smi) == "table" and type(smi._inputs) == "function"
+-- The host's record of files read (internal functions: the stdlib searcher passes them to
+-- stdlib modules only, never to scripts).
+local internal = select(3, ...)
+local host = type(internal) == "table" and type(internal.inputs) == "function"
 
 --- The keys of t (nil: none), sorted: a loop whose first hit becomes a message walks them so,
 -- since pairs() order changes from process to process (Lua seeds its string hashes per state).
@@ -45,24 +48,24 @@ local function pick(files, skip_lua)
 end
 
 --- The read counter now (files read after it are the next step's).
-function M.mark() return host and smi._inputs(math.maxinteger).seq or 0 end
+function M.mark() return host and internal.inputs(math.maxinteger).seq or 0 end
 
 --- Files a step read after `seq` (data and Lua files it loaded itself).
 function M.files_since(seq)
   if not host then return {} end
-  return pick(smi._inputs(seq).files, false)
+  return pick(internal.inputs(seq).files, false)
 end
 
 --- Data files read before the steps (the script's top level): an input of every step.
 function M.preamble()
   if not host then return {} end
-  return pick(smi._inputs(0).files, true)
+  return pick(internal.inputs(0).files, true)
 end
 
 --- SHA-256 of a JSON-able value (keys sorted by the encoder, so the same value hashes the same).
 function M.hash(v)
   local text = json.encode(v, { root = "hash" })
-  if type(smi) == "table" and type(smi._sha256) == "function" then return smi._sha256(text) end
+  if host then return internal.sha256(text) end
   return text -- outside smi-lua: the text itself compares the same way
 end
 
@@ -105,7 +108,7 @@ function M.files_change(files)
   for _, path in ipairs(M.sorted_keys(files)) do -- the first change named is the same every run
     local rec = files[path]
     if host then
-      local now, why = smi._digest(path, rec.kind)
+      local now, why = internal.digest(path, rec.kind)
       if not now then return ("file %s, which is no longer readable (%s)"):format(path, tostring(why)) end
       local same = (rec.large or now.large) and (rec.large == now.large and rec.size == now.size and rec.mtime == now.mtime)
         or (not rec.large and not now.large and rec.hash == now.hash)

@@ -103,4 +103,36 @@ T.case("math.random is seeded from --seed", function()
   T.eq(smi.seed, 20200214)
 end)
 
+T.case("no internal function is reachable: every name starting with '_' a script can see is meant for it", function()
+  -- read-only views of the reference (docs/sandbox.md, "Internal functions"), and Lua's own
+  local meant = {_docs = true, _closest = true, _known_options = true, _VERSION = true, _G = true}
+  local internal = {inputs = true, digest = true, sha256 = true, not_input = true}
+  local seen, found, leaked = {}, {}, {}
+  local function walk(t, path, depth)
+    if seen[t] or depth > 8 then return end
+    seen[t] = true
+    for k, v in next, t do
+      if type(k) == "string" then
+        local p = path .. "." .. k
+        if k:match("^_") and not k:match("^__") and not meant[k] then found[#found + 1] = p end
+        if internal[k] and type(v) == "function" then leaked[#leaked + 1] = p end
+      end
+      if type(v) == "table" then walk(v, type(k) == "string" and path .. "." .. k or path .. "[?]", depth + 1) end
+    end
+    local mt = getmetatable(t)
+    if type(mt) == "table" then walk(mt, path .. "<meta>", depth + 1) end
+  end
+  require "smi.study"  -- loads the stdlib modules that hold the internal functions
+  walk(_G, "_G", 0)
+  walk(getmetatable(""), "<string meta>", 0)
+  table.sort(found)
+  table.sort(leaked)
+  T.eq(table.concat(found, ", "), "", "undocumented internal names")
+  T.eq(table.concat(leaked, ", "), "", "internal functions reachable")
+  T.eq(smi._not_input, nil); T.eq(smi._digest, nil); T.eq(smi._inputs, nil); T.eq(smi._sha256, nil)
+  -- require's second result (the loader data) is the module's path, not the internal table
+  local _, data = require("smi.study")
+  T.eq(type(data), "string")
+end)
+
 T.finish()

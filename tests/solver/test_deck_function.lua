@@ -52,6 +52,7 @@ T.case("I/O inside a deck function is refused, naming what was tried", function(
     print = function(p) print("x") return "" end,
     smi = function(p) return smi.csv.read("/etc/passwd") end,
     collectgarbage = function(p) collectgarbage() return "" end,
+    setmetatable = function(p) setmetatable({}, {__gc = function() end}) return "" end,
   } do
     T.raises(function() model(fn):evaluate(X) end, "global '" .. name .. "' is not available: a deck function runs without I/O")
   end
@@ -63,6 +64,8 @@ T.case("I/O inside a deck function is refused, naming what was tried", function(
   local function write_helper() return io.open(out, "w") end
   T.raises(function() model(function(p) write_helper(); return "" end):evaluate(X) end, "global 'io' is not available")
   T.raises(function() model(function(p) return 42 end):evaluate(X) end, "must return the deck text (a string), got number")
+  T.raises(function() model(function(p) error({}) end):evaluate(X) end, "raised an error that is not a string (a table)")
+  T.raises(function() model(function(p) return string.dump(p) end):evaluate(X) end, "attempt to call a nil value (field 'dump')")
   T.raises(function() model(print) end, "must be a Lua function")
   -- after the refusals, the study's own I/O works
   T.eq(read_helper(), "-- A command model whose template is a Lua function of the point (issue 30): the deck computes,")
