@@ -55,9 +55,4 @@ class IsolatedState {
   lua_State* L_ = nullptr;
 };
 
-/// Replaces `t.gmatch` (t: the string table at `idx`) by a guarded copy: Lua 5.4.4's gmatch
-/// iterator, resumed after it failed, recurses until the C stack overflows (upstream fix
-/// lua/lua efddc230); the guarded iterator refuses to run again once it has raised.
-void guard_gmatch(lua_State* L, int idx);
-
 }  // namespace smi::lua

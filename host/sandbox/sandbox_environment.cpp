@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "luax/isolated_state.hpp"
+#include "luax/gmatch_guard.hpp"
 #include "sandbox/sandbox.hpp"
 
 namespace smi::sandbox {
@@ -143,7 +143,7 @@ void restrict_globals(lua_State* L, const std::vector<std::string>& allowed_env)
       lua_pushcclosure(L, coroutine_close, 1);
       lua_setfield(L, -2, "close");
     } else if (std::strcmp(lib.name, "string") == 0) {
-      lua::guard_gmatch(L, -1);  // Lua 5.4.4's gmatch bug (isolated_state.hpp)
+      lua::guard_gmatch(L, -1);  // Lua 5.4.4's gmatch bug (gmatch_guard.hpp)
       // Strings' methods ("x"):upper() come from the string metatable's __index: the new table.
       lua_pushliteral(L, "");
       if (lua_getmetatable(L, -1)) {
