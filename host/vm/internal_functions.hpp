@@ -3,8 +3,8 @@
 // recorded file, marking the results file as an output). A field of smi would be reachable by
 // every script, and one of them let a script take its data out of the provenance. They live in
 // a table in the registry, which the stdlib searcher hands to each stdlib module as the third
-// argument of its chunk (`local internal = select(3, ...)`); no global, field or upvalue a
-// script can reach holds it.
+// argument of its chunk (`local _, _, internal = ...`: never through a global function, which
+// a script may have replaced); no global, field or upvalue a script can reach holds it.
 #include <lua.hpp>
 
 namespace smi::vm {

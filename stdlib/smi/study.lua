@@ -22,7 +22,9 @@
 -- and the command to run, and marks later steps stale when it recomputes what they read.
 -- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
 -- same run, are left out of the file, and are listed under the step's "not_saved".
-local internal = select(3, ...)  -- host functions for the stdlib only (the stdlib searcher passes them)
+-- host functions for the stdlib only (the stdlib searcher passes them); taken by syntax and never
+-- handed to a global function, which a script may have replaced
+local _, _, internal = ...
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
@@ -99,7 +101,7 @@ function M.new(opts)
     report_opts = opts.report, volatile = opts.volatile or {},
   }, Study)
   -- the results file is this study's output: reading it back is not an input of the run
-  if type(internal) == "table" then internal.not_input(s.results_path) end
+  if internal ~= nil then internal.not_input(s.results_path) end
   return s
 end
 

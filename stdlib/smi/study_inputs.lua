@@ -15,9 +15,10 @@ local json = require "smi.report.json"
 local M = {}
 
 -- The host's record of files read (internal functions: the stdlib searcher passes them to
--- stdlib modules only, never to scripts).
-local internal = select(3, ...)
-local host = type(internal) == "table" and type(internal.inputs) == "function"
+-- stdlib modules only, never to scripts). Taken from `...` by syntax and never handed to a
+-- global function: a script may have replaced `select` or `type` before this module loads.
+local _, _, internal = ...
+local host = internal ~= nil
 
 --- The keys of t (nil: none), sorted: a loop whose first hit becomes a message walks them so,
 -- since pairs() order changes from process to process (Lua seeds its string hashes per state).
