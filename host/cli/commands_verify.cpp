@@ -4,7 +4,10 @@
 // it ran, the libraries (--lib / SMI_PATH now, else the folder recorded), and the build of
 // smi-lua. Each difference is listed (changed, with both hashes; missing; added files of a
 // library). Exit status: 0 when everything matches, 1 on any difference, 2 when RESULTS is not
-// a results file this smi-lua can read (not JSON, no provenance, a newer schema).
+// a results file this smi-lua can read (not a regular file, too large, not JSON, no provenance,
+// a newer schema) or the checks did not end within the time limit. A results file is data from
+// whoever made it: only regular files are read (a recorded /dev/zero or FIFO is reported, never
+// read), each up to the size it had when opened.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
