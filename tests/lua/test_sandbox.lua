@@ -117,7 +117,9 @@ T.case("no internal function is reachable: every name starting with '_' a script
         if k:match("^_") and not k:match("^__") and not meant[k] then found[#found + 1] = p end
         if internal[k] and type(v) == "function" then leaked[#leaked + 1] = p end
       end
-      if type(v) == "table" then walk(v, type(k) == "string" and path .. "." .. k or path .. "[?]", depth + 1) end
+      local sub = type(k) == "string" and path .. "." .. k or path .. "[?]"
+      if type(v) == "table" then walk(v, sub, depth + 1) end
+      if type(v) == "userdata" and type(getmetatable(v)) == "table" then walk(getmetatable(v), sub .. "<meta>", depth + 1) end
     end
     local mt = getmetatable(t)
     if type(mt) == "table" then walk(mt, path .. "<meta>", depth + 1) end
