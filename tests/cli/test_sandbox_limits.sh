@@ -108,7 +108,7 @@ lacks_err "did not stop"
 fast 6
 deck_model 'local t = {} for i = 1, 1e9 do t[i] = ("x"):rep(1000) .. i end return ""' > deck_mem.lua
 timed "a deck function's memory counts against --max-memory" 1 timeout 30 "$SMI" --allow-exec /bin/true --max-memory 64 deck_mem.lua
-has_err "not enough memory"
+has_err "--max-memory 64 MB"
 fast 20
 
 finish

@@ -157,6 +157,7 @@ T.case("no internal function is reachable: every name starting with '_' a script
   T.raises(function() require("smi.study").new{name = "r", results = here .. "/test_sandbox.lua"} end,
            "does not lie under --out or an --allow-write folder")
   -- require's second result (the loader data) is the module's path, not the internal table
+  package.loaded["smi.study"] = nil
   local _, data = require("smi.study")
   T.eq(type(data), "string")
 end)
