@@ -16,11 +16,13 @@
 --   local why = csssafe.value("fill", "url(#g)")                    -- a presentation attribute
 local M = {}
 
-local function set(list)
+--- {[v] = true} for each v of the list (the allow-lists here and in svgsafe.lua).
+function M.set(list)
   local s = {}
   for _, v in ipairs(list) do s[v] = true end
   return s
 end
+local set = M.set
 
 --- The properties a figure may set (in a style, or as a presentation attribute).
 M.properties = set{

@@ -14,11 +14,7 @@ local xmlcheck = require "smi.report.xmlcheck"
 
 local M = {}
 
-local function set(list)
-  local s = {}
-  for _, v in ipairs(list) do s[v] = true end
-  return s
-end
+local set = csssafe.set
 
 M.elements = set{
   "svg", "g", "defs", "symbol", "use", "title", "desc", "metadata", "style",
