@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "bindings/eval/model.hpp"
+#include "luax/isolated_state.hpp"
 #include "luax/luax.hpp"
 #include "luax/run_context.hpp"
 #include "platform/core/errors.hpp"

@@ -10,7 +10,6 @@
 #include <vector>
 #include <lua.hpp>
 
-#include "luax/isolated_state.hpp"
 #include "platform/eval/evaluator.hpp"
 
 namespace smi::bind::eval {
