@@ -58,7 +58,6 @@ int model_plan(lua_State* L) {
     lua::set_number(L, "eta", 0);
     return 1;
   }
-  const DeckFunctionScope decks(L, 1, m);
   return lua::protect(L, "smi.model:plan", [&] {
     const se::Plan p = m.ev->plan(X);
     lua_createtable(L, 0, 5);
@@ -101,17 +100,12 @@ const luaL_Reg kMeta[] = {{"__tostring", model_tostring}, {nullptr, nullptr}};
 
 void register_model_type(lua_State* L) { lua::register_type<Model>(L, kModelType, kMethods, kMeta, model_getter); }
 
-void push_model(lua_State* L, Model m, int fn_idx, int deck_idx) {
+void push_model(lua_State* L, Model m, int fn_idx) {
   fn_idx = lua_absindex(L, fn_idx);
-  if (deck_idx) deck_idx = lua_absindex(L, deck_idx);
-  Model*& slot = lua::new_box<Model>(L, kModelType, 2);
+  Model*& slot = lua::new_box<Model>(L, kModelType, 1);
   slot = new Model(std::move(m));
   lua_pushvalue(L, fn_idx);
   lua_setiuservalue(L, -2, 1);
-  if (deck_idx) {
-    lua_pushvalue(L, deck_idx);
-    lua_setiuservalue(L, -2, 2);
-  }
 }
 
 Eigen::MatrixXd design_of(lua_State* L, int idx, const Model& m) {

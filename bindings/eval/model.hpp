@@ -4,6 +4,7 @@
 // the model function itself) lives in the box's user value 1, so the GC keeps it alive exactly
 // as long as the model.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,28 +25,16 @@ struct Model {
 
 /// Creates the smi.model metatable.
 void register_model_type(lua_State* L);
-/// Pushes a model box owning `m`, with the function at `fn_idx` as its user value 1 and the deck
-/// function at `deck_idx` (0 = none) as user value 2. Stack: [...] -> [..., model].
-void push_model(lua_State* L, Model m, int fn_idx, int deck_idx = 0);
+/// Pushes a model box owning `m`, with the function at `fn_idx` as its user value 1.
+/// Stack: [...] -> [..., model].
+void push_model(lua_State* L, Model m, int fn_idx);
 
-/// Pushes a copy of the Lua function at `idx` that runs without I/O (deck_function.cpp): its
-/// _ENV is a table of the pure globals only, its other upvalues copied. Raises naming `fname`.
-void push_pure_function(lua_State* L, int idx, const char* fname);
-
-/// While alive, the model's evaluator makes its decks by calling the model's deck function (user
-/// value 2 of the model box at `model_idx`) with the point {input = value, constant = value},
-/// I/O barred. Does nothing for a model without one. The function stays on the Lua stack.
-class DeckFunctionScope {
- public:
-  DeckFunctionScope(lua_State* L, int model_idx, Model& m);
-  ~DeckFunctionScope();
-  DeckFunctionScope(const DeckFunctionScope&) = delete;
-  DeckFunctionScope& operator=(const DeckFunctionScope&) = delete;
-
- private:
-  Model& m_;
-  bool active_ = false;
-};
+/// The evaluator's deck maker for the deck function at `idx` (deck_function.cpp): the function,
+/// copied into a Lua state of its own, called with the point and `cfg`'s constants. Throws
+/// smi::InvalidArgument naming `fname` and what the function captures that cannot be copied.
+std::function<std::string(const Eigen::VectorXd&)> deck_renderer(lua_State* L, int idx,
+                                                                  const smi::eval::CommandConfig& cfg,
+                                                                  const char* fname);
 
 /// The design matrix argument at `idx`: a smi.mat, a table of rows, or a table of named
 /// columns {x1 = vec, ...} (a table of named numbers is one point). Raises naming what is wrong.

@@ -144,9 +144,14 @@ std::vector<std::pair<std::string, std::string>> read_executor_options(lua_State
 }
 
 // env = {NAME = "value"}: variables the solver needs, set explicitly by the model (never taken
-// from smi-lua's environment: that stays --allow-env's). Names that make a program load or run
-// other code are refused (se::declared_env_refusal), sorted so the store key does not depend on
-// the table's traversal order.
+// from smi-lua's environment). The user decides which: only names given with --allow-env, and
+// never those that make a program load or run other code (se::declared_env_refusal, a second
+// guard). Sorted so the store key does not depend on the table's traversal order.
+bool env_allowed(lua_State* L, const std::string& name) {
+  const lua::Policy& pol = lua::policy(L);
+  return pol.unrestricted || std::find(pol.allow_env.begin(), pol.allow_env.end(), name) != pol.allow_env.end();
+}
+
 std::vector<std::pair<std::string, std::string>> read_env(lua_State* L, lua::Options& o, const char* fname) {
   std::vector<std::pair<std::string, std::string>> env;
   if (const int t = o.push("env"); t != LUA_TNIL) {
@@ -159,8 +164,11 @@ std::vector<std::pair<std::string, std::string>> read_env(lua_State* L, lua::Opt
       const char* v = lua_tolstring(L, -1, &n);
       if (std::string(v, n).find('\0') != std::string::npos) luaL_error(L, "%s: env.%s holds a NUL byte", fname, k.c_str());
       if (const std::string why = se::declared_env_refusal(k); !why.empty())
-        luaL_error(L, "%s: env.%s cannot be set by a model: %s (a variable from your environment goes with --allow-env %s)",
-                   fname, k.c_str(), why.c_str(), k.c_str());
+        luaL_error(L, "%s: env.%s cannot be set by a model: %s", fname, k.c_str(), why.c_str());
+      if (!env_allowed(L, k))
+        luaL_error(L, "%s: env.%s is set by the model, but the command line does not allow it: a model sets only "
+                   "variables you allow, with --allow-env %s (allow only variables the solver reads as data, "
+                   "see docs/sandbox.md)", fname, k.c_str(), k.c_str());
       env.emplace_back(k, std::string(v, n));
       lua_pop(L, 1);
     }
@@ -408,7 +416,6 @@ int make_solver_model(lua_State* L, bool batch) {
   int deck_fn = 0;
   if (c.deck_function) {
     lua_getfield(L, 1, "template");
-    push_pure_function(L, -1, fname);
     deck_fn = lua_gettop(L);
   }
   Model m;
@@ -418,9 +425,10 @@ int make_solver_model(lua_State* L, bool batch) {
   m.outputs = c.outputs;
   lua::protect(L, fname, [&] {
     m.ev = std::make_unique<se::Evaluator>(std::move(c));
+    if (deck_fn) m.ev->set_deck_function(deck_renderer(L, deck_fn, m.ev->config(), fname));
     return 0;
   });
-  push_model(L, std::move(m), fn, deck_fn);
+  push_model(L, std::move(m), fn);
   return 1;
 }
 
@@ -569,7 +577,6 @@ int evaluate_solver(lua_State* L, Model& m) {
   // the memory ceiling or os.exit: the evaluator reads the run's token itself between runs.
   m.ev->set_cancel(ctx.cancel);
 
-  const DeckFunctionScope decks(L, 1, m);
   se::EvalResult r;
   std::string summary;
   std::size_t dry_missing = 0;  // --dry-run: runs this evaluation needs that are not stored

@@ -65,8 +65,9 @@ std::vector<Option<S>> solver_options(bool batch) {
                          "partition =, account =, time =, ...} (the --slurm-opt keys)"));
   o.push_back(by_hand<S>("env", "nil",
                          "{NAME = \"value\"}: variables the solver needs (OMP_NUM_THREADS, a\n"
-                         "licence server); loader and interpreter hooks (LD_*, BASH_ENV,\n"
-                         "PATH, PYTHONPATH, ...) are refused. Part of the store key"));
+                         "licence server), each allowed by the user with --allow-env NAME;\n"
+                         "loader and interpreter hooks (LD_*, BASH_ENV, PATH, HOME, PYTHON*,\n"
+                         "JAVA*, ...) are refused even then. Part of the store key"));
   return o;
 }
 

@@ -204,7 +204,10 @@ Sandbox (each option may be repeated):
                       the library folders)
   --allow-write PATH  let the script write under PATH (it always may write under --out)
   --allow-exec PROG   let the script run the program PROG (a name found on PATH, or a path)
-  --allow-env NAME    let os.getenv read the environment variable NAME (no other is readable)
+  --allow-env NAME    let os.getenv read the environment variable NAME, pass your NAME to
+                      solvers, and let a model's env = {NAME = ...} set it (no other name);
+                      allow only names a solver reads as data (OMP_NUM_THREADS), never
+                      ones its interpreter reads at start-up (docs/sandbox.md)
 
 Modules:
   --lib DIR           also search DIR for require'd Lua modules (SMI_PATH: a ':' list, too);
@@ -258,7 +261,8 @@ Commands (sharing libraries; options such as --lib go before or after them):
   test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
   verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,
                       solvers, libraries, build; lists each difference; exit 0 all match, 1 a
-                      difference, 2 not a results file (--json: the same as JSON)
+                      difference, 2 not a results file or not done within --timeout (default
+                      600 s); only regular files are read (--json: the same as JSON)
   (a script file named like a command runs as ./NAME)
 
 Exit status: 0 success, 1 error (an error in the data, options or declaration: one line

@@ -4,16 +4,25 @@
 // it ran, the libraries (--lib / SMI_PATH now, else the folder recorded), and the build of
 // smi-lua. Each difference is listed (changed, with both hashes; missing; added files of a
 // library). Exit status: 0 when everything matches, 1 on any difference, 2 when RESULTS is not
-// a results file this smi-lua can read (not JSON, no provenance, a newer schema).
+// a results file this smi-lua can read (not a regular file, too large, not JSON, no provenance,
+// a newer schema) or the checks did not end within the time limit. A results file is data from
+// whoever made it: only regular files are read (a recorded /dev/zero or FIFO is reported, never
+// read), each up to the size it had when opened.
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
-#include <fstream>
+#include <fmt/format.h>
 #include <map>
+#include <mutex>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <sys/stat.h>
+#include <thread>
+#include <unistd.h>
 #include <variant>
 
 #include "cli/commands.hpp"
@@ -72,14 +81,32 @@ const char* const kExpected =
     "expected the results.json a study writes (smi.study; e.g. smi-out/<study>/results.json): a JSON object with "
     "\"schema\" and \"provenance\"";
 
+/// A results file larger than this is not one a study wrote (its data are in other files).
+constexpr std::size_t kMaxResultsBytes = std::size_t{256} << 20;
+
+/// The results file's text: a regular file (a FIFO or a device would be read for ever), at most
+/// kMaxResultsBytes.
+std::string read_results_text(const fs::path& file) {
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) throw NotResults("cannot read '" + file.string() + "': " + std::strerror(errno));
+  const pathwalk::Fd guard(fd);
+  struct stat st;
+  if (::fstat(fd, &st) != 0) throw NotResults("cannot read '" + file.string() + "': " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw NotResults("'" + file.string() + "' is not a regular file");
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxResultsBytes)
+    throw NotResults("'" + file.string() + "' is " + std::to_string(st.st_size >> 20) +
+                     " MB, more than a results file holds (at most " + std::to_string(kMaxResultsBytes >> 20) + " MB)");
+  std::string text;
+  if (!pathwalk::read_all(fd, text, kMaxResultsBytes))
+    throw NotResults("cannot read '" + file.string() + "': " + std::strerror(errno));
+  return text;
+}
+
 Recorded read_recorded(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw NotResults("cannot read '" + file.string() + "': " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  const std::string text = read_results_text(file);
   json::Value doc;
   try {
-    doc = json::read(ss.str(), file.string());
+    doc = json::read(text, file.string());
   } catch (const Error& e) {
     throw NotResults("'" + file.string() + "' is not valid JSON (" + e.what() + "); " + kExpected);
   }
@@ -315,16 +342,65 @@ json::Value diffs_json(const std::string& file, const Recorded& rec, const std::
   return out;
 }
 
+/// verify's time limit: --timeout, else kDefaultSeconds. A read that blocks (a network file
+/// system, a file that never ends) cannot be interrupted from the reading thread, so a watcher
+/// thread ends the process with exit status 2 ("could not verify"), naming what it was reading.
+class TimeLimit {
+ public:
+  static constexpr double kDefaultSeconds = 600;
+
+  explicit TimeLimit(double seconds) : seconds_(seconds > 0 ? seconds : kDefaultSeconds) {
+    thread_ = std::thread([this] { watch(); });
+  }
+  ~TimeLimit() {
+    {
+      const std::lock_guard<std::mutex> lock(mu_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  TimeLimit(const TimeLimit&) = delete;
+  TimeLimit& operator=(const TimeLimit&) = delete;
+
+  /// What is being checked now (named if the limit is reached).
+  void at(std::string what) {
+    const std::lock_guard<std::mutex> lock(mu_);
+    now_ = std::move(what);
+  }
+
+ private:
+  void watch() {
+    std::unique_lock<std::mutex> lock(mu_);
+    if (cv_.wait_for(lock, std::chrono::duration<double>(seconds_), [this] { return done_; })) return;
+    const std::string msg = "smi-lua verify: the time limit of " + fmt::format("{:g}", seconds_) +
+                            " s was reached while checking " + printable(now_) +
+                            "; not every input was checked, so nothing is verified (give more time with "
+                            "--timeout SECONDS)\n";
+    (void)!::write(2, msg.data(), msg.size());
+    ::_exit(2);
+  }
+
+  double seconds_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::string now_ = "the results file";
+  std::thread thread_;
+};
+
 /// Every recorded input against the one at hand: libraries, the script, files, programs, the
 /// build. Adds the differences; prints a line for each in text mode. Returns how many were checked.
-int check_all(const Recorded& rec, const vm::LibrarySet& here, bool text, std::vector<Diff>& diffs) {
+int check_all(const Recorded& rec, const vm::LibrarySet& here, bool text, std::vector<Diff>& diffs, TimeLimit& limit) {
   int checked = 0;
   for (const RecordedLib& r : rec.libs) {
     ++checked;
+    limit.at("library " + r.name);
     check_library(r, here, text, diffs);
   }
   if (!rec.script_path.empty()) {
     ++checked;
+    limit.at("the script " + rec.script_path);
     FileDigest d;
     d.hash = rec.script_hash;
     check_file("script", rec.script_path, "", d, text, diffs);
@@ -334,12 +410,14 @@ int check_all(const Recorded& rec, const vm::LibrarySet& here, bool text, std::v
     // The script and library files have their own checks above (one line each, not two).
     if (kind == "script" || kind == "program" || inside_library(path, rec.libs)) continue;
     ++checked;
+    limit.at("'" + path + "'");
     check_file("file", path, kind, recorded_digest(entry), text, diffs);
   }
   for (const json::Value& p : rec.programs) {
     const std::string path = field_string(p, "path");
     if (path.empty()) continue;
     ++checked;
+    limit.at("the program " + path);
     check_file("program", path, field_string(p, "name"), recorded_digest(p), text, diffs);
   }
   // The build: another compiler, Eigen or NLopt can move the last digits of a result.
@@ -374,6 +452,8 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
                  "smi-out/study/results.json)\n");
     return 2;
   }
+  TimeLimit limit(a.cfg.timeout_s);
+  limit.at("'" + args[0] + "'");
   Recorded rec;
   try {
     rec = read_recorded(args[0]);
@@ -393,6 +473,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
     l.files = std::move(files);
   }
   const bool text = !as_json;
+  limit.at("the library path");
   const vm::LibrarySet here = current_libraries(a);
   std::vector<Diff> diffs;
   if (text) {
@@ -408,7 +489,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
                   rec.schema, vm::kResultsSchema);
   }
 
-  const int checked = check_all(rec, here, text, diffs);
+  const int checked = check_all(rec, here, text, diffs, limit);
 
   if (as_json) {
     std::printf("%s\n", json::write(diffs_json(args[0], rec, diffs, checked), {.indent = 2}).c_str());

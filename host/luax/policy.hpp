@@ -54,9 +54,6 @@ struct Policy {
   /// What the run read and ran (provenance, issue 24); set by the runtime, null in kernel tests.
   /// open_read records every file it opens here (hashed from the opened descriptor).
   RunRecord* record = nullptr;
-  /// Set while code that must not touch files or programs runs (a deck function, issue 30):
-  /// open_read, walk_write (so every write), ensure_out_dir and check_exec refuse with this reason.
-  const char* io_barred = nullptr;
 
   // Files a script names are opened only through these (issue 13 item 1): the path is walked
   // one component at a time through descriptors (core/path_walk.hpp), the canonical path reached

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "luax/gmatch_guard.hpp"
 #include "sandbox/sandbox.hpp"
 
 namespace smi::sandbox {
@@ -99,38 +100,6 @@ int coroutine_close(lua_State* L) {
   return lua_gettop(L);
 }
 
-// Lua 5.4.4's gmatch iterator keeps its recursion budget (matchdepth) across calls and resets
-// it only when a match ends normally: after "pattern too complex" it stays at -1, so the next
-// call never meets the limit and recurses until the C stack overflows (fixed upstream by lua/lua
-// commit efddc230, "Bug: wrong initialization in result from 'gmatch'"). The guard: the
-// iterator is wrapped, and once it has raised an error it refuses to run again.
-
-/// The wrapped iterator: upvalue 1 = Lua's iterator, upvalue 2 = true once it raised.
-int gmatch_step(lua_State* L) {
-  if (lua_toboolean(L, lua_upvalueindex(2)))
-    return luaL_error(L, "string.gmatch: this iterator already failed (\"pattern too complex\" or another error) and "
-                         "cannot be resumed; call string.gmatch again for a new one");
-  lua_settop(L, 0);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  if (lua_pcall(L, 0, LUA_MULTRET, 0) != LUA_OK) {
-    lua_pushboolean(L, 1);
-    lua_replace(L, lua_upvalueindex(2));
-    return lua_error(L);  // the same error, raised on
-  }
-  return lua_gettop(L);
-}
-
-/// string.gmatch(s, pattern [, init]): upvalue 1 = the original.
-int gmatch(lua_State* L) {
-  const int n = lua_gettop(L);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, n, 1);
-  lua_pushboolean(L, 0);
-  lua_pushcclosure(L, gmatch_step, 2);
-  return 1;
-}
-
 /// Copies t[name] for each name from the table at `from` into the table at the top.
 void copy_fields(lua_State* L, int from, const std::vector<const char*>& names) {
   for (const char* n : names) {
@@ -174,9 +143,7 @@ void restrict_globals(lua_State* L, const std::vector<std::string>& allowed_env)
       lua_pushcclosure(L, coroutine_close, 1);
       lua_setfield(L, -2, "close");
     } else if (std::strcmp(lib.name, "string") == 0) {
-      lua_getfield(L, orig, "gmatch");
-      lua_pushcclosure(L, gmatch, 1);
-      lua_setfield(L, -2, "gmatch");
+      lua::guard_gmatch(L, -1);  // Lua 5.4.4's gmatch bug (gmatch_guard.hpp)
       // Strings' methods ("x"):upper() come from the string metatable's __index: the new table.
       lua_pushliteral(L, "");
       if (lua_getmetatable(L, -1)) {

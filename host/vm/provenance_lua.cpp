@@ -1,6 +1,7 @@
 #include "vm/provenance_lua.hpp"
 
 #include <cstring>
+#include <filesystem>
 #include <string>
 
 #include "luax/luax.hpp"
@@ -9,6 +10,7 @@
 #include "platform/core/sha256.hpp"
 #include "vm/build_info.hpp"
 #include "vm/embedded_stdlib.hpp"
+#include "vm/internal_functions.hpp"
 #include "vm/library_lua.hpp"
 
 namespace smi::vm {
@@ -146,9 +148,9 @@ int smi_provenance(lua_State* L) {
   return 1;
 }
 
-/// smi._inputs([since]) -> {seq =, files = {[path] = digest}}: the files read after `since`
+/// internal.inputs([since]) -> {seq =, files = {[path] = digest}}: the files read after `since`
 /// (a seq an earlier call returned), for smi.study's per-step inputs.
-int smi_inputs(lua_State* L) {
+int internal_inputs(lua_State* L) {
   const auto since = static_cast<std::uint64_t>(luaL_optinteger(L, 1, 0));
   const lua::Policy& pol = lua::policy(L);
   std::map<std::string, InputFile> read;
@@ -165,18 +167,18 @@ int smi_inputs(lua_State* L) {
   return 1;
 }
 
-/// smi._digest(path [, kind]) -> digest | nil, why: a recorded file's digest now, opened through
+/// internal.digest(path [, kind]) -> digest | nil, why: a recorded file's digest now, opened through
 /// the sandbox (without being recorded as read); "embedded:..." paths from this binary's stdlib;
 /// kind "program": a program --allow-exec allows; kind "binary": this smi-lua's own executable
 /// (path ignored), which smi.study's reuse of saved steps compares (a rebuilt smi-lua reruns them).
-int smi_digest(lua_State* L) {
+int internal_digest(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
   const char* kind = luaL_optstring(L, 2, "");
   const bool program = std::strcmp(kind, "program") == 0;
   if (std::strcmp(kind, "binary") == 0) {
     FileDigest d;
     // the running image, even if the file was replaced since it started
-    lua::protect(L, "smi._digest", [&] {
+    lua::protect(L, "smi.study", [&] {
       d = digest_path("/proc/self/exe");
       return 0;
     });
@@ -199,10 +201,10 @@ int smi_digest(lua_State* L) {
   }
   FileDigest d;
   std::string why;
-  lua::protect(L, "smi._digest", [&] {
+  lua::protect(L, "smi.study", [&] {
     try {
       if (program) {
-        d = digest_path(lua::policy(L).check_exec(path, "smi._digest").string());
+        d = digest_path(lua::policy(L).check_exec(path, "smi.study").string());
       } else {
         const lua::CheckedFile f = lua::policy(L).open_read_unrecorded(path);
         d = digest_fd(f.fd.get(), path);
@@ -221,19 +223,27 @@ int smi_digest(lua_State* L) {
   return 1;
 }
 
-/// smi._not_input(path): reads of `path` are outputs of the run, not inputs (smi.study's
-/// results file when it lies outside --out).
-int smi_not_input(lua_State* L) {
+/// internal.not_input(path): reads of `path` are outputs of the run, not inputs (smi.study's
+/// results file when it lies outside --out). Only a path the run may write: a file it can only
+/// read is an input whatever the study calls it.
+int internal_not_input(lua_State* L) {
   const std::string path = luaL_checkstring(L, 1);
-  lua::protect(L, "smi._not_input", [&] {
-    if (RunRecord* r = lua::policy(L).record) r->exclude(lua::resolve_path(path).string());
+  lua::protect(L, "smi.study", [&] {
+    const lua::Policy& pol = lua::policy(L);
+    const std::filesystem::path resolved = lua::resolve_path(path);
+    bool writable = pol.unrestricted;
+    for (const auto& root : pol.write_roots) writable = writable || lua::path_within(resolved, root);
+    if (!writable)
+      throw lua::SandboxDenied("the results file '" + path + "' does not lie under --out or an --allow-write folder, so "
+                          "the study cannot write it; give results = a path under " + pol.out_dir.string());
+    if (RunRecord* r = pol.record) r->exclude(resolved.string());
     return 0;
   });
   return 0;
 }
 
-/// smi._sha256(text) -> "sha256:<hex>" (step results, options).
-int smi_sha256(lua_State* L) {
+/// internal.sha256(text) -> "sha256:<hex>" (step results, options).
+int internal_sha256(lua_State* L) {
   std::size_t n = 0;
   const char* s = luaL_checklstring(L, 1, &n);
   const std::string h = "sha256:" + sha256_hex(std::string_view(s, n));
@@ -266,17 +276,14 @@ void install_provenance(lua_State* L, const LibrarySet* libs) {
   lua_pushlightuserdata(L, const_cast<LibrarySet*>(libs));
   lua_pushcclosure(L, smi_provenance, 1);
   lua_setfield(L, -2, "provenance");
-  lua_pushcfunction(L, smi_inputs);
-  lua_setfield(L, -2, "_inputs");
-  lua_pushcfunction(L, smi_digest);
-  lua_setfield(L, -2, "_digest");
-  lua_pushcfunction(L, smi_sha256);
-  lua_setfield(L, -2, "_sha256");
-  lua_pushcfunction(L, smi_not_input);
-  lua_setfield(L, -2, "_not_input");
   lua_pushinteger(L, kResultsSchema);  // what smi.study writes as results.json's "schema"
   lua_setfield(L, -2, "results_schema");
   lua_pop(L, 1);
+  // for smi.study and smi.study_inputs only (internal_functions.hpp)
+  set_internal_function(L, "inputs", internal_inputs);
+  set_internal_function(L, "digest", internal_digest);
+  set_internal_function(L, "sha256", internal_sha256);
+  set_internal_function(L, "not_input", internal_not_input);
 }
 
 }  // namespace smi::vm

@@ -7,8 +7,8 @@
 //   programs = {{name =, path =, hash =, version =}, ...}, libraries = {... as smi.libraries,
 //   with hash and files}.
 // The files are the ones the run read so far (runtime's RunRecord), so a study asks again after
-// every step. Private helpers for smi.study's per-step inputs: smi._inputs(since),
-// smi._digest(path), smi._sha256(text).
+// every step. Helpers for smi.study's per-step inputs, handed to the stdlib only
+// (internal_functions.hpp): inputs(since), digest(path), sha256(text), not_input(path).
 #include <lua.hpp>
 
 #include "platform/core/run_record.hpp"
@@ -16,7 +16,7 @@
 
 namespace smi::vm {
 
-/// Sets smi.provenance and the private helpers. `libs` must outlive the state. Stack: unchanged.
+/// Sets smi.provenance and the stdlib's internal helpers. `libs` must outlive the state. Stack: unchanged.
 void install_provenance(lua_State* L, const LibrarySet* libs);
 
 /// Pushes {name = version} of build_info() (also used by smi.provenance). Stack: +1.

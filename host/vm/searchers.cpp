@@ -8,6 +8,7 @@
 #include "luax/policy.hpp"
 #include "platform/core/errors.hpp"
 #include "vm/embedded_stdlib.hpp"
+#include "vm/internal_functions.hpp"
 
 namespace smi::vm {
 namespace fs = std::filesystem;
@@ -66,6 +67,26 @@ int load_found(lua_State* L, const Found& f) {
   return 2;
 }
 
+/// The loader of a stdlib module (upvalue 1: its chunk): require calls it with (name, path); the
+/// chunk gets (name, path, internal), internal being the functions meant for the stdlib only
+/// (internal_functions.hpp), which reach no script this way.
+int stdlib_loader(lua_State* L) {
+  lua_settop(L, 2);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  push_internal_functions(L);
+  lua_call(L, 3, 1);
+  return 1;
+}
+
+/// [chunk, path] of a stdlib module -> [loader, path].
+int stdlib_found(lua_State* L) {
+  lua_pushvalue(L, -2);
+  lua_pushcclosure(L, stdlib_loader, 1);
+  lua_replace(L, -3);
+  return 2;
+}
+
 /// searcher 2: the stdlib, from disk when a stdlib dir is set (development), else embedded.
 /// The stdlib folder is a root of this searcher only: scripts' read roots do not grow with it
 /// (issue 13 item 6), and a file reached through a symlink out of it is refused.
@@ -83,7 +104,10 @@ int stdlib_searcher(lua_State* L) {
       });
       return 0;
     });
-    if (found) return load_found(L, *found);
+    if (found) {
+      load_found(L, *found);
+      return stdlib_found(L);
+    }
   }
   for (const EmbeddedModule* m = kEmbeddedModules; m->name; ++m) {
     if (std::strcmp(m->name, name) != 0) continue;
@@ -96,7 +120,7 @@ int stdlib_searcher(lua_State* L) {
     }
     if (luaL_loadbufferx(L, m->data, m->size, chunk.c_str(), "t") != LUA_OK) return lua_error(L);
     lua_pushstring(L, m->path);
-    return 2;
+    return stdlib_found(L);
   }
   tried += (tried.empty() ? "" : "\n\t") + std::string("no embedded stdlib module '") + name + "'";
   lua_pushstring(L, tried.c_str());

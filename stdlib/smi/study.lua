@@ -25,6 +25,9 @@
 -- and the command to run, and marks later steps stale when it recomputes what they read.
 -- Values JSON cannot hold (a surrogate model userdata, say) stay available to later steps of the
 -- same run, are left out of the file, and are listed under the step's "not_saved".
+-- host functions for the stdlib only (the stdlib searcher passes them); taken by syntax and never
+-- handed to a global function, which a script may have replaced
+local _, _, internal = ...
 local json = require "smi.report.json"
 local fmt = require "smi.report.format"
 local inputs = require "smi.study_inputs"
@@ -115,7 +118,7 @@ function M.new(opts)
     report_opts = opts.report, volatile = opts.volatile or {},
   }, Study)
   -- the results file is this study's output: reading it back is not an input of the run
-  if type(smi) == "table" and type(smi._not_input) == "function" then smi._not_input(s.results_path) end
+  if internal ~= nil then internal.not_input(s.results_path) end
   return s
 end
 

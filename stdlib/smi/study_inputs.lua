@@ -15,7 +15,11 @@ local json = require "smi.report.json"
 
 local M = {}
 
-local host = type(smi) == "table" and type(smi._inputs) == "function"
+-- The host's record of files read (internal functions: the stdlib searcher passes them to
+-- stdlib modules only, never to scripts). Taken from `...` by syntax and never handed to a
+-- global function: a script may have replaced `select` or `type` before this module loads.
+local _, _, internal = ...
+local host = internal ~= nil
 
 --- The keys of t (nil: none), sorted: a loop whose first hit becomes a message walks them so,
 -- since pairs() order changes from process to process (Lua seeds its string hashes per state).
@@ -46,24 +50,24 @@ local function pick(files, skip_lua)
 end
 
 --- The read counter now (files read after it are the next step's).
-function M.mark() return host and smi._inputs(math.maxinteger).seq or 0 end
+function M.mark() return host and internal.inputs(math.maxinteger).seq or 0 end
 
 --- Files a step read after `seq` (data and Lua files it loaded itself).
 function M.files_since(seq)
   if not host then return {} end
-  return pick(smi._inputs(seq).files, false)
+  return pick(internal.inputs(seq).files, false)
 end
 
 --- Data files read before the steps (the script's top level): an input of every step.
 function M.preamble()
   if not host then return {} end
-  return pick(smi._inputs(0).files, true)
+  return pick(internal.inputs(0).files, true)
 end
 
 --- SHA-256 of a JSON-able value (keys sorted by the encoder, so the same value hashes the same).
 function M.hash(v)
   local text = json.encode(v, { root = "hash" })
-  if type(smi) == "table" and type(smi._sha256) == "function" then return smi._sha256(text) end
+  if host then return internal.sha256(text) end
   return text -- outside smi-lua: the text itself compares the same way
 end
 
@@ -110,7 +114,7 @@ function M.files_change(files, cache)
     if host then
       local now, why
       if cache and cache[path] then now, why = table.unpack(cache[path]) else
-        now, why = smi._digest(path, rec.kind)
+        now, why = internal.digest(path, rec.kind)
         if cache then cache[path] = { now, why } end
       end
       if not now then return ("file %s, which is no longer readable (%s)"):format(path, tostring(why)) end

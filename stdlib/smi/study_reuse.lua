@@ -26,7 +26,10 @@ local inputs = require "smi.study_inputs"
 
 local M = {}
 
-local host = type(smi) == "table" and type(smi._inputs) == "function" and type(smi._digest) == "function"
+-- The host's internal functions (the stdlib searcher passes them to stdlib modules only; see
+-- smi.study_inputs). Taken from `...` by syntax, never handed to a global function.
+local _, _, internal = ...
+local host = internal ~= nil
 
 -- Kinds of recorded files that are code. Embedded stdlib modules are covered by the binary's hash.
 local CODE = { script = true, lua = true, stdlib = true }
@@ -35,7 +38,7 @@ local CODE = { script = true, lua = true, stdlib = true }
 function M.code_files()
   local out = {}
   if not host then return out end
-  for path, d in pairs(smi._inputs(0).files) do
+  for path, d in pairs(internal.inputs(0).files) do
     if CODE[d.kind] and not path:match("^embedded:") then
       out[path] = { kind = d.kind, hash = d.hash, size = d.size, large = d.large, mtime = d.mtime }
     end
@@ -46,7 +49,7 @@ end
 --- The hash of the running smi-lua executable (once per study object).
 function M.binary(study)
   if not host then return nil end
-  if study.binary_hash == nil then study.binary_hash = smi._digest("", "binary").hash end
+  if study.binary_hash == nil then study.binary_hash = internal.digest("", "binary").hash end
   return study.binary_hash
 end
 
@@ -59,8 +62,8 @@ end
 
 -- The replay file is an output of the run, like results.json: never one of its inputs.
 local function not_input(study)
-  if study.replay_not_input or not (type(smi) == "table" and type(smi._not_input) == "function") then return end
-  smi._not_input(M.replay_path(study))
+  if study.replay_not_input or not host then return end
+  internal.not_input(M.replay_path(study))
   study.replay_not_input = true
 end
 

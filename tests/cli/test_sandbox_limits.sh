@@ -94,4 +94,21 @@ for t in 1e10 1e15 1e300; do
   has_out "ran"
 done
 
+# --- a deck function runs in a Lua state of its own: --timeout, Ctrl-C and --max-memory hold there
+deck_model() {  # a command model whose deck function is $1; /bin/true never runs (the deck comes first)
+  printf 'local m = smi.model.command{name = "d", inputs = {"x"}, outputs = {"y"}, deck = "in.txt",\n'
+  printf '  command = {"/bin/true"}, version = "1", template = function(p) %s end,\n' "$1"
+  printf '  parse = function() return {y = 1} end}\n'
+  printf 'm:evaluate{{1}}\n'
+}
+deck_model 'while true do pcall(error, "x") end return ""' > deck_loop.lua
+timed "a deck function's endless loop stops at --timeout" 1 timeout 30 "$SMI" --allow-exec /bin/true --timeout 0.5 deck_loop.lua
+has_err "timeout"
+lacks_err "did not stop"
+fast 6
+deck_model 'local t = {} for i = 1, 1e9 do t[i] = ("x"):rep(1000) .. i end return ""' > deck_mem.lua
+timed "a deck function's memory counts against --max-memory" 1 timeout 30 "$SMI" --allow-exec /bin/true --max-memory 64 deck_mem.lua
+has_err "--max-memory 64 MB"
+fast 20
+
 finish

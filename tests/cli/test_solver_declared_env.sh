@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Variables a model declares for its solver (smi.model.command{env = {NAME = "value"}}): they
-# reach the solver with the model's values, they are part of the store key (another value runs
-# again, the same value reuses), and the ones that would make the solver load or run other code
-# (the loader's LD_*, shells' and interpreters' start-up hooks, PATH) are refused by name when
-# the model is declared, whatever their case in the family. smi-lua's own environment still
+# Variables a model declares for its solver (smi.model.command{env = {NAME = "value"}}): a model
+# sets only names the command line allows (--allow-env NAME); they reach the solver with the
+# model's values, they are part of the store key (another value runs again, the same value
+# reuses), and the ones that would make the solver load or run other code (the loader's LD_*,
+# shells' and interpreters' start-up hooks and families, folders of start-up files, PATH) are
+# refused by name when the model is declared even when allowed. smi-lua's own environment still
 # reaches a solver only through --allow-env.
 source "$(dirname "$0")/lib.sh"
 
@@ -21,14 +22,21 @@ local m = smi.model.command{
 local r = m:evaluate(smi.mat{{1}})
 print("y", r.y[1])
 LUA
-S=("$SMI" --quiet --allow-exec "$WORK/solver")
+S=("$SMI" --quiet --allow-exec "$WORK/solver" --allow-env SMI_TEST_THREADS)
 
 # --- a declared variable reaches the solver with the model's value
 run "declared value reaches the solver" 0 "${S[@]}" --out o1 study/run.lua '{SMI_TEST_THREADS = 3}' "$WORK/solver"
 has_out "y	3"
+# --- the user decides: a name the command line does not allow is refused, naming the flag
+run "a name not allowed" 1 "$SMI" --quiet --allow-exec "$WORK/solver" --out o2 study/run.lua '{SMI_TEST_THREADS = 3}' "$WORK/solver"
+has_err "env.SMI_TEST_THREADS is set by the model, but the command line does not allow it"
+has_err "--allow-env SMI_TEST_THREADS"
+run "another name allowed is not this one" 1 "$SMI" --quiet --allow-exec "$WORK/solver" --allow-env OMP_NUM_THREADS \
+  --out o2 study/run.lua '{SMI_TEST_THREADS = 3}' "$WORK/solver"
+has_err "does not allow it"
 # --- without it, nothing (smi-lua's own variable does not leak through)
 export SMI_TEST_THREADS=9
-run "smi-lua's variable not declared, not allowed" 0 "${S[@]}" --out o2 study/run.lua '{}' "$WORK/solver"
+run "smi-lua's variable not declared, not allowed" 0 "$SMI" --quiet --allow-exec "$WORK/solver" --out o2 study/run.lua '{}' "$WORK/solver"
 has_out "y	0"
 # --- the declared value wins over an allowed one of the same name
 run "declared over --allow-env" 0 "$SMI" --quiet --allow-exec "$WORK/solver" --allow-env SMI_TEST_THREADS --out o3 \
@@ -52,6 +60,13 @@ if [ "$(runs)" = "$((n1 + 1))" ]; then ok; else bad "another declared value reus
 for name in LD_PRELOAD LD_LIBRARY_PATH LD_AUDIT BASH_ENV ENV PATH PYTHONPATH PYTHONSTARTUP PERL5OPT NODE_OPTIONS \
             GCONV_PATH GLIBC_TUNABLES LUA_INIT BASH_FUNC_x%% SMI_LUA_SOLVER_OF; do
   run "env.$name refused" 1 "${S[@]}" --out o5 study/run.lua "{[\"$name\"] = \"/tmp/x\"}" "$WORK/solver"
+  has_err "env.$name cannot be set by a model"
+done
+# --- allowed on the command line, still refused: the names a solver's interpreter reads as code
+# or as where to find code (the deny-list stays as a second guard behind the allow-list)
+for name in JDK_JAVA_OPTIONS JAVA_TOOL_OPTIONS PYTHONWARNINGS PYTHONUSERBASE BROWSER TCL_LIBRARY TK_LIBRARY HOME \
+            XDG_CONFIG_HOME TMPDIR R_PROFILE_USER GIT_SSH PERL5OPT RUBYOPT NODE_OPTIONS OMP_TOOL_LIBRARIES SHELL; do
+  run "env.$name refused even when allowed" 1 "${S[@]}" --allow-env "$name" --out o5 study/run.lua "{[\"$name\"] = \"/tmp/x\"}" "$WORK/solver"
   has_err "env.$name cannot be set by a model"
 done
 run "a name with '=' refused" 1 "${S[@]}" --out o5 study/run.lua '{["A=B"] = "1"}' "$WORK/solver"

@@ -103,4 +103,63 @@ T.case("math.random is seeded from --seed", function()
   T.eq(smi.seed, 20200214)
 end)
 
+T.case("no internal function is reachable: every name starting with '_' a script can see is meant for it", function()
+  -- read-only views of the reference (docs/sandbox.md, "Internal functions"), and Lua's own
+  local meant = {_docs = true, _closest = true, _known_options = true, _VERSION = true, _G = true}
+  local internal = {inputs = true, digest = true, sha256 = true, not_input = true}
+  local seen, found, leaked = {}, {}, {}
+  local function walk(t, path, depth)
+    if seen[t] or depth > 8 then return end
+    seen[t] = true
+    for k, v in next, t do
+      if type(k) == "string" then
+        local p = path .. "." .. k
+        if k:match("^_") and not k:match("^__") and not meant[k] then found[#found + 1] = p end
+        if internal[k] and type(v) == "function" then leaked[#leaked + 1] = p end
+      end
+      local sub = type(k) == "string" and path .. "." .. k or path .. "[?]"
+      if type(v) == "table" then walk(v, sub, depth + 1) end
+      if type(v) == "userdata" and type(getmetatable(v)) == "table" then walk(getmetatable(v), sub .. "<meta>", depth + 1) end
+    end
+    local mt = getmetatable(t)
+    if type(mt) == "table" then walk(mt, path .. "<meta>", depth + 1) end
+  end
+  -- a script that replaced the global functions first still catches nothing the stdlib holds
+  local caught = {}
+  local real = {select = select, type = type, pairs = pairs, next = next, tostring = tostring}
+  for name, fn in pairs(real) do
+    _G[name] = function(...)
+      for i = 1, real.select("#", ...) do
+        local v = real.select(i, ...)
+        if real.type(v) == "table" and real.type(rawget(v, "not_input")) == "function" then caught[#caught + 1] = name end
+      end
+      return fn(...)
+    end
+  end
+  package.loaded["smi.study"], package.loaded["smi.study_inputs"] = nil, nil
+  local ok, err = pcall(function()
+    local st = require "smi.study"  -- loads the stdlib modules that hold the internal functions
+    st.new{name = "internal", out = smi.out(), results = smi.out("internal.json"), quiet = true}
+    require("smi.study_inputs").hash({1})
+  end)
+  for name, fn in real.pairs(real) do _G[name] = fn end
+  T.truthy(ok, tostring(err))
+  T.eq(table.concat(caught, ", "), "", "global functions that were handed the internal table")
+  walk(_G, "_G", 0)
+  walk(getmetatable(""), "<string meta>", 0)
+  table.sort(found)
+  table.sort(leaked)
+  T.eq(table.concat(found, ", "), "", "undocumented internal names")
+  T.eq(table.concat(leaked, ", "), "", "internal functions reachable")
+  T.eq(smi._not_input, nil); T.eq(smi._digest, nil); T.eq(smi._inputs, nil); T.eq(smi._sha256, nil)
+  -- the study's own results file leaves the provenance only where the run may write it: a data
+  -- file the run only reads stays an input, whatever a study calls its results file
+  T.raises(function() require("smi.study").new{name = "r", results = here .. "/test_sandbox.lua"} end,
+           "does not lie under --out or an --allow-write folder")
+  -- require's second result (the loader data) is the module's path, not the internal table
+  package.loaded["smi.study"] = nil
+  local _, data = require("smi.study")
+  T.eq(type(data), "string")
+end)
+
 T.finish()

@@ -51,23 +51,75 @@ T.case("I/O inside a deck function is refused, naming what was tried", function(
     dofile = function(p) return dofile("/etc/passwd") end,
     print = function(p) print("x") return "" end,
     smi = function(p) return smi.csv.read("/etc/passwd") end,
+    collectgarbage = function(p) collectgarbage() return "" end,
+    setmetatable = function(p) setmetatable({}, {__gc = function() end}) return "" end,
   } do
     T.raises(function() model(fn):evaluate(X) end, "global '" .. name .. "' is not available: a deck function runs without I/O")
   end
-  -- helpers reached through upvalues keep the study's environment, but the sandbox bars their I/O
+  -- helpers reached through upvalues are copied with the function: their globals are the deck's
   local here = smi.script_dir .. "/test_deck_function.lua"
   local function read_helper() return io.open(here):read("l") end
-  T.raises(function() model(function(p) return read_helper() end):evaluate(X) end,
-           "reading '" .. here .. "' is not allowed: a deck function runs without I/O")
+  T.raises(function() model(function(p) return read_helper() end):evaluate(X) end, "global 'io' is not available")
   local out = smi.out("sneaky.txt")
   local function write_helper() return io.open(out, "w") end
-  T.raises(function() model(function(p) write_helper(); return "" end):evaluate(X) end,
-           "writing '" .. out .. "' is not allowed")
+  T.raises(function() model(function(p) write_helper(); return "" end):evaluate(X) end, "global 'io' is not available")
   T.raises(function() model(function(p) return 42 end):evaluate(X) end, "must return the deck text (a string), got number")
+  T.raises(function() model(function(p) error({}) end):evaluate(X) end, "raised an error that is not a string (a table)")
+  T.raises(function() model(function(p) return string.dump(p) end):evaluate(X) end, "attempt to call a nil value (field 'dump')")
   T.raises(function() model(print) end, "must be a Lua function")
-  -- after the refusals, the study's own I/O works again
+  -- after the refusals, the study's own I/O works
   T.eq(read_helper(), "-- A command model whose template is a Lua function of the point (issue 30): the deck computes,")
   local f = assert(io.open(out, "w")); f:write("ok"); f:close()
+end)
+
+T.case("a deck function runs in a Lua state of its own: the study's objects are out of its reach", function()
+  local X = smi.mat{{0, 1}}
+  -- the string metatable is the deck state's own: replacing a method there leaves the study's alone
+  local _, info = model(function(p)
+    getmetatable("").__index.upper = function() return "taken" end
+    string.lower = nil
+    assert(("a"):upper() == "taken")
+    return ("x1 = 1\nx2 = %s\n"):format(p.x2)
+  end, {version = "own-metatable"}):evaluate(X)
+  T.eq(info.launched, 1)
+  T.eq(("a"):upper(), "A"); T.eq(string.upper("a"), "A"); T.eq(string.lower("B"), "b")
+  -- a file handle, a smi object, a coroutine or a C function outside the standard libraries
+  -- cannot be captured: the model is refused when it is made, naming the function and the upvalue
+  local fh = assert(io.open(smi.out("handle.txt"), "w"))
+  T.raises(function() model(function(p) fh:write("leak"); return "" end) end, "'fh' is a file handle")
+  T.raises(function() model(function(p) fh:write("leak"); return "" end) end, "test_deck_function.lua:")
+  local function nested() return fh end
+  T.raises(function() model(function(p) nested(); return "" end) end, "'nested' > 'fh' is a file handle")
+  local box = {inner = {handle = fh}}
+  T.raises(function() model(function(p) return box.inner and "" end) end, "'box' > field 'inner' > field 'handle' is a file handle")
+  local v = smi.vec{1, 2}
+  T.raises(function() model(function(p) return tostring(v[1]) end) end, "'v' is a userdata (smi.vec)")
+  local co = coroutine.create(function() end)
+  T.raises(function() model(function(p) return coroutine.status(co) end) end, "'co' is a thread")
+  local open = io.open
+  T.raises(function() model(function(p) return open("/etc/passwd") end) end, "'open' is a C function that is not one of the standard")
+  local meta = setmetatable({}, {__index = function() return fh end})
+  T.raises(function() model(function(p) return meta.x end) end, "'meta' is a table with a metatable")
+  local rand = math.random
+  T.raises(function() model(function(p) return tostring(rand()) end) end, "'rand' is math.random, which a deck function does not have")
+  fh:write("study"); fh:close()
+  T.eq(io.open(smi.out("handle.txt")):read("a"), "study")
+end)
+
+T.case("what a deck function captures is copied when the model is made", function()
+  local consts = {scale = 2, names = {"x1", "x2"}}
+  consts.self = consts  -- a cycle stays a cycle
+  local fmt = string.format  -- a standard function is the deck state's own
+  local function line(name, v) return fmt("%s = %.17g", name, v) end
+  local function fact(n) return n <= 1 and 1 or n * fact(n - 1) end  -- recursive: its own upvalue
+  local m = model(function(p)
+    assert(consts.self.self == consts)
+    return line(consts.names[1], 10 ^ p.log10_x1) .. "\n" .. line(consts.names[2], p.x2 * consts.scale * fact(3) / 6) .. "\n"
+  end, {version = "copied"})
+  consts.scale = 100  -- changed after the model was made: the deck state has its own copy
+  consts.names[1] = "nope"
+  local Y = m:evaluate(smi.mat{{0, 1}})
+  T.near(Y.f[1], 1 + 4, 1e-12); T.near(Y.g[1], 1 + 4, 1e-12)
 end)
 
 T.case("a writable store in a folder that does not exist yet is made there", function()

@@ -13,9 +13,26 @@
 
 namespace smi {
 
+namespace {
+/// What a non-regular file is, for the refusal.
+const char* file_kind(mode_t m) {
+  if (S_ISDIR(m)) return "a folder";
+  if (S_ISCHR(m)) return "a character device";
+  if (S_ISBLK(m)) return "a block device";
+  if (S_ISFIFO(m)) return "a FIFO";
+  if (S_ISSOCK(m)) return "a socket";
+  return "not a regular file";
+}
+}  // namespace
+
 FileDigest digest_fd(int fd, const std::string& name) {
   struct stat st;
   if (::fstat(fd, &st) != 0) throw Error(fmt::format("cannot read '{}': {}", name, std::strerror(errno)));
+  // Only a regular file has a content of known size: a device (/dev/zero) or a FIFO would be
+  // read for ever, a folder not at all.
+  if (!S_ISREG(st.st_mode))
+    throw Error(fmt::format("cannot read '{}': it is {}, and only regular files are digested", name,
+                            file_kind(st.st_mode)));
   FileDigest d;
   d.size = static_cast<std::uintmax_t>(st.st_size);
   d.mtime = static_cast<std::int64_t>(st.st_mtime);
@@ -23,7 +40,7 @@ FileDigest digest_fd(int fd, const std::string& name) {
     d.large = true;  // hashing 1 GB takes seconds to minutes: size and mtime identify it
     return d;
   }
-  d.hash = "sha256:" + sha256_fd(fd, name);
+  d.hash = "sha256:" + sha256_fd(fd, name, d.size);  // the size seen: a file still growing ends there
   return d;
 }
 

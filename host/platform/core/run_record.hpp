@@ -25,9 +25,10 @@ struct FileDigest {
   bool large = false;
 };
 
-/// Digest of an open file (read with pread; the offset is not moved); `name` names it in errors.
+/// Digest of an open regular file (read with pread up to the size fstat gives; the offset is not
+/// moved); throws smi::Error naming `name` for a device, FIFO, folder or socket.
 FileDigest digest_fd(int fd, const std::string& name);
-/// Digest of a file by name (verify, the script itself); throws smi::Error naming it.
+/// Digest of a regular file by name (verify, the script itself); throws smi::Error naming it.
 FileDigest digest_path(const std::string& path);
 
 /// One file the run read. kind: "script", "lua" (a module or a dofile/loadfile chunk), "stdlib"

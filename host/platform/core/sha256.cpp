@@ -1,10 +1,11 @@
-#include <unistd.h>
 #include "platform/core/sha256.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <unistd.h>
 
 #include "platform/core/errors.hpp"
 
@@ -61,12 +62,13 @@ std::string sha256_file(const std::string& path) {
 
 namespace smi {
 
-std::string sha256_fd(int fd, const std::string& name) {
+std::string sha256_fd(int fd, const std::string& name, std::uint64_t limit) {
   Sha256 h;
   char buf[1 << 16];
   off_t off = 0;
-  for (;;) {
-    const ssize_t n = ::pread(fd, buf, sizeof buf, off);
+  while (static_cast<std::uint64_t>(off) < limit) {
+    const std::uint64_t want = std::min<std::uint64_t>(sizeof buf, limit - static_cast<std::uint64_t>(off));
+    const ssize_t n = ::pread(fd, buf, static_cast<std::size_t>(want), off);
     if (n < 0) {
       if (errno == EINTR) continue;
       throw Error(fmt::format("cannot read '{}': {}", name, std::strerror(errno)));

@@ -36,8 +36,9 @@ std::string sha256_hex(std::string_view bytes);
 /// Hex SHA-256 of a file's contents; throws smi::Error naming the file if it cannot be read.
 std::string sha256_file(const std::string& path);
 
-/// Hex SHA-256 of everything in the open file `fd` (read with pread from offset 0); `name`
-/// names it in errors.
-std::string sha256_fd(int fd, const std::string& name);
+/// Hex SHA-256 of the open file `fd` (read with pread from offset 0) up to its end or `limit`
+/// bytes, whichever comes first (a file that grows while it is read cannot keep the reader
+/// going); `name` names it in errors.
+std::string sha256_fd(int fd, const std::string& name, std::uint64_t limit = UINT64_MAX);
 
 }  // namespace smi

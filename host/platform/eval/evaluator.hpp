@@ -116,7 +116,7 @@ class Evaluator {
   void set_cancel(const cancel::Token* token) { cancel_ = token; }
 
   /// With CommandConfig::deck_function: the function that makes the deck text of a point (the
-  /// binding sets it around each evaluate/plan, see bindings/eval/deck_function.cpp). It is called
+  /// binding sets it when the model is made, see bindings/eval/deck_function.cpp). It is called
   /// on the calling thread only, while the points are keyed, never by the scheduler's workers.
   /// The deck text goes into the key, as a rendered template's does.
   void set_deck_function(std::function<std::string(const Eigen::VectorXd&)> fn) { deck_fn_ = std::move(fn); }

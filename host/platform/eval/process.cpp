@@ -104,18 +104,27 @@ std::string declared_env_refusal(const std::string& name) {
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'))
       return "a variable name holds only letters, digits and '_'";
   if (name == kSolverMarkVar) return "smi-lua sets it itself to find its solvers' processes";
-  if (name.rfind("LD_", 0) == 0 || name.rfind("BASH_FUNC_", 0) == 0 || name.rfind("DYLD_", 0) == 0)
-    return "it makes the program load or run other code";
+  // Whole families: the loader's, and interpreters that read many start-up variables (Python's
+  // PYTHONWARNINGS can import a module, Java's JDK_JAVA_OPTIONS adds an agent, R_PROFILE runs a
+  // file, GIT_SSH runs a program, a folder in XDG_CONFIG_HOME holds start-up files).
+  static const char* const kFamilies[] = {"LD_",   "BASH_FUNC_", "DYLD_",  "PYTHON", "PERL", "RUBY", "GEM_",
+                                          "NODE_", "NPM_",       "LUA_",   "JAVA",   "_JAVA", "JDK_", "TCL",
+                                          "TK_",   "GIT_",       "XDG_",   "R_",     "JULIA_", "OCTAVE", "MATLAB",
+                                          "PHP",   "GCONV_",     "MALLOC_", "OMP_TOOL", "OMPI_", "PMIX_", nullptr};
+  for (const char* const* f = kFamilies; *f; ++f)
+    if (name.rfind(*f, 0) == 0) return "it makes the program load or run other code";
   static const char* const kHooks[] = {
-      "PATH", "BASH_ENV", "ENV", "SHELLOPTS", "BASHOPTS", "PS4", "PROMPT_COMMAND", "IFS", "CDPATH", "GCONV_PATH",
-      "GLIBC_TUNABLES", "LOCPATH", "NLSPATH", "HOSTALIASES", "RESOLV_HOST_CONF", "MALLOC_CHECK_", "PYTHONSTARTUP",
-      "PYTHONPATH", "PYTHONHOME", "PYTHONINSPECT", "PERL5OPT", "PERL5LIB", "PERLLIB", "PERL5DB", "RUBYOPT", "RUBYLIB",
-      "NODE_OPTIONS", "NODE_PATH", "LUA_INIT", "LUA_INIT_5_4", "LUA_PATH", "LUA_CPATH", "LUA_PATH_5_4",
-      "LUA_CPATH_5_4", "JAVA_TOOL_OPTIONS", "_JAVA_OPTIONS", "TCLLIBPATH", "GIT_CONFIG_PARAMETERS", nullptr};
+      "PATH", "BASH_ENV", "ENV", "SHELLOPTS", "BASHOPTS", "PS4", "PROMPT_COMMAND", "IFS", "CDPATH", "GLIBC_TUNABLES",
+      "LOCPATH", "NLSPATH", "HOSTALIASES", "RESOLV_HOST_CONF", "CLASSPATH", "HOME", "ZDOTDIR", "INPUTRC", "BROWSER",
+      "EDITOR", "VISUAL", "PAGER", "MANPAGER", "LESSOPEN", "LESSCLOSE", "SSH_ASKPASS", "SUDO_ASKPASS", "OPENSSL_CONF",
+      "OPENSSL_ENGINES", "TERMINFO", "TERMINFO_DIRS", "TMPDIR", "SHELL", nullptr};
   for (const char* const* h = kHooks; *h; ++h)
-    if (name == *h)
-      return name == "PATH" ? "a study could put a folder it writes first; give the solver's absolute path instead"
-                            : "it makes the program load or run other code";
+    if (name == *h) {
+      if (name == "PATH") return "a study could put a folder it writes first; give the solver's absolute path instead";
+      if (name == "HOME" || name == "TMPDIR" || name == "ZDOTDIR")
+        return "programs read start-up files from there (Python's user site, shell and tool settings)";
+      return "it makes the program load or run other code";
+    }
   return "";
 }
 

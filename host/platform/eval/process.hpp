@@ -45,11 +45,15 @@ extern const char* const kSolverBaseEnv[];
 /// with os.getenv must not come back to it through a solver's output).
 std::vector<std::string> solver_environment(const std::vector<std::string>& extra);
 
-/// Why a model may not set the solver variable `name` itself ("" when it may). A study sets such
-/// variables with values of its own choosing, so the ones that make a program load or run other
-/// code are refused: the dynamic loader's (LD_*, GCONV_PATH, ...), the shells' and interpreters'
-/// start-up hooks (BASH_ENV, ENV, PYTHONSTARTUP, PERL5OPT, NODE_OPTIONS, ...), PATH (a script
-/// could put a folder it writes first) and smi-lua's own mark. Names are [A-Za-z_][A-Za-z0-9_]*.
+/// Why a model may never set the solver variable `name` itself ("" when it may, if --allow-env
+/// names it: the binding checks that). A study sets such variables with values of its own
+/// choosing, so the ones that make a program load or run other code are refused even then: the
+/// dynamic loader's (LD_*, GCONV_PATH, ...), whole interpreter families (PYTHON*, PERL*, JAVA*,
+/// JDK_*, LUA_*, NODE_*, TCL*, R_*, GIT_*, ...), the shells' start-up hooks (BASH_ENV, ENV, ...),
+/// programs run by name (BROWSER, EDITOR, PAGER, SSH_ASKPASS), folders start-up files come from
+/// (HOME, XDG_*, TMPDIR), PATH (a script could put a folder it writes first) and smi-lua's own
+/// mark. Names are [A-Za-z_][A-Za-z0-9_]*. A list of names is only a second guard: the first is
+/// that the user allows each name.
 std::string declared_env_refusal(const std::string& name);
 
 /// `env` ("NAME=value" entries) with each declared variable set, replacing an inherited one of

@@ -2,21 +2,19 @@
 -- a figure's SVG is embedded in the page as it is, so it is held to an allow-list (issue 23):
 -- elements and attributes of static vector graphics only; no script, foreignObject, iframe,
 -- image, animation or link element; no on* handler; href only to "#id" inside the figure;
--- styles without url(...) (but url(#id)), @import, expression() or CSS escapes; and no
+-- CSS (style attributes, <style> sheets, presentation attributes such as fill) held to the
+-- allow-list of csssafe.lua, so url() reaches only "#id" and no other function fetches; and no
 -- comment, CDATA, processing instruction or DOCTYPE, which an HTML parser reads differently
 -- from an XML one (`<!-- --!>` ends an HTML comment early, `<? >` is a bogus comment that ends
 -- at the first '>'), so what was checked would not be what the browser runs.
 --
 --   local ok, err = svgsafe.check(svg)   -- err names the element or attribute refused
+local csssafe = require "smi.report.csssafe"
 local xmlcheck = require "smi.report.xmlcheck"
 
 local M = {}
 
-local function set(list)
-  local s = {}
-  for _, v in ipairs(list) do s[v] = true end
-  return s
-end
+local set = csssafe.set
 
 M.elements = set{
   "svg", "g", "defs", "symbol", "use", "title", "desc", "metadata", "style",
@@ -47,19 +45,6 @@ M.attributes = set{
   "aria-label", "aria-hidden", "aria-labelledby", "aria-describedby", "tabindex", "focusable",
 }
 
--- CSS (a style attribute or a <style> element) that can fetch or run something.
-local function css_refusal(css)
-  local low = css:lower()
-  if low:find("\\", 1, true) then return "a CSS escape ('\\')" end
-  if low:find("@import", 1, true) then return "@import" end
-  if low:find("expression", 1, true) then return "expression()" end
-  if low:find("javascript:", 1, true) then return "javascript:" end
-  for arg in low:gmatch("url%s*%(%s*([^%)]*)") do
-    if not arg:match("^[\"']?#") then return "url(" .. arg .. ") (only url(#id) inside the figure)" end
-  end
-  return nil
-end
-
 local function walk(el)
   if not M.elements[el.name] then
     return ("element <%s> is not allowed in a figure (no scripts, embedded pages, images, links or animation)")
@@ -78,16 +63,26 @@ local function walk(el)
       return ("%s='%s' on <%s>: a figure may refer only to its own elements (\"#id\"), never to a file or the network")
         :format(name, value, el.name)
     end
-    -- A style is CSS; any other value that names a url() (fill, clip-path, marker-end ...) may
-    -- only point inside the figure.
-    local why = name == "style" and css_refusal(value) or nil
-    for arg in value:lower():gmatch("url%s*%(%s*([^%)]*)") do
-      if not arg:match("^[\"']?#") then why = why or ("url(" .. arg .. ") (only url(#id) inside the figure)") end
+    -- A style is CSS declarations, a presentation attribute (fill, clip-path, marker-end ...) a
+    -- CSS value: both held to csssafe's allow-list. Any other value that names a url() may only
+    -- point inside the figure.
+    local why
+    if name == "style" then
+      why = csssafe.declarations(value)
+    elseif csssafe.properties[name] then
+      why = csssafe.value(name, value)
+    else
+      for arg in value:lower():gmatch("url%s*%(%s*([^%)]*)") do
+        if not arg:match("^[\"']?#") then why = why or ("url(" .. arg .. ") (only url(#id) inside the figure)") end
+      end
     end
     if why then return ("attribute %s on <%s>: %s is not allowed in a figure"):format(name, el.name, why) end
   end
   if el.name == "style" then
-    local why = css_refusal(el.text or "")
+    for _, c in ipairs(el.children) do
+      if type(c) == "table" then return ("<style> in a figure holds text only, not <%s>"):format(c.name) end
+    end
+    local why = csssafe.sheet(el.text or "")
     if why then return ("<style> in a figure: %s is not allowed"):format(why) end
   end
   for _, c in ipairs(el.children) do
