@@ -150,7 +150,9 @@ std::optional<ByName> parse_by_name(const std::string& arg) {
   const std::size_t at = arg.find('@');
   const std::string name = arg.substr(0, at), spec = at == std::string::npos ? "" : arg.substr(at + 1);
   std::error_code ec;
-  if (!vm::valid_library_name(name) || fs::exists(fs::symlink_status(arg, ec)) || fs::exists(fs::symlink_status(name, ec)))
+  // "git@host:path" and "https://user@host/x" are addresses, and an existing folder is a folder
+  if (!vm::valid_library_name(name) || spec.find_first_of(":/") != std::string::npos ||
+      fs::exists(fs::symlink_status(arg, ec)) || fs::exists(fs::symlink_status(name, ec)))
     return std::nullopt;
   ByName b;
   b.name = name;
@@ -549,7 +551,6 @@ std::string test_dependencies(const Args& a, const fs::path& dir, const fs::path
   if (fs::exists(pr.lockfile, ec)) {
     pr.lock = vm::read_lockfile(pr.lockfile);
     pr.has_lock = true;
-    roots.push_back({pr.tree.string(), "the tested library's requirements"});
     const vm::ProjectLibraries installed = vm::project_libraries(pr.lockfile.parent_path());
     if (vm::LibrarySet::discover(roots, &installed).problems().empty()) return pr.tree.string();
   }

@@ -126,7 +126,6 @@ cd ..
 # --- a library is exactly its files: smi-out/ counts, and a study stops on a changed library ------
 mkdir -p h && cd h
 lib ../hl hl 1.0.0
-printf 'local ok, p = pcall(dofile, (...) or "")\nreturn { version = "1.0.0" }\n' > ../hl/init.lua
 "$SMI" libs add ../hl > /dev/null 2>&1 || bad "setup: libs add ../hl"
 cat > study.lua <<'LUA'
 print("VERSION", require("hl").version)
