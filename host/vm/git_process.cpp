@@ -37,6 +37,8 @@ std::string git_reason(const std::string& s) {
 }
 
 void check_git_address(const std::string& address) {
+  if (address.find('\0') != std::string::npos)
+    throw Error("a library source holds a NUL byte, so it is no address; write it as text");
   if (!address.empty() && address[0] == '-')
     throw Error("'" + address + "' is not a library source (it starts with '-'); write ./" + address + " for a folder");
   // git reads "<transport>::<address>" as "run the program git-remote-<transport>"

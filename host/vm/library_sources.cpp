@@ -267,6 +267,7 @@ std::vector<VersionTag> version_tags(const std::string& source, const GitPlace& 
   const SourceKind kind = source_kind(source, "");
   std::error_code ec;
   if (kind == SourceKind::git || (kind == SourceKind::folder && fs::exists(fs::path(source) / ".git", ec))) {
+    check_git_address(source);
     const GitResult r = run_git({"ls-remote", "--tags", "--refs", "--", source}, place);
     if (r.status != 0)
       throw Error("cannot reach the library source '" + source + "': git ls-remote failed: " + git_reason(r.err));

@@ -22,17 +22,11 @@ bool one_component(const std::string& s) {
   return !s.empty() && s != "." && s != ".." && s.find_first_of(std::string("/\\\0", 3)) == std::string::npos;
 }
 
-std::string shown(const std::string& s) {
-  std::string out;
-  for (char c : s) out += c == '\0' ? std::string("\\0") : std::string(1, c);
-  return out;
-}
-
 }  // namespace
 
 fs::path library_dir(const fs::path& tree, const std::string& name, const std::string& version) {
   if (!valid_library_name(name) || !one_component(name))
-    throw Error("'" + shown(name) + "' is not a library name (letters, digits and '_', not starting with a digit), "
+    throw Error("'" + visible_text(name) + "' is not a library name (letters, digits and '_', not starting with a digit), "
                 "so it names no folder of the library tree");
   try {
     const Version v = Version::parse(version);
@@ -41,14 +35,20 @@ fs::path library_dir(const fs::path& tree, const std::string& name, const std::s
     throw Error("library " + name + ": " + e.what() + "; a version names a folder of the library tree, so it must be "
                 "MAJOR.MINOR.PATCH[-PRERELEASE][+BUILD] exactly");
   }
-  if (!one_component(version)) throw Error("library " + name + ": version '" + shown(version) + "' is not one folder name");
+  if (!one_component(version)) throw Error("library " + name + ": version '" + visible_text(version) + "' is not one folder name");
   return tree / name / version;
 }
 
 LibraryTree LibraryTree::open(const fs::path& tree, bool create) {
   LibraryTree t;
   t.given_ = tree;
-  const pathwalk::Walk w = pathwalk::walk(fs::absolute(tree).lexically_normal().string(), false);
+  const std::string abs = fs::absolute(tree).lexically_normal().string();
+  pathwalk::Walk w = pathwalk::walk(abs, false);
+  if (w.error == ENOENT && create) {  // missing parents: made without following a link
+    if (!pathwalk::make_dirs_nofollow(abs))
+      throw Error("cannot create the library tree '" + tree.string() + "': " + std::strerror(errno));
+    w = pathwalk::walk(abs, false);
+  }
   if (w.error)
     throw Error("cannot reach the library tree '" + tree.string() + "' (" + w.where + "): " + std::strerror(w.error));
   if (w.exists && S_ISLNK(w.st.st_mode))

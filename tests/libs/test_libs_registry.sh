@@ -7,21 +7,13 @@
 # library's own requirements, and registry addresses held to git's protocol allow-list.
 source "${SMI_SOURCE_DIR:?}/tests/cli/lib.sh"   # run / has_out / has_err / finish; cd's to a temp dir
 
-gitc() { git -C "$1" -c user.name=t -c user.email=t@example.org -c init.defaultBranch=main "${@:2}" > /dev/null 2>&1; }
-# release DIR NAME VERSION REQUIRES_LUA [SOURCES_LUA]: commit a release and tag it vVERSION
-release() {
-  mkdir -p "$1"
-  [ -d "$1/.git" ] || gitc "$1" init -q
-  printf 'name = "%s"\nversion = "%s"\ndescription = "%s, by team A"\nrequires = {%s}\nsources = {%s}\n' \
-    "$2" "$3" "$2 converts units" "$4" "${5:-}" > "$1/smi-lib.lua"
-  printf 'return { version = "%s" }\n' "$3" > "$1/init.lua"
-  gitc "$1" add -A && gitc "$1" commit -q -m "release $3" && gitc "$1" tag "v$3"
-}
+source "${SMI_SOURCE_DIR}/tests/libs/git_release.sh"   # gitc, release
 lock_version() {  # lock_version NAME: the version smi-lock.json pins
   /usr/bin/python3 -c "import json,sys; print([l['version'] for l in json.load(open('smi-lock.json'))['libraries'] if l['name']==sys.argv[1]][0])" "$1"
 }
 
 R=$WORK/teamA-repos
+export DESC="converts units, by team A"
 release "$R/unitconv" unitconv 1.0.0 ""
 release "$R/unitconv" unitconv 2.0.0 ""
 release "$R/refcrit" refcrit 1.2.0 '"unitconv >= 2.0, < 3"'   # no `sources`: found through the registry
@@ -55,7 +47,7 @@ run search-none-yet 1 "$SMI" libs search unit
 has_err "names no registry"
 "$SMI" libs registry team "$REG" > /dev/null
 run search 0 "$SMI" libs search UNITS
-has_out "unitconv 2.0.0  unitconv converts units, by team A  [team; versions: 2.0.0]"
+has_out "unitconv 2.0.0  converts units, by team A  [team; versions: 2.0.0]"
 run add-by-range 0 "$SMI" libs add 'refcrit@^1.2'
 has_out "installed refcrit 1.2.0 from $C at v1.2.0"
 has_out "installed unitconv 2.0.0 from $U at v2.0.0"

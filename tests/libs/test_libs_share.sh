@@ -7,16 +7,7 @@
 # requirement, hand-edited lockfile. Nothing may be half-installed after a failure.
 source "${SMI_SOURCE_DIR:?}/tests/cli/lib.sh"   # run / has_out / has_err / finish; cd's to a temp dir
 
-gitc() { git -C "$1" -c user.name=t -c user.email=t@example.org -c init.defaultBranch=main "${@:2}" > /dev/null 2>&1; }
-# release DIR NAME VERSION REQUIRES_LUA [SOURCES_LUA] [TAG]: commit a release and tag it
-release() {
-  mkdir -p "$1"
-  [ -d "$1/.git" ] || gitc "$1" init -q
-  printf 'name = "%s"\nversion = "%s"\ndescription = "test library"\nrequires = {%s}\nsources = {%s}\n' \
-    "$2" "$3" "$4" "${5:-}" > "$1/smi-lib.lua"
-  printf 'return { version = "%s" }\n' "$3" > "$1/init.lua"
-  gitc "$1" add -A && gitc "$1" commit -q -m "release $3" && gitc "$1" tag "${6:-v$3}"
-}
+source "${SMI_SOURCE_DIR}/tests/libs/git_release.sh"   # gitc, release
 files_sha() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs sha256sum); }
 no_leftovers() {  # no temporary folder and no half-installed library in the tree $1
   if [ -z "$(find "$1" -name '.smi-tmp-*' 2>/dev/null)" ]; then ok; else bad "temporary folder left in $1"; fi
