@@ -1,9 +1,12 @@
-// smi-lua libs add / sync / remove / outdated: the project's library tree (./smi-libs/<name>/
-// <version>/, or --into DIR) and its smi-lock.json, in the current folder.
+// smi-lua libs add / update / sync / remove / outdated, and the requirements of `smi-lua test`:
+// the project's library tree (./smi-libs/<name>/<version>/, or --into DIR, reached through
+// vm/library_tree.hpp only), its smi-project.json (what the project asks for) and its
+// smi-lock.json (what was resolved), in the current folder.
 //
 // Everything is fetched into a temporary folder inside the tree first (vm/library_sources.hpp:
-// no library code runs), checked (manifest against the tag, requirements, hashes against the
-// lockfile), and only then renamed into place, so a failure leaves nothing half-installed.
+// no library code runs), checked (manifest against the tag, registry commit and checksum,
+// requirements, hashes against the lockfile), and only then moved into place, so a failure
+// leaves nothing half-installed.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
