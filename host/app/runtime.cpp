@@ -341,9 +341,11 @@ Runtime::Runtime(Config cfg, Bindings bindings) : cfg_(std::move(cfg)), bindings
   build_policy();
   build_context();
   // Two versions of a library or an unmet requirement stop the run before any code runs.
-  // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too.
+  // The project folder's smi-libs/ and smi-lock.json (libs add/sync) count too; a tree the
+  // lockfile places outside the project is no read root (only --lib or SMI_PATH make it one).
   const ProjectLibraries project = project_libraries(fs::current_path());
-  if (!project.tree.empty()) policy_.read_roots.push_back(lua::resolve_path(project.tree.string()));
+  if (!project.tree.empty() && !project.tree_outside)
+    policy_.read_roots.push_back(lua::resolve_path(project.tree.string()));
   libs_ = LibrarySet::discover(library_roots(cfg_.lib_dirs, std::getenv("SMI_PATH")), &project);
   libs_.check();
   limits_.token = context_.cancel;

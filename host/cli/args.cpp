@@ -251,12 +251,20 @@ Commands (sharing libraries; options such as --lib go before or after them):
   libs add SRC[@REF]  install a library (git URL, folder or .tar.gz; REF a tag, branch or
                       commit) and what it requires into ./smi-libs (--into DIR); records
                       name, version, source, commit and every file's SHA-256 in smi-lock.json
-  libs sync [--check] install exactly what smi-lock.json says, checking every file (--check:
-                      only check)
+                      and the range asked for (^VERSION) in smi-project.json
+  libs add NAME[@RANGE]  the same by name: from the source recorded for NAME, else from the
+                      registries of smi-project.json (RANGE: 1.2.0, ^1.2, '>= 1.2, < 2')
+  libs update [NAME]  move libraries to the highest version their ranges allow; rewrites
+                      smi-lock.json
+  libs sync [--check] install exactly what smi-lock.json says, checking every file, and
+                      restore changed libraries (--check: only check)
   libs tree           what requires what, with versions
   libs outdated       newer version tags at each locked library's source
   libs remove NAME[@VERSION]   uninstall (and drop from smi-lock.json)
   libs pack DIR       DIR's library as NAME-VERSION.tar.gz with a checksum file
+  libs registry [NAME URL]     record a team registry (a git repository) in smi-project.json
+  libs publish REGISTRY SRC@TAG  add a released version to a registry's index (never replaces)
+  libs search WORD    libraries of the project's registries whose name or description has WORD
   new-lib NAME [DIR]  make a library folder with a manifest, a module and a test
   test DIR            run DIR/tests/test_*.lua; prints "N passed, N failed" (test cases)
   verify RESULTS      re-hash everything RESULTS (a results.json) records: script, modules, data,

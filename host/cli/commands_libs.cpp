@@ -1,6 +1,7 @@
 // smi-lua libs: what a study run with the same --lib / SMI_PATH (and in the same folder, with
 // its smi-libs/ and smi-lock.json) would see, and what is wrong; `libs tree` shows what requires
-// what. The other subcommands (add, sync, remove, outdated, pack) are in libs_*.cpp.
+// what. The other subcommands (add, update, sync, remove, outdated, pack, registry, publish,
+// search) are in commands_libs_*.cpp.
 #include <algorithm>
 #include <cstdio>
 #include <functional>
@@ -13,7 +14,8 @@ namespace smi::cli {
 namespace {
 
 const char* const kLibsUsage =
-    "usage: smi-lua libs [add SOURCE[@REF] | sync [--check] | tree | outdated | remove NAME[@VERSION] | pack DIR [FILE]]"
+    "usage: smi-lua libs [add SOURCE[@REF] | add NAME[@RANGE] | update [NAME] | sync [--check] | tree | outdated | "
+    "remove NAME[@VERSION] | pack DIR [FILE] | registry [NAME URL] | publish REGISTRY SOURCE@REF | search WORD]"
     " [--into DIR]";
 
 std::string short_commit(const std::string& c) { return c.size() == 40 ? c.substr(0, 12) : c; }
@@ -76,6 +78,10 @@ int cmd_libs(const Args& a, const std::vector<std::string>& all) {
     if (sub == "remove") return libs_remove(a, args);
     if (sub == "outdated") return libs_outdated(a, args);
     if (sub == "pack") return libs_pack(a, args);
+    if (sub == "update") return libs_update(a, args);
+    if (sub == "publish") return libs_publish(a, args);
+    if (sub == "search") return libs_search(a, args);
+    if (sub == "registry") return libs_registry(a, args);
     if (sub == "tree") {
       if (!args.empty()) {
         std::fprintf(stderr, "%s\n", kLibsUsage);

@@ -32,7 +32,7 @@ int libs_pack(const Args&, const std::vector<std::string>& args) {
   const fs::path out = args.size() == 2 ? fs::path(args[1]) : fs::path(top + ".tar.gz");
   const fs::path out_abs = fs::weakly_canonical(fs::absolute(out), ec);
 
-  // The files as `libs add` installs them: no .git, no smi-out, no links (the folder hash's set).
+  // The files as `libs add` installs them: no .git, no smi-out outputs, no links.
   std::vector<fs::path> dirs, files;
   fs::recursive_directory_iterator it(dir, fs::directory_options::none, ec), end;
   if (ec) throw Error("cannot list '" + dir.string() + "': " + ec.message());

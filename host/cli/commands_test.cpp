@@ -1,5 +1,7 @@
 // smi-lua test DIR: runs each DIR/tests/test_*.lua as its own sandboxed smi-lua process (so one
-// test cannot disturb another), with DIR on the library path, and prints one summary line,
+// test cannot disturb another), with DIR on the library path and, when the --lib folders do not
+// meet its `requires`, the libraries its `sources` name (resolved and locked under the output
+// folder, as libs add would), and prints one summary line,
 // "N passed, N failed", counting cases (each file's own "N passed, N failed" from T.finish()),
 // the form every test file prints too. A file that stops before its summary (a syntax error, a
 // crash) counts as one failed case; a file exiting 0 without a summary as one passed case.
@@ -77,6 +79,8 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
   fs::create_directories(out_base, ec);
   if (ec) throw Error("cannot create the output folder '" + out_base.string() + "': " + ec.message());
 
+  // The library's own requirements: from the --lib folders, else fetched from its `sources`.
+  const std::string deps = test_dependencies(a, dir, out_base / "requires");
   std::printf("testing %s %s (%s)\n", m.name.c_str(), m.version.text.c_str(), dir.string().c_str());
   std::fflush(stdout);
   int passed = 0, failed = 0;  // files
@@ -87,6 +91,7 @@ int cmd_test(const Args& a, const std::vector<std::string>& args, const char* ar
     if (a.ignore_env) av.push_back("-E");
     av.insert(av.end(), {"--lib", dir.string()});
     for (const auto& d : a.cfg.lib_dirs) av.insert(av.end(), {"--lib", d});
+    if (!deps.empty()) av.insert(av.end(), {"--lib", deps});
     for (const auto& d : a.cfg.allow_read) av.insert(av.end(), {"--allow-read", d});
     for (const auto& d : a.cfg.allow_write) av.insert(av.end(), {"--allow-write", d});
     for (const auto& d : a.cfg.allow_exec) av.insert(av.end(), {"--allow-exec", d});

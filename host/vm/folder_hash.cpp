@@ -69,7 +69,7 @@ FolderHash hash_folder(const fs::path& folder) {
     if (ec) throw Error("cannot list library folder '" + folder.string() + "': " + ec.message());
     const fs::path& p = it->path();
     const std::string leaf = p.filename().string();
-    if (it->is_directory(ec) && !it->is_symlink(ec) && (leaf == ".git" || leaf == "smi-out")) {
+    if (it->is_directory(ec) && !it->is_symlink(ec) && leaf == ".git") {
       it.disable_recursion_pending();
       continue;
     }

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <map>
 
+#include <cerrno>
+#include <sys/stat.h>
+
 #include "luax/policy.hpp"
 #include "platform/core/errors.hpp"
+#include "platform/core/path_walk.hpp"
 
 #ifndef SMI_VERSION
 #define SMI_VERSION "0.0.0"
@@ -41,14 +45,35 @@ std::vector<LibraryRoot> library_roots(const std::vector<std::string>& lib_dirs,
   return out;
 }
 
-ProjectLibraries project_libraries(const fs::path& dir) {
+namespace {
+
+/// Throws when the project's tree (`rel` below the canonical project folder `dir`) is a symbolic
+/// link or is reached through one: a link would make any folder a read root of the study.
+void check_project_tree(const fs::path& dir, const fs::path& rel) {
+  const fs::path want = (dir / rel).lexically_normal();
+  const pathwalk::Walk w = pathwalk::walk(want.string(), false);
+  if (w.error == ENOENT || (!w.error && !w.exists)) return;  // no tree yet
+  if (!w.error && !S_ISLNK(w.st.st_mode) && S_ISDIR(w.st.st_mode) && w.canonical() == want.string()) return;
+  throw Error("the library tree '" + want.string() + "' is " +
+              (!w.error && S_ISLNK(w.st.st_mode) ? "a symbolic link" : w.error ? "reached through a symbolic link" : "not a folder") +
+              "; a project's library tree is a real folder inside it (a link would let a study read wherever it "
+              "points): replace it by a folder and run smi-lua libs sync");
+}
+
+}  // namespace
+
+ProjectLibraries project_libraries(const fs::path& dir_given) {
   ProjectLibraries p;
   std::error_code ec;
+  const fs::path dir = fs::weakly_canonical(fs::absolute(dir_given, ec), ec);
   if (fs::is_regular_file(dir / kLockfileName, ec)) {
     p.lockfile = dir / kLockfileName;
     p.lock = read_lockfile(p.lockfile);
     p.tree = lock_tree(*p.lock, p.lockfile);
-  } else if (fs::is_directory(dir / kTreeName, ec)) {
+    p.tree_outside = !tree_inside_project(p.lock->tree);
+    if (!p.tree_outside) check_project_tree(dir, p.lock->tree);
+  } else if (fs::exists(fs::symlink_status(dir / kTreeName, ec))) {
+    check_project_tree(dir, kTreeName);
     p.tree = dir / kTreeName;
   }
   return p;
@@ -89,6 +114,15 @@ void choose_versions(std::map<std::string, std::vector<Library>>& versioned, con
             l.source = e.source;
             l.git = GitInfo{};
             l.git.commit = e.commit.size() == 40 ? e.commit : "";
+            // A locked library is exactly the files the lockfile records.
+            const std::vector<std::string> diff = lock_differences(e.files, l.hash().files);
+            if (!diff.empty()) {
+              std::string files;
+              for (const auto& d : diff) files += "\n    " + d;
+              problems.push_back("library " + e.name + " " + e.version + " at " + l.folder.string() +
+                                 " is not what " + project->lockfile.string() + " locked:" + files +
+                                 "\n    restore it with: smi-lua libs sync");
+            }
             libs.push_back(l);
             found = true;
           }
@@ -143,8 +177,20 @@ void choose_versions(std::map<std::string, std::vector<Library>>& versioned, con
 LibrarySet LibrarySet::discover(const std::vector<LibraryRoot>& given, const ProjectLibraries* project) {
   LibrarySet set;
   set.roots_ = given;
+  if (project && project->tree_outside) {
+    // A tree outside the project is read only when the user names it (--lib, SMI_PATH).
+    const fs::path t = lua::resolve_path(project->tree.string());
+    bool given_by_user = false;
+    for (const LibraryRoot& r : given) given_by_user = given_by_user || lua::resolve_path(r.dir) == t;
+    if (!given_by_user) {
+      set.tree_problems_.push_back(project->lockfile.string() + " names the library tree '" + project->lock->tree +
+                                   "', outside the project folder; a study reads a tree outside its folder only "
+                                   "when you give it yourself: --lib " + project->tree.string());
+      project = nullptr;
+    }
+  }
   const Lockfile* lock = project && project->lock ? &*project->lock : nullptr;
-  if (project && !project->tree.empty())
+  if (project && !project->tree.empty() && !project->tree_outside)
     set.roots_.push_back({project->tree.string(), lock ? "smi-lock.json's tree" : "the project's tree"});
   const auto make = [&](const fs::path& folder, const LibraryRoot& root) {
     Library lib;

@@ -10,8 +10,10 @@
 // requirement of the other libraries it sees. The project folder is the current folder: its
 // smi-libs/ (or the tree its smi-lock.json names) is searched after --lib and SMI_PATH.
 //
-// Before a study starts the set is checked: one version per library name, and every `requires`
-// met. Each problem is reported with which library, where, and how to fix it.
+// Before a study starts the set is checked: one version per library name, every `requires`
+// met, and every library the lockfile pins holding exactly the files the lockfile records (a
+// file changed, added or removed stops the study, naming the file and `smi-lua libs sync`).
+// Each problem is reported with which library, where, and how to fix it.
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -51,8 +53,12 @@ struct ProjectLibraries {
   std::filesystem::path lockfile;  // <dir>/smi-lock.json when it exists, else empty
   std::optional<Lockfile> lock;
   std::filesystem::path tree;      // the lockfile's tree, or <dir>/smi-libs; empty when neither exists
+  /// The lockfile names a tree outside the project folder: it is no read root of a study and is
+  /// searched only when the user gives the same folder with --lib or SMI_PATH.
+  bool tree_outside = false;
 };
-/// Reads <dir>/smi-lock.json (throws smi::Error for a malformed or hand-edited one).
+/// Reads <dir>/smi-lock.json (throws smi::Error for a malformed or hand-edited one). Throws
+/// smi::Error, naming it, when the project's tree is a symbolic link or passes through one.
 ProjectLibraries project_libraries(const std::filesystem::path& dir);
 
 class LibrarySet {

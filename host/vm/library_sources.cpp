@@ -14,8 +14,8 @@
 
 #include "platform/core/errors.hpp"
 #include "platform/core/sha256.hpp"
-#include "platform/eval/process.hpp"
 #include "vm/git_commit.hpp"
+#include "vm/git_process.hpp"
 #include "vm/tar_gz.hpp"
 
 
@@ -28,72 +28,9 @@ std::string trim(std::string s) {
   return s;
 }
 
-/// git's reason: its first "fatal: ..." line, else the last non-empty line of its error output.
-std::string last_line(const std::string& s) {
-  const std::size_t f = s.find("fatal: ");
-  if (f != std::string::npos) return trim(s.substr(f + 7, s.find('\n', f) - f - 7));
-  std::string t = trim(s);
-  const std::size_t nl = t.rfind('\n');
-  return nl == std::string::npos ? t : t.substr(nl + 1);
-}
-
-std::string find_git() {
-  const char* path = std::getenv("PATH");
-  std::stringstream ss(path && *path ? path : "/usr/local/bin:/usr/bin:/bin");
-  for (std::string dir; std::getline(ss, dir, ':');) {
-    if (dir.empty()) continue;
-    const std::string cand = dir + "/git";
-    if (::access(cand.c_str(), X_OK) == 0) return cand;
-  }
-  throw Error("the git program is not on PATH: install git (apt-get install git) to add libraries from git "
-              "repositories, or give a folder or a .tar.gz made by smi-lua libs pack");
-}
-
-struct GitResult {
-  int status = -1;
-  std::string out, err;
-};
-
-/// Runs git with `args` in the minimal environment described in the header. Never a shell.
-GitResult run_git(const std::vector<std::string>& args, const fs::path& scratch) {
-  const std::string git = find_git();
-  const fs::path home = scratch / "home";
-  fs::create_directories(home);
-  std::vector<std::string> argv = {"git",
-                                   "-c", "core.hooksPath=/dev/null",
-                                   "-c", "core.symlinks=false",
-                                   "-c", "core.fsmonitor=false",
-                                   "-c", "protocol.ext.allow=never",
-                                   "-c", "credential.helper=",
-                                   "-c", "advice.detachedHead=false"};
-  argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<std::string> env = {"HOME=" + home.string(), "GIT_CONFIG_NOSYSTEM=1", "GIT_CONFIG_GLOBAL=/dev/null",
-                                  "GIT_TERMINAL_PROMPT=0", "LANG=C", "LC_ALL=C"};
-  for (const char* keep : {"PATH", "SSH_AUTH_SOCK", "http_proxy", "https_proxy", "no_proxy", "HTTP_PROXY",
-                           "HTTPS_PROXY", "NO_PROXY"})
-    if (const char* v = std::getenv(keep)) env.push_back(std::string(keep) + "=" + v);
-  // Started the evaluator's way (platform/eval/process.hpp): own process group, default
-  // signals, exactly this environment, both outputs captured.
-  eval::SpawnSpec spec;
-  spec.program = git;
-  spec.argv = std::move(argv);
-  spec.env = std::move(env);
-  spec.solver_mark = false;
-  eval::CapturedRun c;
-  try {
-    c = eval::run_captured(std::move(spec), 0);
-  } catch (const eval::SpawnError& e) {
-    throw Error("cannot run " + git + ": " + std::strerror(e.err));
-  }
-  GitResult r;
-  r.status = c.status > 128 ? 128 : c.status;  // killed by a signal: 128, as before
-  r.out = std::move(c.out);
-  r.err = std::move(c.err);
-  return r;
-}
-
-/// Copies the files of a library folder (not .git, not smi-out: what the folder hash leaves
-/// out). A symbolic link or special file is refused by name: an installed library is plain files.
+/// Copies the files of a library folder but .git and smi-out/ (a source folder's test outputs
+/// are no part of what is installed; vm/folder_hash.hpp). A symbolic link or special file is
+/// refused by name: an installed library is plain files.
 void copy_library(const fs::path& src, const fs::path& dest, const std::string& what) {
   fs::create_directories(dest);
   std::error_code ec;
@@ -147,29 +84,31 @@ std::vector<VersionTag> parse_tag_lines(const std::string& text, bool ls_remote)
   return out;
 }
 
-std::string fetch_git(const std::string& source, const std::string& ref, const fs::path& dest, const fs::path& scratch) {
+std::string fetch_git(const std::string& source, const std::string& ref, const fs::path& dest, const GitPlace& place) {
+  check_git_address(source);
+  const fs::path& scratch = place.scratch;
   const fs::path repo = scratch / "repo";
   fs::remove_all(repo);
-  GitResult r = run_git({"clone", "--quiet", "--no-checkout", "--template=", "--", source, repo.string()}, scratch);
+  GitResult r = run_git({"clone", "--quiet", "--no-checkout", "--template=", "--", source, repo.string()}, place);
   if (r.status != 0)
-    throw Error("cannot reach the library source '" + source + "': git clone failed: " + last_line(r.err) +
+    throw Error("cannot reach the library source '" + source + "': git clone failed: " + git_reason(r.err) +
                 "; check the address (git ls-remote " + source + ") and that you may read it");
   std::string commit;
   const std::string want = ref.empty() ? "HEAD" : ref;
   for (const std::string& cand : {"refs/tags/" + want, "refs/remotes/origin/" + want, want}) {
-    r = run_git({"-C", repo.string(), "rev-parse", "--verify", "--quiet", cand + "^{commit}"}, scratch);
+    r = run_git({"-C", repo.string(), "rev-parse", "--verify", "--quiet", cand + "^{commit}"}, place);
     if (r.status == 0) {
       commit = trim(r.out);
       break;
     }
   }
   if (commit.empty()) {
-    const GitResult tags = run_git({"-C", repo.string(), "tag", "-l"}, scratch);
+    const GitResult tags = run_git({"-C", repo.string(), "tag", "-l"}, place);
     throw Error("the library source '" + source + "' has no tag, branch or commit '" + want +
                 "'; its version tags: " + version_list(parse_tag_lines(tags.out, false)));
   }
-  r = run_git({"-C", repo.string(), "ls-tree", "-r", "-z", "--full-tree", commit}, scratch);
-  if (r.status != 0) throw Error("cannot list commit " + commit + " of '" + source + "': " + last_line(r.err));
+  r = run_git({"-C", repo.string(), "ls-tree", "-r", "-z", "--full-tree", commit}, place);
+  if (r.status != 0) throw Error("cannot list commit " + commit + " of '" + source + "': " + git_reason(r.err));
   std::stringstream ss(r.out);
   for (std::string rec; std::getline(ss, rec, '\0');) {
     const std::size_t tab = rec.find('\t');
@@ -186,9 +125,8 @@ std::string fetch_git(const std::string& source, const std::string& ref, const f
   fs::remove_all(work);
   fs::create_directories(work);
   r = run_git({"--git-dir", (repo / ".git").string(), "--work-tree", work.string(), "checkout", "-q", "-f", commit,
-               "--", "."},
-              scratch);
-  if (r.status != 0) throw Error("cannot check out " + want + " of '" + source + "': " + last_line(r.err));
+               "--", "."}, place);
+  if (r.status != 0) throw Error("cannot check out " + want + " of '" + source + "': " + git_reason(r.err));
   copy_library(work, dest, "the library source '" + source + "' at " + want);
   fs::remove_all(work);
   fs::remove_all(repo);
@@ -287,17 +225,16 @@ SourceKind source_kind(const std::string& source, const std::string& ref) {
   return SourceKind::git;
 }
 
-Fetched fetch_library(const std::string& source, const std::string& ref, const fs::path& dest, const fs::path& scratch) {
+Fetched fetch_library(const std::string& source, const std::string& ref, const fs::path& dest, const GitPlace& place) {
   Fetched f;
   f.ref = ref;
   // git would read a leading '-' as an option ("--upload-pack=..."): no ref or source starts so
   if (!ref.empty() && ref[0] == '-') throw Error("'" + ref + "' is not a tag, branch or commit name (it starts with '-')");
-  if (!source.empty() && source[0] == '-')
-    throw Error("'" + source + "' is not a library source (it starts with '-'); write ./" + source + " for a folder");
+  check_git_address(source);
   const SourceKind kind = source_kind(source, ref);
   std::string what = "'" + source + "'" + (ref.empty() ? "" : " at " + ref);
   if (kind == SourceKind::git) {
-    f.commit = fetch_git(source, ref, dest, scratch);
+    f.commit = fetch_git(source, ref, dest, place);
   } else if (kind == SourceKind::archive) {
     if (!ref.empty()) throw Error("'" + source + "@" + ref + "': an archive has no refs; give the .tar.gz alone");
     std::error_code ec;
@@ -326,18 +263,19 @@ Fetched fetch_library(const std::string& source, const std::string& ref, const f
   return f;
 }
 
-std::vector<VersionTag> version_tags(const std::string& source, const fs::path& scratch) {
+std::vector<VersionTag> version_tags(const std::string& source, const GitPlace& place) {
   const SourceKind kind = source_kind(source, "");
   std::error_code ec;
   if (kind == SourceKind::git || (kind == SourceKind::folder && fs::exists(fs::path(source) / ".git", ec))) {
-    const GitResult r = run_git({"ls-remote", "--tags", "--refs", "--", source}, scratch);
+    check_git_address(source);
+    const GitResult r = run_git({"ls-remote", "--tags", "--refs", "--", source}, place);
     if (r.status != 0)
-      throw Error("cannot reach the library source '" + source + "': git ls-remote failed: " + last_line(r.err));
+      throw Error("cannot reach the library source '" + source + "': git ls-remote failed: " + git_reason(r.err));
     return parse_tag_lines(r.out, true);
   }
-  const fs::path tmp = scratch / "peek";
+  const fs::path tmp = place.scratch / "peek";
   fs::remove_all(tmp);
-  const Fetched f = fetch_library(source, "", tmp, scratch);
+  const Fetched f = fetch_library(source, "", tmp, place);
   fs::remove_all(tmp);
   return {{"", f.manifest.version}};
 }

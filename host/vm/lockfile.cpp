@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "platform/core/atomic_file.hpp"
 #include "platform/core/errors.hpp"
 #include "platform/core/json.hpp"
 #include "platform/core/sha256.hpp"
@@ -71,6 +72,29 @@ bool Lockfile::erase(const std::string& name) {
 fs::path lock_tree(const Lockfile& lock, const fs::path& lockfile) {
   const fs::path t(lock.tree);
   return t.is_absolute() ? t : lockfile.parent_path() / t;
+}
+
+bool tree_inside_project(const std::string& tree) {
+  if (tree.empty() || tree.find('\0') != std::string::npos) return false;
+  const fs::path t(tree);
+  if (t.is_absolute()) return false;
+  for (const auto& part : t.lexically_normal())
+    if (part == "..") return false;
+  return t.lexically_normal() != ".";
+}
+
+std::vector<std::string> lock_differences(const std::map<std::string, std::string>& want,
+                                          const std::map<std::string, std::string>& have) {
+  std::vector<std::string> out;
+  for (const auto& [path, digest] : want) {
+    const auto it = have.find(path);
+    if (it == have.end()) out.push_back("file '" + path + "' is missing");
+    else if (it->second != digest) out.push_back("file '" + path + "' differs from smi-lock.json (SHA-256 " +
+                                                 it->second.substr(0, 12) + ", locked " + digest.substr(0, 12) + ")");
+  }
+  for (const auto& [path, digest] : have)
+    if (!want.count(path)) out.push_back("file '" + path + "' is not in smi-lock.json");
+  return out;
 }
 
 Lockfile read_lockfile(const fs::path& file) {
@@ -150,16 +174,7 @@ void write_lockfile(const Lockfile& lock, const fs::path& file) {
   json::WriteOptions o;
   o.indent = 2;
   const std::string text = json::write(doc, o) + "\n";
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) throw Error("cannot write '" + tmp.string() + "'");
-  }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec) throw Error("cannot replace '" + file.string() + "': " + ec.message());
+  write_file_atomic(file.string(), text);
 }
 
 }  // namespace smi::vm

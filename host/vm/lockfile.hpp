@@ -50,4 +50,15 @@ void write_lockfile(const Lockfile& lock, const std::filesystem::path& file);
 /// The library tree a lockfile names, resolved against the lockfile's folder.
 std::filesystem::path lock_tree(const Lockfile& lock, const std::filesystem::path& lockfile);
 
+/// True when a tree as a lockfile writes it ("smi-libs") lies inside the lockfile's folder: a
+/// relative path without "..". A tree elsewhere is read or changed only when the user names it
+/// (--lib for a study, --into for libs), never because a lockfile says so.
+bool tree_inside_project(const std::string& tree);
+
+/// Each file that differs between a lock entry's files and `have` (a folder hash's files), one
+/// line each: "file 'init.lua' differs from smi-lock.json (...)", "... is missing",
+/// "... is not in smi-lock.json".
+std::vector<std::string> lock_differences(const std::map<std::string, std::string>& want,
+                                          const std::map<std::string, std::string>& have);
+
 }  // namespace smi::vm

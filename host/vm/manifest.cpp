@@ -60,11 +60,18 @@ struct State {
 
 std::string where(const std::filesystem::path& file) { return "library manifest '" + file.string() + "'"; }
 
+/// The whole Lua string at `idx`, NUL bytes included (a name cut at a NUL would pass the checks).
+std::string text_at(lua_State* L, int idx) {
+  std::size_t n = 0;
+  const char* s = lua_tolstring(L, idx, &n);
+  return std::string(s, n);
+}
+
 std::string string_field(lua_State* L, const std::filesystem::path& file, const char* field, bool required) {
   lua_getfield(L, -1, field);
   std::string v;
   if (lua_type(L, -1) == LUA_TSTRING) {
-    v = lua_tostring(L, -1);
+    v = text_at(L, -1);
   } else if (!lua_isnil(L, -1) || required) {
     const std::string got = lua_isnil(L, -1) ? "nothing" : std::string("a ") + luaL_typename(L, -1);
     lua_pop(L, 1);
@@ -88,7 +95,7 @@ void read_lists(lua_State* L, const std::filesystem::path& file, Manifest& m) {
         throw Error(where(file) + ": requires[" + std::to_string(i) + "] must be a string like \"other >= 1.2\", got a " +
                     luaL_typename(L, -1));
       try {
-        m.requires_.push_back(Requirement::parse(lua_tostring(L, -1)));
+        m.requires_.push_back(Requirement::parse(text_at(L, -1)));
       } catch (const Error& e) {
         throw Error(where(file) + ": requires[" + std::to_string(i) + "]: " + e.what());
       }
@@ -107,7 +114,11 @@ void read_lists(lua_State* L, const std::filesystem::path& file, Manifest& m) {
         throw Error(where(file) + ": field 'sources' must map library names to where they are fetched, like "
                     "{kdetools = \"https://git.example.org/kdetools.git\"}; found a " + luaL_typename(L, -2) +
                     " key with a " + luaL_typename(L, -1) + " value");
-      m.sources[lua_tostring(L, -2)] = lua_tostring(L, -1);
+      const std::string key = text_at(L, -2), value = text_at(L, -1);
+      if (value.find('\0') != std::string::npos || key.find('\0') != std::string::npos)
+        throw Error(where(file) + ": field 'sources': the entry for '" + key.substr(0, key.find('\0')) +
+                    "' holds a NUL byte; write the address as text");
+      m.sources[key] = value;
       lua_pop(L, 1);
     }
   } else if (!lua_isnil(L, -1)) {
@@ -118,6 +129,12 @@ void read_lists(lua_State* L, const std::filesystem::path& file, Manifest& m) {
 }
 
 }  // namespace
+
+std::string visible_text(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '\0' ? std::string("\\0") : std::string(1, c);
+  return out;
+}
 
 bool valid_library_name(const std::string& n) {
   if (n.empty() || std::isdigit(static_cast<unsigned char>(n[0]))) return false;
@@ -174,7 +191,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
   m.file = file;
   m.name = string_field(L, file, "name", true);
   if (!valid_library_name(m.name))
-    throw Error(where(file) + ": name '" + m.name +
+    throw Error(where(file) + ": name '" + visible_text(m.name) +
                 "' is not a valid library name (letters, digits and '_', not starting with a digit: it is "
                 "the first part of module names, require \"" + m.name + ".module\")");
   const std::string ver = string_field(L, file, "version", true);

@@ -36,6 +36,10 @@ struct Manifest {
 /// the first component of module names.
 bool valid_library_name(const std::string& name);
 
+/// `s` with each NUL byte written as \0, for messages about a name or version that holds one
+/// (printed as a C string, the text would end at the NUL).
+std::string visible_text(const std::string& s);
+
 /// Reads and checks `file`. Throws smi::Error naming the file, the field and the fix.
 Manifest read_manifest(const std::filesystem::path& file);
 /// The manifest of the library folder `dir` (`smi-lua test`, `libs pack`); a folder without one

@@ -41,21 +41,33 @@ long number_part(const std::string& part, const std::string& whole, const char* 
   return std::stol(part);
 }
 
+/// Semver's dot-separated identifiers of a prerelease or build metadata: each non-empty,
+/// of [0-9A-Za-z-] only.
+std::vector<std::string> identifiers(const std::string& text, const std::string& whole, const char* what) {
+  std::vector<std::string> ids = split(text, '.');
+  for (const std::string& id : ids) {
+    if (id.empty()) throw Error("version '" + whole + "': empty " + what + " identifier (write e.g. 1.2.0-rc.1+build.5)");
+    for (char c : id)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-')
+        throw Error("version '" + whole + "': " + what + " identifiers use only [0-9A-Za-z-], separated by dots");
+  }
+  return ids;
+}
+
 Version parse_impl(const std::string& s, bool loose) {
   Version v;
   v.text = s;
   std::string core = s;
-  if (const std::size_t plus = core.find('+'); plus != std::string::npos) core = core.substr(0, plus);
+  if (const std::size_t plus = core.find('+'); plus != std::string::npos) {
+    // Build metadata is data like the rest of the version: a version names a folder of the
+    // library tree, so a '/' or a ".." here would be a path.
+    identifiers(core.substr(plus + 1), s, "build metadata");
+    core = core.substr(0, plus);
+  }
   if (const std::size_t dash = core.find('-'); dash != std::string::npos) {
     const std::string pre = core.substr(dash + 1);
     core = core.substr(0, dash);
-    for (const std::string& id : split(pre, '.')) {
-      if (id.empty()) throw Error("version '" + s + "': empty prerelease identifier");
-      for (char c : id)
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-')
-          throw Error("version '" + s + "': prerelease identifiers use only [0-9A-Za-z-]");
-      v.pre.push_back(id);
-    }
+    v.pre = identifiers(pre, s, "prerelease");
   }
   const std::vector<std::string> parts = split(core, '.');
   if (parts.size() != 3 && !(loose && parts.size() < 3))

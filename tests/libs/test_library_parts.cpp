@@ -142,9 +142,10 @@ TEST_CASE("a folder hash holds standard SHA-256 file digests and sees every chan
   write(t.p / "a.txt", "abc");
   write(t.p / "sub/b.lua", "");
   write(t.p / ".git/HEAD", "ref: refs/heads/main\n");  // left out
-  write(t.p / "smi-out/x/results.json", "{}");         // left out
+  write(t.p / "smi-out/x/results.json", "{}");         // counted: a library may load any of its files
   const FolderHash h = hash_folder(t.p);
-  REQUIRE(h.files.size() == 2);
+  REQUIRE(h.files.size() == 3);
+  CHECK(h.files.at("smi-out/x/results.json") == "44136fa355b3678a1146ad16f7e8649e94fb4fc21fe77e8310c060f61caaff8a");
   CHECK(h.files.at("a.txt") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");  // FIPS 180-2
   CHECK(h.files.at("sub/b.lua") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
   CHECK(h.digest.rfind("sha256:", 0) == 0);
@@ -155,6 +156,9 @@ TEST_CASE("a folder hash holds standard SHA-256 file digests and sees every chan
   CHECK(hash_folder(t.p).digest != h.digest);
   write(t.p / "a.txt", "abc");
   fs::rename(t.p / "sub/b.lua", t.p / "sub/c.lua");  // same bytes, another name
+  CHECK(hash_folder(t.p).digest != h.digest);
+  fs::rename(t.p / "sub/c.lua", t.p / "sub/b.lua");
+  write(t.p / "smi-out/payload.lua", "return 1");  // code added under smi-out/ changes the hash
   CHECK(hash_folder(t.p).digest != h.digest);
 }
 

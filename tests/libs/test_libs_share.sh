@@ -7,16 +7,7 @@
 # requirement, hand-edited lockfile. Nothing may be half-installed after a failure.
 source "${SMI_SOURCE_DIR:?}/tests/cli/lib.sh"   # run / has_out / has_err / finish; cd's to a temp dir
 
-gitc() { git -C "$1" -c user.name=t -c user.email=t@example.org -c init.defaultBranch=main "${@:2}" > /dev/null 2>&1; }
-# release DIR NAME VERSION REQUIRES_LUA [SOURCES_LUA] [TAG]: commit a release and tag it
-release() {
-  mkdir -p "$1"
-  [ -d "$1/.git" ] || gitc "$1" init -q
-  printf 'name = "%s"\nversion = "%s"\ndescription = "test library"\nrequires = {%s}\nsources = {%s}\n' \
-    "$2" "$3" "$4" "${5:-}" > "$1/smi-lib.lua"
-  printf 'return { version = "%s" }\n' "$3" > "$1/init.lua"
-  gitc "$1" add -A && gitc "$1" commit -q -m "release $3" && gitc "$1" tag "${6:-v$3}"
-}
+source "${SMI_SOURCE_DIR}/tests/libs/git_release.sh"   # gitc, release
 files_sha() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs sha256sum); }
 no_leftovers() {  # no temporary folder and no half-installed library in the tree $1
   if [ -z "$(find "$1" -name '.smi-tmp-*' 2>/dev/null)" ]; then ok; else bad "temporary folder left in $1"; fi
@@ -106,9 +97,16 @@ echo 'x' > smi-libs/refcrit/1.2.0/extra.lua
 run check-added 1 "$SMI" libs sync --check
 has_err "library refcrit 1.2.0 at"
 has_err "file 'extra.lua' is not in smi-lock.json"
-run sync-tampered 1 "$SMI" libs sync
-has_err "file 'init.lua' differs"
-rm -rf smi-libs/unitconv smi-libs/refcrit/1.2.0/extra.lua
+# a study does not run on the changed copies; sync restores them from their sources
+run study-tampered 1 "$SMI" --quiet --out out3 study.lua
+has_err "file 'init.lua' differs from smi-lock.json"
+has_err "restore it with: smi-lua libs sync"
+run sync-repairs 0 "$SMI" libs sync
+has_out "repairing  refcrit 1.2.0: file 'extra.lua' is not in smi-lock.json"
+has_out "restored   unitconv 2.0.0 from $U"
+files_sha smi-libs > ../repaired.sha
+if cmp -s ../before.sha ../repaired.sha; then ok; else bad "sync did not restore the changed libraries byte for byte"; fi
+rm -rf smi-libs/unitconv
 run check-missing 1 "$SMI" libs sync --check
 has_err "library unitconv 2.0.0 is not installed"
 run sync-restores 0 "$SMI" libs sync
@@ -179,8 +177,12 @@ cd ../p2
 run into-2 0 "$SMI" libs add "$C@v1.2.0" --into ../shared
 cd ..
 if [ -d shared/unitconv/2.0.0 ] && [ -d shared/unitconv/2.1.0 ]; then ok; else bad "side-by-side versions missing: $(ls shared/unitconv)"; fi
-(cd p1 && "$SMI" -e 'print("SAW", require("unitconv").version)') > .o1 2>&1
-(cd p2 && "$SMI" -e 'print("SAW", require("unitconv").version)') > .o2 2>&1
+# a tree outside the project is read only when the user names it
+(cd p1 && "$SMI" -e 'print("SAW", require("unitconv").version)') > .o0 2>&1
+if grep -q "outside the project folder; a study reads a tree outside its folder only when you give it yourself: --lib" .o0
+then ok; else bad "a lockfile's outside tree was read without --lib: $(cat .o0)"; fi
+(cd p1 && "$SMI" --lib ../shared -e 'print("SAW", require("unitconv").version)') > .o1 2>&1
+(cd p2 && "$SMI" --lib ../shared -e 'print("SAW", require("unitconv").version)') > .o2 2>&1
 if grep -q "SAW	2.0.0" .o1 && grep -q "SAW	2.1.0" .o2; then ok; else bad "lockfiles did not choose: $(cat .o1 .o2)"; fi
 # without a lockfile: the highest version satisfying every requirement
 run highest 0 "$SMI" --lib shared -e 'print("SAW", require("unitconv").version)'
@@ -196,9 +198,11 @@ run two-versions 1 "$SMI" --lib shared --lib shared/unitconv/2.0.0 -e 'print(1)'
 has_err "two copies of library 'unitconv'"
 # remove a side-by-side version the lockfile does not use, then the locked one
 cd p1
-run remove-side 0 "$SMI" libs remove unitconv@2.1.0
+run remove-side-unnamed 1 "$SMI" libs remove unitconv@2.1.0
+has_err "outside the project folder; libs changes a tree outside the project only when you name it: add --into ../shared"
+run remove-side 0 "$SMI" libs remove unitconv@2.1.0 --into ../shared
 if [ ! -e ../shared/unitconv/2.1.0 ] && [ -d ../shared/unitconv/2.0.0 ]; then ok; else bad "remove of a side version"; fi
-run remove-locked 0 "$SMI" libs remove unitconv
+run remove-locked 0 "$SMI" libs remove unitconv --into ../shared
 has_out "removed unitconv 2.0.0 (folder and smi-lock.json entry)"
 if [ ! -e ../shared/unitconv ] && ! grep -q unitconv smi-lock.json; then ok; else bad "remove left unitconv"; fi
 cd ..
