@@ -175,7 +175,8 @@ void move(Cloud& c, const Eigen::VectorXd& p, double beta, const PriorSet& prior
   const Eigen::MatrixXd seeds = next.x;
   double moved = 0.0, accepted = 0.0;
   int sweeps = 0;
-  while (sweeps < o.max_sweeps && (sweeps < o.min_sweeps || moved < o.moves)) {
+  double corr = 1.0;
+  while (sweeps < o.max_sweeps && (sweeps < o.min_sweeps || moved < o.moves || corr > o.target_correlation)) {
     stop.poll();
     const Eigen::MatrixXd prop = next.x + scale * rng.normal_matrix(n, d) * L.transpose();
     const Eigen::VectorXd lp = prior.log_density(prop);
@@ -205,11 +206,12 @@ void move(Cloud& c, const Eigen::VectorXd& p, double beta, const PriorSet& prior
     accepted += rate;
     ++sweeps;
     scale *= std::exp(rate - o.target_acceptance);
+    corr = chain_correlation(seeds, next.x);
   }
   st.sweeps = sweeps;
   st.acceptance = accepted / sweeps;
   st.scale = scale;
-  st.chain_correlation = chain_correlation(seeds, next.x);
+  st.chain_correlation = corr;
   c = std::move(next);
 }
 
@@ -219,6 +221,8 @@ void validate(const TmcmcOptions& o) {
   if (!(o.target_cov > 0.0) || !std::isfinite(o.target_cov)) throw InvalidArgument(fmt::format("target_cov must be a number > 0, got {}", o.target_cov));
   if (o.min_sweeps < 1 || o.max_sweeps < o.min_sweeps)
     throw InvalidArgument(fmt::format("sweeps: need 1 <= min_sweeps <= max_sweeps, got {} and {}", o.min_sweeps, o.max_sweeps));
+  if (!(o.target_correlation > 0.0 && o.target_correlation <= 1.0))
+    throw InvalidArgument(fmt::format("target_correlation must be in (0, 1], got {}", o.target_correlation));
   if (!(o.moves >= 0.0)) throw InvalidArgument(fmt::format("moves must be >= 0, got {}", o.moves));
   if (!(o.target_acceptance > 0.0 && o.target_acceptance < 1.0))
     throw InvalidArgument(fmt::format("target_acceptance must be in (0, 1), got {}", o.target_acceptance));

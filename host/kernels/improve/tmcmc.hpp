@@ -7,8 +7,8 @@
 // w_j = L(θ_j)^Δβ have a coefficient of variation equal to the target (1: about half the
 // particles keep weight); log Z += log mean_j w_j. The particles are resampled by weight and each
 // resampled particle seeds a Metropolis chain with the Gaussian proposal c² Σ_k (Σ_k the weighted
-// sample covariance), run a few sweeps; c adapts to an acceptance rate near 0.23 and the number
-// of sweeps to the acceptance (each chain moves about `moves` times).
+// sample covariance), run sweeps until the chains have moved and forgotten their seeds; c adapts
+// to an acceptance rate near 0.23.
 //
 // Batches: the log-likelihood takes a matrix of θ rows and returns one value per row; it is
 // called once per sweep of all chains (points outside the prior's support are rejected without
@@ -38,8 +38,11 @@ struct TmcmcOptions {
   int max_stages = 50;          ///< stop (not converged) when β has not reached 1 by then
   double target_cov = 1.0;      ///< coefficient of variation of the weights that fixes Δβ
   int min_sweeps = 2;           ///< Metropolis sweeps of all chains per stage, at least
-  int max_sweeps = 20;          ///< and at most
+  int max_sweeps = 50;          ///< and at most
   double moves = 2.0;           ///< sweeps run until each chain has moved about this often
+  /// and until the chains' end points keep at most this correlation with their seeds (the
+  /// chains forget where they started: in 10 dimensions that takes 10 to 30 sweeps)
+  double target_correlation = 0.3;
   double target_acceptance = 0.23;  ///< the proposal scale adapts towards it
   std::uint64_t seed = 0;
   int threads = 1;                  ///< for a thread-safe callback: row blocks in parallel

@@ -29,10 +29,10 @@ struct Linear {
   Eigen::Vector2d sd{0.5, 0.3};
   Eigen::MatrixXd data;
   Linear() {
-    A << 1.0, 0.5, 0.8, -1.0;
+    A << 1.0, 0.2, 1.0, -0.2;  // strongly correlated responses (0.88)
     noise << 0.1 * 0.1, 0.0, 0.0, 0.2 * 0.2;
     data.resize(5, 2);
-    data << 1.9, 0.9, 2.6, 1.4, 2.2, 0.5, 1.5, 1.2, 2.4, 0.6;
+    data << 1.9, 1.0, 1.2, 1.8, 1.7, 1.5, 1.5, 1.2, 2.0, 1.9;
   }
   std::vector<InputSpec> inputs() const {
     InputSpec a, b;
@@ -119,17 +119,17 @@ TEST_CASE("population likelihood inside TMCMC: the posterior of the means agains
   // Flat priors on wide ranges: the posterior of μ is the likelihood normalised; with the closed
   // form it is Gaussian with mean A⁻¹ ȳ and covariance A⁻¹ C A⁻ᵀ / n.
   const Linear lin;
-  const PopulationLikelihood like = lin.likelihood(4000, 0.0);
+  const PopulationLikelihood like = lin.likelihood(1000, 0.0);
   const PriorSet prior({{"x1.mean", PriorKind::uniform, 0, 1, -2.0, 6.0}, {"x2.mean", PriorKind::uniform, 0, 1, -3.0, 4.0}});
   TmcmcOptions o;
-  o.samples = 2000;
+  o.samples = 500;
   o.seed = 2;
   const TmcmcResult r = tmcmc(prior, [&](const Eigen::MatrixXd& T) { return like(T); }, o);
   const Eigen::Vector2d ybar = lin.data.colwise().mean().transpose();
   const Eigen::Vector2d mean = lin.A.inverse() * ybar;
   const Eigen::Matrix2d cov = lin.A.inverse() * lin.response_cov() * lin.A.inverse().transpose() / static_cast<double>(lin.data.rows());
   const Eigen::Vector2d m = r.samples.colwise().mean().transpose();
-  for (int k = 0; k < 2; ++k) CHECK(std::abs(m[k] - mean[k]) < 0.1 * std::sqrt(cov(k, k)));
+  for (int k = 0; k < 2; ++k) CHECK(std::abs(m[k] - mean[k]) < 0.25 * std::sqrt(cov(k, k)));
   // Evidence: the Gaussian integral of the exact likelihood over the flat prior (its mass inside the box is ~1).
   const double exact = lin.exact(mean) + 0.5 * std::log(cov.determinant()) + kLog2Pi - std::log(8.0 * 7.0);
   const Eigen::VectorXd err = like.evaluate(r.samples.row(r.map_index)).error;

@@ -88,7 +88,8 @@ TEST_CASE("TMCMC: linear-Gaussian evidence and posterior against the closed form
     o.samples = c.samples;
     o.seed = 5;
     const TmcmcResult r = tmcmc(lg.prior(), [&](const Eigen::MatrixXd& T) { return lg.loglik(T); }, o);
-    INFO("d = " << c.d << ", prior width " << c.width << "x, stages " << r.stages.size() << ", stated error " << r.log_evidence_error);
+    INFO("d = " << c.d << ", prior width " << c.width << "x, stages " << r.stages.size() << ", stated error " << r.log_evidence_error
+         << ", sweeps in the last stage " << r.stages.back().sweeps << (r.reasons.empty() ? "" : ", " + r.reasons[0]));
     CHECK(r.converged);
     const double exact = lg.log_evidence();
     CHECK(r.log_evidence_error < 0.05);
