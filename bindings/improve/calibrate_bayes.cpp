@@ -31,7 +31,7 @@ namespace {
 
 constexpr const char* kBayesMeta = "smi.calibrate_bayes";
 /// The central interval's level (r.interval).
-constexpr double kIntervalLevel = 0.9;
+constexpr double kIntervalLevel = 0.9;  // literal: the level the result promises (r.interval_level), not a setting
 
 /// loglik(Theta) -> vec, one Lua call per batch (on the Lua thread).
 BatchLogLikelihood lua_loglik(lua_State* L, int slot) {

@@ -38,7 +38,7 @@ const Schema<BayesSpec>& calibrate_bayes_schema() {
          "are uniform on their ranges"),
       by_hand<S>("order", "nil",
          "model form: the input column order for a function model (names)"),
-      integer<S>("samples", [](auto& s) -> auto& { return s.sampler.samples; }, at_least(10),
+      integer<S>("samples", [](auto& s) -> auto& { return s.sampler.samples; }, any_value(),
          "particles of the sampler (and posterior samples returned)"),
       integer<S>("max_stages", [](auto& s) -> auto& { return s.sampler.max_stages; }, at_least(1),
          "tempering stages at most (not converged when beta has not reached 1)"),
@@ -52,6 +52,9 @@ const Schema<BayesSpec>& calibrate_bayes_schema() {
          "and at most"),
       number<S>("moves", [](auto& s) -> auto& { return s.sampler.moves; }, at_least(0),
          "sweeps run until each chain has moved about this often (accepted steps)"),
+      number<S>("target_correlation", [](auto& s) -> auto& { return s.sampler.target_correlation; }, above(0),
+         "and until the chains' end points keep at most this correlation with their\n"
+         "seeds (they have forgotten where they started)"),
       integer<S>("n", [](auto& s) -> auto& { return s.population.n; }, at_least(2),
          "model form: propagated samples per parameter point (common random numbers)"),
       choice<S>("crn", [](auto& s) -> auto& { return s.population.crn; }, Names<CrnKind>{{"random", CrnKind::random}, {"quantiles", CrnKind::quantiles}},
@@ -61,7 +64,7 @@ const Schema<BayesSpec>& calibrate_bayes_schema() {
          "kernel (0: the noise kernel alone, unbiased but noisier)"),
       number<S>("noise_fraction", &S::noise_fraction, above(0),
          "model form: default noise sd as a fraction of each response's data sd"),
-      integer<S>("threads", [](auto& s) -> auto& { return s.population.threads; }, between(1, 64),
+      integer<S>("threads", [](auto& s) -> auto& { return s.population.threads; }, any_value(),
          "model form: threads for the input mapping and the kernel sums"),
   });
   (void)bayes_prior_schema();
