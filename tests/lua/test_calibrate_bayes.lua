@@ -11,7 +11,7 @@ local function banana(seed)
       local a, b = Th:col(1), Th:col(2)
       return -0.5 * ((a - 0.5) ^ 2 / 0.09 + (b - a ^ 2) ^ 2 / 0.04)
     end,
-    samples = 3000, seed = seed,
+    samples = 2000, seed = seed,
   }
 end
 
@@ -21,12 +21,12 @@ T.case("banana: evidence and posterior moments against quadrature", function()
   T.truthy(r.converged, "converged: " .. table.concat(r.diagnostics.reasons, "; "))
   T.near(r.log_evidence, want.log_evidence, math.max(0.05, 3 * r.log_evidence_error), "log evidence")
   for _, k in ipairs{"a", "b"} do
-    T.near(r.mean[k], want.mean[k], 0.05 * want.std[k] + 3 * want.std[k] / math.sqrt(3000), "mean of " .. k)
+    T.near(r.mean[k], want.mean[k], 0.05 * want.std[k] + 3 * want.std[k] / math.sqrt(2000), "mean of " .. k)
     T.rel(r.std[k], want.std[k], 0.05, "std of " .. k)
     T.truthy(r.interval[k][1] < r.mean[k] and r.mean[k] < r.interval[k][2], "interval of " .. k)
   end
   T.eq(r.names[1], "a", "names in parameter order")
-  T.eq(r.samples:rows(), 3000, "one row per sample")
+  T.eq(r.samples:rows(), 2000, "one row per sample")
   T.eq(r.diagnostics.beta[r.diagnostics.stages], 1, "beta ends at 1")
   T.eq(#r.diagnostics.acceptance, r.diagnostics.stages, "acceptance per stage")
   T.eq(r.loglik_error, 0, "the objective form's likelihood is exact")
@@ -54,7 +54,7 @@ T.case("model form: population posterior and evidence against quadrature", funct
     data = {y1 = smi.vec(pop.data.y1), y2 = smi.vec(pop.data.y2)},
     noise = {y1 = 0.1, y2 = 0.1},
     prior = {{param = "x1.mean", dist = "normal", mean = 1.0, std = 0.3}},
-    bandwidth = 0, n = 4000, samples = 600, seed = 5,
+    bandwidth = 0, n = 2000, samples = 400, seed = 5,
   }
   T.truthy(r.converged, "converged")
   T.eq(r.names[1], "x1.mean", "names")
@@ -63,8 +63,10 @@ T.case("model form: population posterior and evidence against quadrature", funct
   local err = math.sqrt(r.log_evidence_error ^ 2 + r.loglik_error ^ 2)
   T.truthy(r.loglik_error > 0 and r.loglik_error < 0.3, "loglik error stated: " .. r.loglik_error)
   T.near(r.log_evidence, pop.log_evidence, 3 * err + 0.02, "log evidence")
+  -- The posterior moves by a fraction of its sd with the estimate's common error (r.loglik_error
+  -- about 0.13 at n = 2000) and the 400 samples' own error: 0.4 sd.
   for _, k in ipairs{"x1.mean", "x1.std"} do
-    T.near(r.mean[k], pop.mean[k], 0.25 * pop.std[k], "mean of " .. k)
+    T.near(r.mean[k], pop.mean[k], 0.4 * pop.std[k], "mean of " .. k)
     T.rel(r.std[k], pop.std[k], 0.2, "std of " .. k)
   end
   T.eq(r.model_runs, calls, "model runs counted")

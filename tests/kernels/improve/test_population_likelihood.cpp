@@ -35,10 +35,7 @@ struct Linear {
     data << 1.9, 1.0, 1.2, 1.8, 1.7, 1.5, 1.5, 1.2, 2.0, 1.9;
   }
   std::vector<InputSpec> inputs() const {
-    InputSpec a, b;
-    a.name = "x1", a.mean_param = 0, a.std = sd[0];
-    b.name = "x2", b.mean_param = 1, b.std = sd[1];
-    return {a, b};
+    return {InputSpec{.name = "x1", .std = sd[0], .mean_param = 0}, InputSpec{.name = "x2", .std = sd[1], .mean_param = 1}};
   }
   Model model() const {
     return [A = A](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(X * A.transpose()); };
