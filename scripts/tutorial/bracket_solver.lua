@@ -1,15 +1,21 @@
 -- Tutorial, steps 2 and 3 (docs/tutorial.md): the same calibration through a command-line
--- solver (beam-solver, built in the tree) with a deck template and an output parser, a Kriging
+-- solver (smi-beam-solver, built in the tree) with a deck template and an output parser, a Kriging
 -- surrogate of the solver, and a report.
---   build/smi-lua --allow-exec build/beam-solver scripts/tutorial/bracket_solver.lua [--points N]
+--   build/smi-lua --allow-exec build/smi-beam-solver scripts/tutorial/bracket_solver.lua [--points N]
 local options = require "smi.options"
 local report = require "smi.report"
 
+-- The solver: in the source tree (scripts/tutorial/CMakeLists.txt beside this script) the one
+-- built in build/, as the tutorial runs it from the repository's root; an installed copy
+-- (share/smi-lua/scripts/tutorial, no build files) runs smi-beam-solver from PATH.
+local in_tree = io.open((smi.script_dir or ".") .. "/CMakeLists.txt")
+if in_tree then in_tree:close() end
+
 local opt = options.parse(arg, {
   name = "bracket_solver",
-  summary = "calibrates the bracket's modulus through beam-solver and writes a report",
-  usage = "smi-lua --allow-exec build/beam-solver scripts/tutorial/bracket_solver.lua [options]",
-  { name = "solver", type = "path", default = "build/beam-solver", meaning = "the beam-solver program (allow it with --allow-exec)" },
+  summary = "calibrates the bracket's modulus through smi-beam-solver and writes a report",
+  usage = "smi-lua --allow-exec build/smi-beam-solver scripts/tutorial/bracket_solver.lua [options]",
+  { name = "solver", type = "path", default = in_tree and "build/smi-beam-solver" or "smi-beam-solver", meaning = "the smi-beam-solver program (allow it with --allow-exec)" },
   { name = "points", type = "integer", default = 20, min = 5, meaning = "solver runs in the design of the surrogate" },
   { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "the calibration metric" },
 })
@@ -54,7 +60,7 @@ local v = smi.metric.upool{data = measured, predicted = smi.kde(P.freq_hz)}
 print(v)
 
 -- 6. The report: one self-contained HTML file.
-local rep = report.new{title = "Bracket calibration", subtitle = "Tutorial: beam-solver, Kriging, smi.calibrate"}
+local rep = report.new{title = "Bracket calibration", subtitle = "Tutorial: smi-beam-solver, Kriging, smi.calibrate"}
 rep:section("Data")
 rep:text(("%d brackets tested; first bending frequency %.2f Hz on average (std %.2f Hz)."):format(#measured, measured:mean(), measured:std()))
 rep:section("Calibration")
