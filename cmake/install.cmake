@@ -65,11 +65,10 @@ install(FILES ${SMI_SOURCE_DIR}/packaging/copyright ${_pkg}/changelog.Debian.gz 
 install(FILES ${_pkg}/smi-column-fe.1.gz ${_pkg}/smi-beam-solver.1.gz DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 
 install(TARGETS smi-lua smi-column-fe smi-beam-solver RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${SMI_SOURCE_DIR}/scripts/ DESTINATION ${CMAKE_INSTALL_DATADIR}/smi-lua/scripts
-        PATTERN "CMakeLists.txt" EXCLUDE PATTERN "*.cpp" EXCLUDE PATTERN "*.hpp" EXCLUDE)
-# The harness's shell script drives a build folder: it keeps its execute bit.
-install(PROGRAMS ${SMI_SOURCE_DIR}/scripts/steering_column/harness/run.sh
-        DESTINATION ${CMAKE_INSTALL_DATADIR}/smi-lua/scripts/steering_column/harness)
+# The harnesses' shell scripts keep their execute bit (git records it): USE_SOURCE_PERMISSIONS.
+install(DIRECTORY ${SMI_SOURCE_DIR}/scripts/ DESTINATION ${CMAKE_INSTALL_DATADIR}/smi-lua/scripts USE_SOURCE_PERMISSIONS
+        PATTERN "CMakeLists.txt" EXCLUDE PATTERN "*.cpp" EXCLUDE PATTERN "*.hpp" EXCLUDE
+        PATTERN "column-fe" EXCLUDE PATTERN "beam-solver" EXCLUDE)  # the solvers' sources: nothing to install
 install(FILES ${SMI_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${SMI_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
