@@ -94,7 +94,7 @@ if(SMI_BUILD_DOCS)
   install(FILES ${CMAKE_BINARY_DIR}/doc/smi-lua.1.gz DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 endif()
 
-# The Debian package: cpack -G DEB gives smi-lua_<version>_amd64.deb. Its Depends come from the
+# The Debian package: cpack -G DEB gives smi-lua_<version>-1_amd64.deb. Its Depends come from the
 # shared libraries the installed programs link (dpkg-shlibdeps, package dpkg-dev).
 set(CPACK_PACKAGE_NAME smi-lua)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
