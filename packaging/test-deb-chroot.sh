@@ -67,7 +67,7 @@ in_chroot "cd ~ && smi-lua first.lua"
 echo "--- smi-lua doc smi.kde (first lines)"
 in_chroot "cd ~ && smi-lua doc smi.kde | head -n 5"
 echo "--- the man pages"
-in_chroot "for p in smi-lua smi-column-fe smi-beam-solver; do zcat /usr/share/man/man1/\$p.1.gz | sed -n 2p; done"
+in_chroot "for p in smi-lua smi-column-fe smi-beam-solver; do zcat /usr/share/man/man1/\$p.1.gz | sed -n 3p; done"
 echo "--- cd ~ && smi-lua --allow-exec smi-beam-solver /usr/share/smi-lua/scripts/tutorial/bracket_solver.lua"
 in_chroot "cd ~ && smi-lua --quiet --allow-exec smi-beam-solver /usr/share/smi-lua/scripts/tutorial/bracket_solver.lua | head -n 2"
 case "$study" in
