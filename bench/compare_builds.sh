@@ -11,8 +11,8 @@ for side in old new; do
   src=${!side}
   b=$src/build
   mkdir -p "$out/$side"
-  ( cd "$src" && "$b/smi-lua" --quiet --allow-exec "$b/column-fe" --out "$out/$side/study" scripts/steering_column.lua \
-      --quick --solver "$b/column-fe" > "$out/$side/study.log" 2>&1 )
+  ( cd "$src" && "$b/smi-lua" --quiet --allow-exec "$b/smi-column-fe" --out "$out/$side/study" scripts/steering_column.lua \
+      --quick --solver "$b/smi-column-fe" > "$out/$side/study.log" 2>&1 )
   "$b/smi-lua" doc --html "$out/$side/html" > /dev/null 2>&1
   ( cd "$src" && "$b/smi-lua" --quiet --allow-read "$src/tests/lua" --out "$out/$side/hidden" bench/calibrate_hidden.lua \
       "$src/tests/lua/hidden_problem.lua" > "$out/$side/hidden.txt" 2>&1 )

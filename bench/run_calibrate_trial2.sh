@@ -10,8 +10,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$(cd "${1:-build}" && pwd)
-cmake --build "$build" --target smi-lua column-fe make-steering-data >/dev/null
-fe=$build/column-fe smi=$build/smi-lua
+cmake --build "$build" --target smi-lua smi-column-fe make-steering-data >/dev/null
+fe=$build/smi-column-fe smi=$build/smi-lua
 row=${FRESH_ROW:-104}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

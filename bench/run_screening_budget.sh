@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Screening of the 46 steering-column inputs at the real solver's cost (issue 16): the full
-# eq.-3 screening ((46 + 1) x N_FULL column-fe runs) against the surrogate screening (RUNS
+# eq.-3 screening ((46 + 1) x N_FULL smi-column-fe runs) against the surrogate screening (RUNS
 # runs), in one run with a fresh output folder and so a fresh evaluation store (no run reused); writes
 # bench/results/screening_budget.md.
 # usage: bash bench/run_screening_budget.sh [BUILD_DIR] [N_FULL] [RUNS]   (defaults: build, 200, 300)
@@ -9,8 +9,8 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 n_full=${2:-200}
 runs=${3:-300}
-cmake --build "$build" --target smi-lua column-fe
-solver=$(realpath "$build/column-fe")
+cmake --build "$build" --target smi-lua smi-column-fe
+solver=$(realpath "$build/smi-column-fe")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p bench/results

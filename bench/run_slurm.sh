@@ -19,8 +19,8 @@ done
 run() {  # run NAME [options]
   local name=$1; shift
   local t0; t0=$(date +%s.%N)
-  "$B/smi-lua" --quiet --allow-exec "$B/column-fe" --out "$W/$name" "$@" scripts/steering_column.lua --quick \
-    --solver "$B/column-fe" > "$W/$name.log" 2>&1
+  "$B/smi-lua" --quiet --allow-exec "$B/smi-column-fe" --out "$W/$name" "$@" scripts/steering_column.lua --quick \
+    --solver "$B/smi-column-fe" > "$W/$name.log" 2>&1
   echo "$(date +%s.%N) - $t0" | bc
 }
 t_local=$(run local)

@@ -4,7 +4,7 @@
 #   economical  the default (surrogate screening of 300 runs, 20 Kriging test points, a 40-point
 #               stratified solver check)
 #   full        --screening full --test-points 50 --solver-check 300 (the study before issue 16:
-#               eq.-3 screening on column-fe itself, (46 + 1) x 200 runs)
+#               eq.-3 screening on smi-column-fe itself, (46 + 1) x 200 runs)
 # then bench/study_budget.lua writes solver runs per step, wall time and the conclusions side by
 # side to bench/results/study_budget.md.
 # usage: bash bench/run_study_budget.sh [BUILD_DIR] [EXTRA STUDY OPTIONS...]   (e.g. --quick)
@@ -12,8 +12,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 shift || true
-cmake --build "$build" --target smi-lua column-fe
-fe=$(realpath "$build/column-fe")
+cmake --build "$build" --target smi-lua smi-column-fe
+fe=$(realpath "$build/smi-column-fe")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p bench/results

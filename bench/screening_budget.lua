@@ -1,5 +1,5 @@
 --- Screening at the real solver's cost (issue 16): the 46 steering-column inputs screened by the
--- full eq.-3 PDF-area method ((46 + 1) x n column-fe solutions) and by the surrogate method
+-- full eq.-3 PDF-area method ((46 + 1) x n smi-column-fe solutions) and by the surrogate method
 -- (`runs` solutions, a ridge quadratic per mode, eq.-3 on it; Borgonovo delta from the same
 -- runs), both on model A (rigid airbag) through the study's own batch driver. Writes
 -- screening_budget.md under --out: solver runs, wall time, top four per mode side by side.
@@ -50,7 +50,7 @@ local L = {}
 local function w(fmt, ...) L[#L + 1] = fmt:format(...) end
 w("# Screening at the solver's cost: full eq.-3 vs surrogate (issue 16)")
 w("")
-w("Model A (rigid airbag), the 46 inputs at the spec's default distributions, column-fe in batch mode on 2 cores,")
+w("Model A (rigid airbag), the 46 inputs at the spec's default distributions, smi-column-fe in batch mode on 2 cores,")
 w("CRN seed %d. Written by bench/run_screening_budget.sh on %s.", seed, os.date("!%Y-%m-%d %H:%M UTC"))
 w("")
 w("| mode of screening | solver runs | wall time (s) | note |")

@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 KILLS=${1:-20} MAX=${2:-}
-SMI=${SMI_LUA:-build/smi-lua} FE=${COLUMN_FE:-build/column-fe}
+SMI=${SMI_LUA:-build/smi-lua} FE=${COLUMN_FE:-build/smi-column-fe}
 W=${SOAK_DIR:-$(mktemp -d)}
 mkdir -p "$W"
 OUT=bench/results/soak_kill_resume.md

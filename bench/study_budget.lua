@@ -18,12 +18,12 @@ local function mark(ok) if not ok then same = false end return ok and "yes" or "
 w("# The study at the solver's cost: economical vs full path (issue 16)")
 w("")
 w("scripts/steering_column.lua on the committed data, each path in a fresh output folder (no run reused),")
-w("column-fe on 2 cores%s. Written by bench/run_study_budget.sh on %s.", extra ~= "" and (", extra options `" .. extra .. "`") or "",
+w("smi-column-fe on 2 cores%s. Written by bench/run_study_budget.sh on %s.", extra ~= "" and (", extra options `" .. extra .. "`") or "",
   os.date("!%Y-%m-%d %H:%M UTC"))
 w("Economical (the default): surrogate screening of 300 runs, 20 Kriging test points, a 40-point stratified solver check.")
 w("Full: `--screening full --design fixed --test-points 50 --solver-check 300` (the study before issue 16); both with `--design fixed`.")
 w("")
-w("## Solver runs (column-fe solutions) per step")
+w("## Solver runs (smi-column-fe solutions) per step")
 w("")
 w("| step | economical | full |")
 w("|---|---:|---:|")
@@ -44,7 +44,7 @@ w("## Conclusions")
 w("")
 w("Screening, top four inputs per mode (as sets: the study's trial-1 unknowns come from mode 1's four):")
 w("")
-w("| mode | economical (surrogate) | full (eq. 3 on column-fe) | same four |")
+w("| mode | economical (surrogate) | full (eq. 3 on smi-column-fe) | same four |")
 w("|---|---|---|---|")
 local se, sf = res(E, "screening"), res(F, "screening")
 for _, m in ipairs(MODES) do

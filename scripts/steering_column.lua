@@ -1,13 +1,13 @@
---- The steering-column study of Son et al. (2020), end to end, on the open FE model column-fe
+--- The steering-column study of Son et al. (2020), end to end, on the open FE model smi-column-fe
 -- (docs/spec/steering-column.md), as a declaration run by smi.improve (docs/new-product.md):
 -- trials of statistical model improvement until the model is valid, the data cannot decide, or
 -- the analyst's limit of refinements is reached.
 --
---   build/smi-lua --allow-exec build/column-fe scripts/steering_column.lua [options]
+--   build/smi-lua --allow-exec build/smi-column-fe scripts/steering_column.lua [options]
 --
 -- options: smi.improve's (--data, --quick, --metric, --multistart, --prior, --max-refinements,
 -- --screening, --design, --test-points, --solver-check, --dry-run, --accept-units, --only/--from;
--- `--help` lists them) and --solver PATH, the column-fe program (default <repo>/build/column-fe, installed: column-fe on PATH;
+-- `--help` lists them) and --solver PATH, the smi-column-fe program (default <repo>/build/smi-column-fe, installed: smi-column-fe on PATH;
 -- allow it with --allow-exec PATH). Data: columns mode1_hz, mode2_hz, mode4_hz (default the
 -- committed scripts/steering_column/data/tests.csv). Modes 1 and 4 calibrate, mode 2 validates.
 -- results.json's `conclusion` has smi.improve's fields and, per trial, `airbag` and `modes`.
@@ -17,11 +17,11 @@ local solver = require "steering_column.solver"
 
 local here = smi.script_dir or "scripts"
 -- The solver: in the source tree (scripts/CMakeLists.txt beside this script) the one built in
--- build/; an installed copy (share/smi-lua/scripts, no build files) runs column-fe from PATH.
+-- build/; an installed copy (share/smi-lua/scripts, no build files) runs smi-column-fe from PATH.
 local in_tree = io.open(here .. "/CMakeLists.txt")
 if in_tree then in_tree:close() end
 
--- The model factory: column-fe over the trial's unknowns, the airbag variant and fixed values of
+-- The model factory: smi-column-fe over the trial's unknowns, the airbag variant and fixed values of
 -- the applied revisions; many points at once (screening, solver check) go through batch runs.
 local function column_fe(applied, unknowns, ctx)
   local exe = ctx.opt.solver
@@ -84,7 +84,7 @@ end
 improve.run({
   name = "steering_column",
   title = "Steering column: statistical model improvement",
-  subtitle = "Son et al. (2020) on the open FE model column-fe",
+  subtitle = "Son et al. (2020) on the open FE model smi-column-fe",
   author = "smi-lua scripts/steering_column.lua",
   data = here .. "/steering_column/data/tests.csv",
   responses = { mode("mode1", "calibrate", "Mode 1 (vertical bending)"), mode("mode2", "validate", "Mode 2 (lateral bending)"),
@@ -118,7 +118,7 @@ improve.run({
   },
   trial_fields = function(T, responses) return { airbag = T.form.airbag, modes = responses } end,
   options = {
-    { name = "solver", type = "path", default = in_tree and here .. "/../build/column-fe" or "column-fe",
-      meaning = "the column-fe program; allow it with --allow-exec PATH" },
+    { name = "solver", type = "path", default = in_tree and here .. "/../build/smi-column-fe" or "smi-column-fe",
+      meaning = "the smi-column-fe program; allow it with --allow-exec PATH" },
   },
 }, arg)

@@ -330,7 +330,7 @@ fs::path Policy::check_exec(const std::string& program, const char* function) co
     throw SandboxDenied(fmt::format("program '{}' not found on PATH", program));
   if (unrestricted) return resolved;
   for (const auto& allowed : exec_allowed) {
-    // By name: "--allow-exec column-fe" allows that program wherever PATH finds it.
+    // By name: "--allow-exec smi-column-fe" allows that program wherever PATH finds it.
     const bool named = (allowed.find('/') == std::string::npos && allowed == program) ||
                        (allowed.find('/') != std::string::npos && resolve_path(allowed) == resolved);
     if (!named) continue;

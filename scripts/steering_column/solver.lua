@@ -1,6 +1,6 @@
---- column-fe as the study drives it: decks written from the spec's inputs, per-point runs
+--- smi-column-fe as the study drives it: decks written from the spec's inputs, per-point runs
 -- through smi.model.command (one deck and one .f06 per point, as with Nastran) and many points
--- per process through smi.model.batch (`column-fe --batch`). Every run goes through the
+-- per process through smi.model.batch (`smi-column-fe --batch`). Every run goes through the
 -- evaluation store, so a rerun of the study reuses them (smi.improve counts them).
 local inputs = require "steering_column.inputs"
 

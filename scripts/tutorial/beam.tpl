@@ -1,4 +1,4 @@
-# beam-solver input deck, written by smi-lua from beam.tpl for one point
+# smi-beam-solver input deck, written by smi-lua from beam.tpl for one point
 E   = {{E}}     # Young's modulus, MPa
 h   = {{h}}     # thickness, mm
 b   = {{b}}     # width, mm

@@ -1,16 +1,17 @@
 -- Tutorial, steps 2 and 3 (docs/tutorial.md): the same calibration through a command-line
--- solver (beam-solver, built in the tree) with a deck template and an output parser, a Kriging
+-- solver (smi-beam-solver, built in the tree) with a deck template and an output parser, a Kriging
 -- surrogate of the solver, and a report.
---   build/smi-lua --allow-exec build/beam-solver scripts/tutorial/bracket_solver.lua [--points N]
+--   build/smi-lua --allow-exec build/smi-beam-solver scripts/tutorial/bracket_solver.lua [--points N]
 local options = require "smi.options"
 local report = require "smi.report"
 
+
 local opt = options.parse(arg, {
   name = "bracket_solver",
-  summary = "calibrates the bracket's modulus through beam-solver and writes a report",
+  summary = "calibrates the bracket's modulus through smi-beam-solver and writes a report",
   usage = "smi-lua --allow-exec SOLVER {script} [--solver SOLVER] [options]",
   { name = "solver", type = "path", meaning = "the beam solver program, also given to --allow-exec (default: the"
-    .. " first of build/beam-solver, build/smi-beam-solver, smi-beam-solver and beam-solver on PATH that is allowed)" },
+    .. " first of build/smi-beam-solver and smi-beam-solver on PATH that is allowed)" },
   { name = "points", type = "integer", default = 20, min = 5, meaning = "solver runs in the design of the surrogate" },
   { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" }, meaning = "the calibration metric" },
 })
@@ -30,7 +31,7 @@ local function beam_model(program)
   }
 end
 local tried, solver = {}, nil
-for _, program in ipairs(opt.solver and {opt.solver} or {"build/beam-solver", "build/smi-beam-solver", "smi-beam-solver", "beam-solver"}) do
+for _, program in ipairs(opt.solver and {opt.solver} or {"build/smi-beam-solver", "smi-beam-solver"}) do
   local ok, m = pcall(beam_model, program)
   if ok then solver = m break end
   tried[#tried + 1] = ("  %s: %s"):format(program, tostring(m):gsub("^.-smi%.model%.command: ", ""))
@@ -69,7 +70,7 @@ local v = smi.metric.upool{data = measured, predicted = smi.kde(P.freq_hz)}
 print(v)
 
 -- 6. The report: one self-contained HTML file.
-local rep = report.new{title = "Bracket calibration", subtitle = "Tutorial: beam-solver, Kriging, smi.calibrate"}
+local rep = report.new{title = "Bracket calibration", subtitle = "Tutorial: smi-beam-solver, Kriging, smi.calibrate"}
 rep:section("Data")
 rep:text(("%d brackets tested; first bending frequency %.2f Hz on average (std %.2f Hz)."):format(#measured, measured:mean(), measured:std()))
 rep:section("Calibration")

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers shared by the column-fe tests.
+// Helpers shared by the smi-column-fe tests.
 #include <cmath>
 
 #include "solve.hpp"

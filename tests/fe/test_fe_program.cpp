@@ -1,4 +1,4 @@
-// The real column-fe executable, run as outside checks run it: `column-fe DECK -o RESULTS`.
+// The real smi-column-fe executable, run as outside checks run it: `smi-column-fe DECK -o RESULTS`.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -34,7 +34,7 @@ double file_tol(double ref) { return fe_test::half_unit(ref, 6) + fe_test::half_
 
 }  // namespace
 
-TEST_CASE("column-fe solves the spec's example deck (model B) to the §11 values", "[fe][program]") {
+TEST_CASE("smi-column-fe solves the spec's example deck (model B) to the §11 values", "[fe][program]") {
   const std::string res = FE_WORK_DIR "/nominal_spring.f06";
   fs::remove(res);
   const Run r = run(std::string(FE_DECK_DIR) + "/nominal_spring.deck -o " + res);
@@ -53,7 +53,7 @@ TEST_CASE("column-fe solves the spec's example deck (model B) to the §11 values
   CHECK(!fs::exists(res + ".part"));
 }
 
-TEST_CASE("column-fe refuses a bad deck: non-zero exit, message on stderr, no results file", "[fe][program]") {
+TEST_CASE("smi-column-fe refuses a bad deck: non-zero exit, message on stderr, no results file", "[fe][program]") {
   const std::string deck = FE_WORK_DIR "/bad.deck", res = FE_WORK_DIR "/bad.f06";
   fs::remove(res);
   {
@@ -66,13 +66,13 @@ TEST_CASE("column-fe refuses a bad deck: non-zero exit, message on stderr, no re
   CHECK(!fs::exists(res));
 }
 
-TEST_CASE("column-fe usage, --help and --version", "[fe][program]") {
+TEST_CASE("smi-column-fe usage, --help and --version", "[fe][program]") {
   Run r = run("--version");
   CHECK(r.code == 0);
-  CHECK(r.out.rfind("column-fe ", 0) == 0);
+  CHECK(r.out.rfind("smi-column-fe ", 0) == 0);
   r = run("--help");
   CHECK(r.code == 0);
-  CHECK(r.out.find("column-fe DECK -o RESULTS") != std::string::npos);
+  CHECK(r.out.find("smi-column-fe DECK -o RESULTS") != std::string::npos);
   r = run(std::string(FE_DECK_DIR) + "/nominal_rigid.deck");
   CHECK(r.code == 2);
   CHECK(r.err.find("-o RESULTS") != std::string::npos);

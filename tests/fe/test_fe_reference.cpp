@@ -1,4 +1,4 @@
-// column-fe against the reference values of docs/spec/steering-column.md §11 (and §6).
+// smi-column-fe against the reference values of docs/spec/steering-column.md §11 (and §6).
 #include <catch2/catch.hpp>
 
 #include "fe_test_util.hpp"

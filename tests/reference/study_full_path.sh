@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build}
-fe=$(realpath "$build/column-fe")
+fe=$(realpath "$build/smi-column-fe")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$build/smi-lua" --quiet --allow-exec "$fe" --out "$work/full" scripts/steering_column.lua --solver "$fe" \

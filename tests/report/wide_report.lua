@@ -62,7 +62,7 @@ s:step("summary", function(ctx)
   r:section("Summary")
   r:verdict{ name = "Conclusion: the model is inconclusive", status = "inconclusive",
              detail = "mode 2 is undecided and mode 4 is invalid" }
-  r:provenance{ time_step = 1.4999999999999998e-09, density = 7790.000000000005, solver = "build/column-fe",
+  r:provenance{ time_step = 1.4999999999999998e-09, density = 7790.000000000005, solver = "build/smi-column-fe",
                 sample_sizes = { screen_n = 200, val_n = 20000, tol = 0.30000000000000004 } }
   return {}
 end)

@@ -71,7 +71,7 @@ Fit fit(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, Basis basis, double 
     return f;
   }
   const Eigen::MatrixXd Fc = F.rowwise() - f.fmean.transpose();
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(Fc, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Fc, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   const Eigen::MatrixXd& U = svd.matrixU();
   const Eigen::VectorXd uy = U.transpose() * yc;

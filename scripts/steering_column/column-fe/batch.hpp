@@ -1,5 +1,5 @@
 #pragma once
-// Batch mode: many solutions in one process (`column-fe --batch POINTS.csv --base DECK -o OUT.csv`),
+// Batch mode: many solutions in one process (`smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv`),
 // so that screening 46 inputs over hundreds of samples costs solves, not process launches.
 // POINTS.csv: a header of input names (any of the 46 inputs and airbag_stiffness), then one row of
 // numbers per point; every input a row does not name keeps its value from the base deck (which

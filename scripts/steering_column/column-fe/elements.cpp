@@ -95,7 +95,7 @@ Mat3 beam_frame(const Vec3& xi, const Vec3& xj, const Vec3& ref) {
   const Vec3 x = (xj - xi).normalized();
   Vec3 y = ref - ref.dot(x) * x;
   // A reference vector along the element would leave y undefined; the model never does that.
-  if (y.norm() < 1e-9 * ref.norm()) throw std::logic_error("column-fe: beam reference vector parallel to the element");
+  if (y.norm() < 1e-9 * ref.norm()) throw std::logic_error("smi-column-fe: beam reference vector parallel to the element");
   y.normalize();
   const Vec3 z = x.cross(y);
   Mat3 lam;

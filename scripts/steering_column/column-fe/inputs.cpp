@@ -47,12 +47,12 @@ const InputSpec* find_input(const std::string& name) {
 
 double Inputs::operator()(const std::string& name) const {
   auto it = values.find(name);
-  if (it == values.end()) throw std::out_of_range("column-fe: input '" + name + "' is not set");
+  if (it == values.end()) throw std::out_of_range("smi-column-fe: input '" + name + "' is not set");
   return it->second;
 }
 
 void Inputs::set(const std::string& name, double value) {
-  if (!find_input(name)) throw std::invalid_argument("column-fe: '" + name + "' is not an input of the model");
+  if (!find_input(name)) throw std::invalid_argument("smi-column-fe: '" + name + "' is not an input of the model");
   values[name] = value;
 }
 

@@ -1,5 +1,5 @@
-// column-fe DECK -o RESULTS: the open steering-column model (docs/spec/steering-column.md).
-// column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]: many points in one process
+// smi-column-fe DECK -o RESULTS: the open steering-column model (docs/spec/steering-column.md).
+// smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]: many points in one process
 // (batch.hpp), for screening and other large samples.
 // Exit 0 on success; 1 with the message on stderr for a bad deck or a failed solution (no
 // results file is left behind); 2 for a usage error.
@@ -18,9 +18,9 @@
 namespace {
 
 const char* kUsage =
-    "usage: column-fe DECK -o RESULTS\n"
-    "       column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]\n"
-    "       column-fe --help | --version\n"
+    "usage: smi-column-fe DECK -o RESULTS\n"
+    "       smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]\n"
+    "       smi-column-fe --help | --version\n"
     "\n"
     "Solves the open steering-column analog of Son et al. (2020): a 3-D Euler-Bernoulli frame\n"
     "(jacket, shaft, brackets, bushes, wheel) with consistent mass, for its 10 lowest modes, and\n"
@@ -35,7 +35,7 @@ const char* kUsage =
     "Units: N, mm, tonne, s. Specification: docs/spec/steering-column.md.\n";
 
 int usage_error(const std::string& what) {
-  std::cerr << "column-fe: " << what << "\n" << kUsage;
+  std::cerr << "smi-column-fe: " << what << "\n" << kUsage;
   return 2;
 }
 
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a == "--version") {
-      std::cout << "column-fe " << COLUMN_FE_VERSION << "\n";
+      std::cout << "smi-column-fe " << COLUMN_FE_VERSION << "\n";
       return 0;
     }
     if (a == "--batch" || a == "--base" || a == "--threads") {
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     }
     std::filesystem::rename(tmp, out);
   } catch (const std::exception& e) {
-    std::cerr << "column-fe: " << e.what() << "\n";
+    std::cerr << "smi-column-fe: " << e.what() << "\n";
     return 1;
   }
   return 0;

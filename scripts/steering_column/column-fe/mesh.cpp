@@ -38,13 +38,13 @@ Vec3 radial(double phi_deg) {
 static int find_station(const std::vector<double>& st, const std::vector<int>& ids, double s, const char* what) {
   for (std::size_t i = 0; i < st.size(); ++i)
     if (std::abs(st[i] - s) < 1e-9) return ids[i];
-  throw std::logic_error(std::string("column-fe: no ") + what + " node at s = " + std::to_string(s));
+  throw std::logic_error(std::string("smi-column-fe: no ") + what + " node at s = " + std::to_string(s));
 }
 int Mesh::jacket_at(double s) const { return find_station(jacket_s, jacket, s, "jacket"); }
 int Mesh::shaft_at(double s) const { return find_station(shaft_s, shaft, s, "shaft"); }
 
 Mesh build_mesh(int r, Airbag airbag) {
-  if (r < 1 || r > 8) throw std::invalid_argument("column-fe: mesh_refinement must be 1..8, got " + std::to_string(r));
+  if (r < 1 || r > 8) throw std::invalid_argument("smi-column-fe: mesh_refinement must be 1..8, got " + std::to_string(r));
   Mesh m;
   auto add = [&](const Vec3& x, bool wheel) {
     m.nodes.push_back({x, wheel});

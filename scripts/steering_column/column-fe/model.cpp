@@ -19,7 +19,7 @@ void check_inputs(const Inputs& in) {
     const double x = in(s.name);
     const bool ok = std::isfinite(x) && x > 0 && (s.kind != InputKind::poisson || x < 0.5);
     if (!ok)
-      throw std::invalid_argument("column-fe: input " + s.name + " = " + std::to_string(x) +
+      throw std::invalid_argument("smi-column-fe: input " + s.name + " = " + std::to_string(x) +
                                   (s.kind == InputKind::poisson ? " is outside (0, 0.5)" : " must be finite and > 0"));
   }
 }

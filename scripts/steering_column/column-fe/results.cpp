@@ -127,7 +127,7 @@ Results read_results(std::istream& is, const std::string& file) {
         if (!(ls >> p)) bad("malformed participation factors");
     }
   }
-  if (r.modes.empty()) throw std::runtime_error(file + ": no eigenvalue table found (not a column-fe results file?)");
+  if (r.modes.empty()) throw std::runtime_error(file + ": no eigenvalue table found (not a smi-column-fe results file?)");
   return r;
 }
 

@@ -19,7 +19,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 src=$(cd "$here/../../.." && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
-smi=$build/smi-lua fe=$build/column-fe gen=$build/make-steering-data
+smi=$build/smi-lua fe=$build/smi-column-fe gen=$build/make-steering-data
 table=${EXPERIMENTS:-$here/experiments.csv}
 names=$(head -1 "$table" | cut -d, -f6-)
 ran=() failed=0

@@ -1,4 +1,4 @@
-// beam-solver DECK: the tutorial's stand-in for a CAE solver (docs/tutorial.md). It reads a
+// smi-beam-solver DECK: the tutorial's stand-in for a CAE solver (docs/tutorial.md). It reads a
 // deck of "key = value" lines ('#' starts a comment) holding E (MPa), h (mm), b (mm), L (mm)
 // and rho (t/mm^3) of a cantilever, and writes beam.out in the current folder:
 //     freq_hz = <first bending frequency>
@@ -13,12 +13,12 @@
 
 int main(int argc, char** argv) {
   if (argc != 2) {
-    std::fprintf(stderr, "usage: beam-solver DECK\n");
+    std::fprintf(stderr, "usage: smi-beam-solver DECK\n");
     return 2;
   }
   std::ifstream in(argv[1]);
   if (!in) {
-    std::fprintf(stderr, "beam-solver: cannot read %s\n", argv[1]);
+    std::fprintf(stderr, "smi-beam-solver: cannot read %s\n", argv[1]);
     return 2;
   }
   std::map<std::string, double> v;
@@ -35,14 +35,14 @@ int main(int argc, char** argv) {
     char* end = nullptr;
     const double x = std::strtod(line.c_str() + eq + 1, &end);
     if (end == line.c_str() + eq + 1) {
-      std::fprintf(stderr, "beam-solver: %s:%d: '%s' is not a number\n", argv[1], n, line.c_str() + eq + 1);
+      std::fprintf(stderr, "smi-beam-solver: %s:%d: '%s' is not a number\n", argv[1], n, line.c_str() + eq + 1);
       return 2;
     }
     v[key] = x;
   }
   for (const char* k : {"E", "h", "b", "L", "rho"})
     if (!(v[k] > 0)) {
-      std::fprintf(stderr, "beam-solver: %s: %s must be given and positive\n", argv[1], k);
+      std::fprintf(stderr, "smi-beam-solver: %s: %s must be given and positive\n", argv[1], k);
       return 2;
     }
   const double pi = std::acos(-1.0), lambda = 1.875104068711961;
@@ -50,9 +50,9 @@ int main(int argc, char** argv) {
   const double f = lambda * lambda / (2 * pi) * std::sqrt(v["E"] * I / (v["rho"] * A * std::pow(v["L"], 4)));
   std::FILE* out = std::fopen("beam.out", "w");
   if (!out) {
-    std::fprintf(stderr, "beam-solver: cannot write beam.out\n");
+    std::fprintf(stderr, "smi-beam-solver: cannot write beam.out\n");
     return 2;
   }
-  std::fprintf(out, "# beam-solver 1.0\nfreq_hz = %.10g\n", f);
+  std::fprintf(out, "# smi-beam-solver 1.0\nfreq_hz = %.10g\n", f);
   return std::fclose(out) == 0 ? 0 : 2;
 }

@@ -6,7 +6,7 @@
 -- of the fixed design it replaces, so it never costs more). Measured on the committed data
 -- (--quick): trial 1 ends at 80 points with Q2 0.9993/0.99999/0.9985, trial 2 at 120 with
 -- 0.998/0.9999/0.992, no fewer runs, and trial 1's calibration lands at another optimum (its mode
--- 1 and 2 verdicts change): column-fe's modes vary over the whole box, so the variance-weighted
+-- 1 and 2 verdicts change): smi-column-fe's modes vary over the whole box, so the variance-weighted
 -- points buy no accuracy a space-filling design lacks. Hence not the default.
 local M = {}
 

@@ -7,7 +7,7 @@
 --           rows = {{"E", 2.07e11, 3.1e9}, ...}}
 --   r:figure(svg_string, "KDE of mode 1")          -- from smi.report.svg
 --   r:verdict{name = "Mode 4 validation", pass = false, detail = "area metric 0.031 > 0.02"}
---   r:provenance{seed = 42, versions = {["smi-lua"] = "0.1.0"}, solver_runs = {["column-fe"] = 1200}}
+--   r:provenance{seed = 42, versions = {["smi-lua"] = "0.1.0"}, solver_runs = {["smi-column-fe"] = 1200}}
 --   r:result("calibration.mean_E", 2.07e11)        -- collected into r:json()
 --   r:write("smi-out/study/report.html") ; r:write_json("smi-out/study/report.json")
 local html = require "smi.report.html"
@@ -498,11 +498,11 @@ returns: the report
 errors: p not a table
 example:
   local r = require("smi.report").new{title = "t"}
-  r:provenance{seed = smi.seed, solver_runs = {["column-fe"] = 1200}}
+  r:provenance{seed = smi.seed, solver_runs = {["smi-column-fe"] = 1200}}
   print(r:data().provenance.seed == smi.seed)
 ]==]
 --- Provenance, shown at the end of the page and stored in the JSON: any key/value table, e.g.
--- {seed = 20200214, versions = {...}, solver_runs = {["column-fe"] = 1200},
+-- {seed = 20200214, versions = {...}, solver_runs = {["smi-column-fe"] = 1200},
 --  inputs = {["data/column.csv"] = "sha256:..."}}. Several calls add up.
 function Report:provenance(p)
   if type(p) ~= "table" then error("report:provenance: expects a table of key = value", 2) end
