@@ -1,4 +1,4 @@
---- The steering-column study's trial-2 PR calibration, timed (issue 11's target: "converges in at
+--- The steering-column study's trial-2 PR calibration, timed (the target: "converges in at
 -- most 10 s on 2 cores, with the same optimum from 4 starts"). From a study output folder (its
 -- results.json and trial2_mode{1,4}.kriging) and the data file the study ran on, it rebuilds the
 -- study's stage-2 call with the study's own code (calibration.lua: M.pr_stage, M.grids_of,
@@ -11,7 +11,6 @@
 --   smi-lua --lib scripts --allow-read STUDY --allow-read DATA_DIR --allow-read /proc/loadavg --out OUT \
 --     bench/calibrate_trial2.lua --study STUDY [--data FILE] [--results FILE] [--label NAME] [--repeats 3]
 local calibration = require "smi.improve.calibration"
-local trial = require "smi.improve.trial"
 local ALL = { "mode1", "mode2", "mode4" } -- the study's responses in declared order
 local options = require "smi.options"
 
@@ -154,7 +153,8 @@ local function summary(r, walls, cpus)
            evaluations = r.evaluations, model_runs = r.model_runs, gradient = r.gradient, starts = starts,
            optima = optima, starts_agree = r.starts_agree, agreement = r.agreement, walls = walls, cpus = cpus,
            wall_median = median(walls), cpu_median = median(cpus), objective_gap = best_gap,
-           spreads = spreads(r.starts), at_bounds = r.at_bounds }
+           spreads = spreads(r.starts), at_bounds = r.at_bounds, tolerance = r.tolerance,
+           tolerance_basis = r.tolerance_basis }
 end
 
 -- One calibration, repeated: the summary of the first run and whether the repeats gave the same.
@@ -199,13 +199,11 @@ out.declared_start = repeated(declared, "declared start")
 out.load_after = loadavg()
 
 -- 3. The study's identifiability pass at the best of the four starts (optimum() in
--- calibration.lua: the tolerance from the data, a restart from the optimum with the directions).
+-- calibration.lua: smi.calibrate's tolerance, a restart from the optimum with the directions).
 do
   local best = out.stage1_start.objective <= out.declared_start.objective and out.stage1_start or out.declared_start
   local w0 = smi.now()
-  local predicted = trial.predictor(kriging, T.unknowns, T.specs, t.n, t.seed)
-  local tol = calibration.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = best.params,
-                                     grids = grids, seed = t.seed + 11, calibrate = MODES }
+  local tol = { value = best.tolerance, basis = best.tolerance_basis } -- as calibration.lua's optimum() uses it
   local r = calibration.pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = best.params, maxeval = 40,
     identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value }, threads = opt.threads })
   local dirs = {}
@@ -334,7 +332,7 @@ local function agree(s)
     a and a.largest_prediction_distance and ("%.2g"):format(a.largest_prediction_distance) or "?", #s.optima,
     tostring(s.starts_agree), out.identifiability.tolerance)
 end
-w("- issue 11's target, at most 10 s on 2 cores: from the stage-1 point %s, from the declared starts %s; the same"
+w("- the target, at most 10 s on 2 cores: from the stage-1 point %s, from the declared starts %s; the same"
   .. " optimum from 4 starts: from the stage-1 point %s, from the declared starts %s.", verdict(out.stage1_start),
   verdict(out.declared_start), agree(out.stage1_start), agree(out.declared_start))
 w("- the study's own call (one start, from the stage-1 point) reproduced: objective %.12g in %d evaluations (%s, %.2f s)"

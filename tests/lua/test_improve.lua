@@ -1,6 +1,6 @@
 -- smi.improve: a declaration's mistakes are errors naming the field and the response or
--- candidate (issue 30 item 6), the data step's units check stops before any solver budget
--- (issue 28 item 3), and the whole loop runs on a small product whose truth needs one revision.
+-- candidate, the data step's units check stops before any solver budget
+--, and the whole loop runs on a small product whose truth needs one revision.
 -- The product and its truth: tests/lua/small_product.lua.
 local T = require "smi.testing"
 local improve = require "smi.improve"

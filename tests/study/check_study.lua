@@ -50,7 +50,7 @@ T.case("conclusion: the issue's schema", function()
   table.sort(keys)
   T.eq(table.concat(keys, ","), "refinements,trials,undetermined,verdict", "the top-level fields, no more")
   for i, t in ipairs(C.trials) do
-    -- smi.improve's generic fields (issue 30) beside the column's airbag and modes
+    -- smi.improve's generic fields beside the column's airbag and modes
     T.truthy(type(t.applied) == "table" and type(t.responses) == "table", "trial " .. i .. " applied and responses")
     for _, m in ipairs{ "mode1", "mode2", "mode4" } do T.eq(t.responses[m], t.modes[m], ("trial %d %s"):format(i, m)) end
     T.truthy(t.airbag == "rigid" or t.airbag == "spring", "trial " .. i .. " airbag")
@@ -75,7 +75,7 @@ T.case("the paper's course of events comes out of the loop", function()
   T.eq(t1.modes.mode4, "invalid", "trial 1 fails on mode 4")
   for i, t in ipairs(C.trials) do
     -- trial 1's rigid airbag cannot reach mode 4 at all (PR 2: the model-form error that the
-    -- refinement fixes); smi.calibrate says so (status "no_overlap", issue 29), not "converged"
+    -- refinement fixes); smi.calibrate says so (status "no_overlap"), not "converged"
     local no_overlap = i == 1 and t.calibration.status == "no_overlap"
       and tostring(S.trial1_calibration.result.warnings[1]):find("response 'mode4'", 1, true) ~= nil
     T.truthy(t.calibration.converged or no_overlap, ("trial %d's calibration converged (%s)"):format(i, t.calibration.status))

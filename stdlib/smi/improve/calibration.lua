@@ -10,72 +10,16 @@
 -- (near_optimal.lua, the validation's "inconclusive") instead of choosing for the analyst.
 local trial = require "smi.improve.trial"
 local near = require "smi.improve.near_optimal"
+local stream = require "smi.improve.stream"
 
 local M = {}
 
--- The objective increase that still counts as fitting the data as well as the optimum, from the
--- data: for "pr" the standard deviation of the summed PR at the optimum over bootstrap
--- resamples of the data rows (two calibrations whose objectives differ by less than that are not
--- told apart by a few measurements); for "loglik" (minus the log-likelihood of the data, summed as
--- smi.calibrate's model form does) the likelihood-ratio bound ½ χ²₁(0.95).
-local BOOT = 200 -- resamples for the PR tolerance
-
---- The tolerance and its basis: t {metric, calibrate, data = {response = vec}, predicted, theta,
--- grids, seed, result (the smi.calibrate result at the optimum)}.
--- The resamples are paired across modes (a row is one impact test); each resample's
--- experimental PDF is the plain KDE (the KDE-ebd's loop on every resample would cost more than
--- the calibration, and the spread is what is measured).
-function M.tolerance(t)
-  local MODES = t.calibrate
-  local n = #t.data[MODES[1]]
-  if t.metric ~= "pr" then
-    return { value = M.loglik_threshold(t.result),
-             basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows")
-               :format(n) }
-  end
-  local Y = t.predicted(t.theta, MODES)
-  local pred = {}
-  for _, m in ipairs(MODES) do pred[m] = smi.kde(Y[m]) end
-  local rng = smi.rng(t.seed)
-  local sums = {}
-  for b = 1, BOOT do
-    local idx = rng:uniform(n, 0, n)
-    local sum = 0
-    for _, m in ipairs(MODES) do
-      local x = {}
-      for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
-      sum = sum + smi.metric.pr(smi.kde(smi.vec(x)), pred[m], { grid = t.grids[m] })
-    end
-    sums[b] = sum
-  end
-  local v = smi.vec(sums)
-  return { value = v:std(), resamples = BOOT, mean = v:mean(),
-           basis = ("standard deviation of the summed PR of %s at the optimum over %d bootstrap resamples of"
-             .. " the %d data rows"):format(table.concat(MODES, ", "), BOOT, n) }
-end
-
--- SWITCH (issue 29, /work/wt/CALIBRATE_API.md): smi.calibrate's result now may carry
--- r.tolerance (the "fits as well" threshold; for loglik ½ χ²₁(0.95)) and r.prior_at(theta) (the
--- prior part at any point). These read them when present and fall back to the constant and the
--- one-evaluation call below on a kernel without them. The only places to change.
-function M.loglik_threshold(r)
-  if r and type(r.tolerance) == "number" then return r.tolerance end
-  return 1.920729 -- ½ χ²₁(0.95)
-end
-
---- The analyst's prior part at th, computed by smi.calibrate itself (its sum, weight and `fn`
--- handling: one evaluation at th, no optimization), so the near-optimal points are checked
--- against the very objective the calibration minimized. 0 without a prior.
-function M.prior_at(prior, params, th, r)
+--- The analyst's prior part at th: smi.calibrate's own r.prior_at (its sum and weight), so the
+-- near-optimal points are checked against the very objective the calibration minimized. 0
+-- without a prior.
+local function prior_at(prior, th, r)
   if not prior then return 0 end
-  if r and type(r.prior_at) == "function" then return r.prior_at(th) end
-  local p = {}
-  for i, q in ipairs(params) do
-    p[i] = { name = q.name, lower = q.lower, upper = q.upper, start = math.min(q.upper, math.max(q.lower, th[q.name])) }
-  end
-  local r = smi.calibrate{ parameters = p, objective = function() return 0 end, prior = prior, maxeval = 1,
-                           method = "slsqp", identifiability = false }
-  return r.metrics.prior or 0
+  return r.prior_at(th)
 end
 
 -- The parameters' bounds and starts as the model declares them ({name, lower, upper, start}).
@@ -99,8 +43,8 @@ end
 -- order) and the study's seed, so that any step, or a benchmark of one, builds the same ones.
 function M.experimental_pdfs(data, seed, names)
   local d = {}
-  for k, m in ipairs(names) do
-    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
+  for _, m in ipairs(names) do
+    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = stream(seed, "experimental pdf " .. m) })
   end
   return d
 end
@@ -119,7 +63,7 @@ local grids_of = M.grids_of
 
 --- The study's objective on its own CRN sample (smi.propagate through the Krigings): "pr" against
 -- the experimental PDFs f_exp, or minus the log-likelihood of the data points. Returns
--- objective(th) -> sum, {mode = part}.
+-- objective(th) -> sum, {response = part}.
 function M.objective(metric, predicted, grids, f_exp, data, MODES)
   return function(th)
     local Y = predicted(th, MODES)
@@ -133,7 +77,7 @@ function M.objective(metric, predicted, grids, f_exp, data, MODES)
   end
 end
 
---- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of modes 1 and 4 as
+--- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of the calibrated responses as
 -- the model, the unknowns' distributions as the inputs (every Kriging input is an unknown: the
 -- fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
 -- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
@@ -157,16 +101,16 @@ function M.pr_stage(t, grids, o)
   return smi.calibrate(with_prior(t, {
     model = model, inputs = ins, data = dat, metric = t.metric, n = t.n, seed = t.seed, grid = g,
     method = "slsqp", maxeval = o.maxeval, identifiability = o.identifiability, multistart = o.multistart or 1,
-    threads = o.threads, moment_start = o.moment_start,
+    threads = o.threads, moment_start = o.moment_start, bootstrap = o.bootstrap,
   }))
 end
 local pr_stage = M.pr_stage
 
 -- Stage 1 is smi.calibrate's moment start (overlap_start.cpp), the first part of the PR call:
--- every start is moved by Levenberg-Marquardt on the means and sds of modes 1 and 4 with the
+-- every start is moved by Levenberg-Marquardt on the means and sds of the calibrated responses with the
 -- Krigings' analytic Jacobian, the smallest steps that lower the mismatch (directions the moments
 -- do not see stay at the declared values), and kept when PR is lower there. PR saturates at 2
--- when the predicted and measured PDFs do not overlap (the initial values put mode 1 about 4 Hz
+-- when the predicted and measured PDFs do not overlap (the steering column's initial values put mode1 about 4 Hz
 -- below the data), so SLSQP needs an overlapping start (algorithms.md §2.1). The study's own
 -- objective-form stage 1 (SLSQP on central differences, 21 evaluations a gradient) ran out of
 -- its 400 evaluations on trial 2 of the committed data instead of ending on its tolerances. The
@@ -195,13 +139,14 @@ end
 -- optimum, and a second call from the optimum (it stops at once) that computes the
 -- identifiability directions and near-optimal points at that tolerance. Returns the merged
 -- result, the tolerance and stage 1's record.
-local function optimum(t, predicted, grids, params)
+local function optimum(t, grids, params)
   local start = {}
   for _, q in ipairs(params) do start[q.name] = q.start end
   local r0 = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = start, maxeval = t.maxeval,
                                   identifiability = false, multistart = t.multistart, moment_start = true })
-  local tol = M.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = r0.params, grids = grids,
-                           seed = t.seed + 11, calibrate = t.calibrate, result = r0 }
+  -- "fits as well as the optimum": smi.calibrate's r.tolerance (PR: 0.01 per response; minus the
+  -- log-likelihood: the likelihood-ratio bound ½ χ²₁(0.95)) and its reason
+  local tol = { value = r0.tolerance, basis = r0.tolerance_basis }
   local r = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = r0.params, maxeval = 40,
                                  identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value } })
   r.evaluations = r.evaluations + r0.evaluations
@@ -265,16 +210,16 @@ function M.mean_ranges(unknowns, points)
   return r
 end
 
---- The calibrations that fit modes 1 and 4 as well as the optimum (objective within the
+--- The calibrations that fit the calibrated responses as well as the optimum (objective within the
 -- tolerance): smi.calibrate's r.near_optimal (points along the weak directions of the objective,
 -- to the bounds) and the study's pushes of the validation response's prediction up and down
 -- (near_optimal.lua). The union: a generic set cannot know which prediction matters, and a
 -- verdict over too narrow a set would be falsely decisive.
 local function near_optimal_set(t, r, tol, params, predicted, data_objective)
-  local function full_objective(th) return data_objective(th) + M.prior_at(t.prior, params, th, r) end
+  local function full_objective(th) return data_objective(th) + prior_at(t.prior, th, r) end
   local pushes = #t.validate == 0 and { points = {}, directions = {} } or near.by_prediction_extremes{ params = params, optimum = r.params, objective = full_objective,
     value = full_objective(r.params), predicted = predicted, prior = t.prior, tolerance = tol.value,
-    calibration_modes = t.calibrate, validation_modes = t.validate, data = t.data }
+    calibration_responses = t.calibrate, validation_responses = t.validate, data = t.data }
   local points, from_calib = {}, 0
   for _, p in ipairs(r.near_optimal and r.near_optimal.points or {}) do points[#points + 1] = p end
   from_calib = #points
@@ -288,47 +233,18 @@ local function near_optimal_set(t, r, tol, params, predicted, data_objective)
         table.concat(t.validate, ", ")) }
 end
 
---- Bootstrap CIs (beyond the paper): the data rows resampled with replacement (paired across
--- modes), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum
--- with a small budget. A replicate that fails is recorded with its error (replicate number and
--- message), never dropped silently. The interval is the normal one, estimate ± 1.645 sd of the
--- replicates (clipped to the bounds): the replicates show the local pull of the data, and their
--- percentiles can sit to one side of the estimate (seen: a thickness estimate of 4.385 with
--- percentiles [4.387, 4.429]); the percentiles are kept too.
-local function bootstrap(t, grids, r, params)
-  local MODES = t.calibrate
-  local rng = smi.rng(t.seed + 7)
-  local n = #t.data[MODES[1]]
-  local samples, failures = {}, {}
-  local maxeval = t.boot_maxeval or 60
-  for b = 1, t.bootstrap do
-    local idx = rng:uniform(n, 0, n)
-    local dv, f = {}, {}
-    for _, m in ipairs(MODES) do
-      local x = {}
-      for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
-      dv[m] = smi.vec(x)
-      f[m] = smi.kde(dv[m])
-    end
-    local ok, rb = pcall(pr_stage, t, grids,
-      { f_exp = f, data = dv, start = r.params, maxeval = maxeval, identifiability = false })
-    if ok then samples[#samples + 1] = rb.params
-    else failures[#failures + 1] = { replicate = b, error = tostring(rb) } end
-  end
-  local lower, upper, sd, plo, phi, bounds = {}, {}, {}, {}, {}, {}
-  for _, q in ipairs(params) do bounds[q.name] = { q.lower, q.upper } end
-  for name, est in pairs(#samples > 0 and r.params or {}) do
-    local v = {}
-    for i, th in ipairs(samples) do v[i] = th[name] end
-    local vv = smi.vec(v)
-    sd[name] = #v > 1 and vv:std() or 0
-    plo[name], phi[name] = vv:quantile(0.05), vv:quantile(0.95)
-    lower[name] = math.max(bounds[name][1], est - 1.645 * sd[name])
-    upper[name] = math.min(bounds[name][2], est + 1.645 * sd[name])
-  end
-  return { level = 0.9, kind = "normal (estimate ± 1.645 sd)", replicates = #samples, failed = #failures,
-           failures = failures,
-           maxeval = maxeval, lower = lower, upper = upper, std = sd, percentile = { lower = plo, upper = phi } }
+--- Bootstrap intervals (beyond the paper): smi.calibrate's bootstrap, each replicate the data
+-- rows resampled with replacement (paired across responses: one specimen gives all its
+-- responses), their plain KDEs as the experimental PDFs, SLSQP restarted at the optimum with a
+-- small budget (warm). A replicate that fails is counted, with the kernel's warning.
+local function bootstrap(t, grids, r)
+  local rb = pr_stage(t, grids, { f_exp = t.data, data = t.data, start = r.params, maxeval = t.boot_maxeval,
+                                  identifiability = false,
+                                  bootstrap = { replicates = t.bootstrap, level = 0.9, warm = true,
+                                                maxeval = t.boot_maxeval, seed = stream(t.seed, "bootstrap") } })
+  local b = rb.bootstrap
+  return { level = b.level, kind = "percentile", replicates = b.replicates, failed = b.failed,
+           warnings = rb.warnings, maxeval = t.boot_maxeval, lower = b.lower, upper = b.upper, std = b.std }
 end
 
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
@@ -355,7 +271,7 @@ function M.calibrate(t)
   local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed)
   local params1 = declared_params(t)
   local grids = grids_of(t.data, t.calibrate, t.grid_margins)
-  local r, tol, r1 = optimum(t, predicted, grids, params1)
+  local r, tol, r1 = optimum(t, grids, params1)
   local params = param_rows(t, r, r1)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
@@ -382,10 +298,10 @@ function M.calibrate(t)
   out.objective_study_sample = data_objective(r.params)
   out.near_optimal = near_optimal_set(t, r, tol, params1, predicted, data_objective)
   if (t.bootstrap or 0) > 0 then
-    out.bootstrap = bootstrap(t, grids, r, params1)
+    out.bootstrap = bootstrap(t, grids, r)
     if out.bootstrap.failed > 0 then
-      out.warnings[#out.warnings + 1] = ("bootstrap: %d of %d replicates failed (first, replicate %d: %s)"):format(
-        out.bootstrap.failed, t.bootstrap, out.bootstrap.failures[1].replicate, out.bootstrap.failures[1].error)
+      out.warnings[#out.warnings + 1] = ("bootstrap: %d of %d replicates failed (%s)"):format(
+        out.bootstrap.failed, t.bootstrap, table.concat(out.bootstrap.warnings, "; "))
     end
   end
   out.sensitivity = trial.sensitivity(t.kriging, out, t)

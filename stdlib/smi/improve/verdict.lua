@@ -35,6 +35,14 @@ function M.trial(t)
   return "valid", undetermined, nil
 end
 
+--- Whether a trial's validation (its step result) calls for a refinement: an invalid trial.
+function M.needs_refinement(v)
+  return v.verdict == "invalid"
+end
+
+--- The report's and console's badge of a verdict.
+M.BADGE = { valid = "pass", invalid = "fail", inconclusive = "inconclusive", undetermined = "inconclusive" }
+
 local function skipped(r) return r == nil or r.skipped end
 
 --- The conclusion from the saved step results R (trialk_surrogate, trialk_calibration,
