@@ -163,7 +163,7 @@ T.case("report: one self-contained file with the study's figures and its conclus
   T.truthy(html:find("Conclusion: the model is " .. C.verdict, 1, true) ~= nil, "conclusion verdict")
   if C.undetermined[1] then
     local th = S["trial" .. #C.trials .. "_validation"].result.responses.mode2.threshold
-    T.truthy(html:find(("mode 2 not determined by these data: U over %%d+ near%%-optimal calibrations in %%[[%%d.]+, [%%d.]+%%] against threshold %.4f"):format(th)) ~= nil,
+    T.truthy(html:find(("mode2 not determined by these data: U over %%d+ near%%-optimal calibrations in %%[[%%d.]+, [%%d.]+%%] against threshold %.4f"):format(th)) ~= nil,
              "the report says why mode 2 is undetermined, with the run's threshold")
   end
 end)
