@@ -1,4 +1,4 @@
---- The report's first section: what produced these numbers (issue 24). The script, the data
+--- The report's first section: what produced these numbers. The script, the data
 -- and other files read, the solver programs, the libraries, the versions of smi-lua and what it
 -- was built with, and the command line that reproduces the run, from smi.provenance().
 --
