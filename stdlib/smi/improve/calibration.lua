@@ -180,9 +180,25 @@ end
 
 -- Beyond the paper: the kernel's warnings, and whether the calibrated sample stays inside the
 -- Kriging design box.
-local function box_warnings(r, params, design_bounds)
+-- smi.calibrate's "at a bound" warning says "widen the range if physically allowed". For a mean
+-- the range is the analyst's prior: the data ask for more than it allows, which counts against
+-- the form (forms.lua). For a standard deviation a few specimens cannot resolve it: its bound is
+-- where a flat objective ended, not a reason to widen the range.
+local function bound_words(w, n)
+  local name = w:match("^parameter '([^']+)' = .- sits at a bound")
+  if not name then return w end
+  local head = w:gsub(": widen the range if physically allowed$", "")
+  if name:match("%.std$") then
+    return ("%s: %d specimens resolve a standard deviation poorly, so its value at the bound is weakly determined"
+      .. " (not a reason to widen the range)"):format(head, n)
+  end
+  return ("%s: the data ask for a mean beyond the declared range, the prior; this counts against the form (widen"
+    .. " the range only if the physics allows it)"):format(head)
+end
+
+local function box_warnings(r, params, design_bounds, n)
   local warnings = {}
-  for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = w end
+  for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = bound_words(w, n) end
   for _, p in ipairs(params) do
     local d = smi.dist[p.dist]{ mean = p.mean, std = p.std }
     local lo, hi = d:quantile(0.001), d:quantile(0.999)
@@ -276,7 +292,7 @@ function M.calibrate(t)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
     status = r.status, message = r.message, no_overlap = r.no_overlap,
-    warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
+    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]]), at_bounds = r.at_bounds, params = params,
     theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
     n = t.n, seed = t.seed, calibrate = t.calibrate,
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,

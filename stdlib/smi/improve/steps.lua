@@ -338,18 +338,25 @@ local function refinement_step(run, k)
     local v = R["trial" .. k .. "_validation"]
     if v.skipped then return skipped(v.reason) end
     if not verdict.needs_refinement(v) then return skipped(text.nothing_to_refine(k, v)) end
+    local state = v.verdict == "invalid" and "invalid" or ("undetermined on " .. table.concat(v.undetermined, ", "))
     if k > opt.max_refinements then
       return skipped(("trial %d is %s and the analyst's limit of %d refinement(s) is reached"):format(
-        k, v.verdict, opt.max_refinements))
+        k, state, opt.max_refinements))
     end
-    local failed = {}
-    for _, m in ipairs(D.names) do if v.responses[m].verdict == "invalid" then failed[#failed + 1] = m end end
+    -- the responses that call for it: the invalid ones, else the undetermined ones
+    local failed, undetermined = {}, {}
+    for _, m in ipairs(D.names) do
+      local rv = v.responses[m].verdict
+      if rv == "invalid" then failed[#failed + 1] = m elseif rv == "inconclusive" then undetermined[#undetermined + 1] = m end
+    end
+    local undetermined_only = #failed == 0
+    if undetermined_only then failed = undetermined end
     local tried = {}
     for i = 1, k do tried[R["trial" .. i .. "_surrogate"].model.candidate] = true end
     local untried = {}
     for _, c in ipairs(D.candidates) do if not tried[c.name] then untried[#untried + 1] = c end end
     if #untried == 0 then
-      return skipped(("trial %d is %s and every candidate has been tried"):format(k, v.verdict))
+      return skipped(("trial %d is %s and every candidate has been tried"):format(k, state))
     end
     -- the base of the next trial: this trial's revisions, minus the last one if it made the fit worse
     local base = revise.copy(R["trial" .. k .. "_surrogate"].model)
@@ -373,7 +380,7 @@ local function refinement_step(run, k)
       for _, name in ipairs(names) do table.insert(next_model.dropped, 1, { name = name, why = drop[name] }) end
     end
     local out = { failed_responses = failed, matrix = dm, chosen = chosen, model = next_model, rank = 1,
-                  why = text.why_chosen(dm, jc, jr) }
+                  why = text.why_chosen(dm, jc, jr), undetermined_only = undetermined_only }
     view("refinement")(run, ctx.report, out, k)
     return out
   end)

@@ -10,7 +10,7 @@ local function join(list, last)
   return table.concat(list, ", ", 1, #list - 1) .. (last or " and ") .. list[#list]
 end
 
-local function listed(list) return join(list) end
+local function listed(list, last) return join(list, last) end
 
 -- ---------------------------------------------------------------------------------------------
 -- Verdicts and conclusion
@@ -64,34 +64,92 @@ function M.undetermined_words(m, val, cal)
   return ("%s not determined by these data: %s; to settle it: %s"):format(m, evidence, M.settle(m, cal))
 end
 
---- The conclusion in words after "Conclusion: the model is <verdict>": the responses it rests on,
--- the path, and each undetermined response with its evidence. c: verdict.conclusion's table;
--- R: the step results.
+-- A form in words: "the initial model" or "the form with a, b applied".
+local function form_name(applied)
+  return #applied > 0 and ("{" .. table.concat(applied, " + ") .. "}") or "the initial model"
+end
+M.form_name = form_name
+
+-- The Bayes factor of form a over form b in words, or why there is none.
+local function factor_words(a, b)
+  if type(a.log_evidence) ~= "number" or type(b.log_evidence) ~= "number" then return "no evidence computed" end
+  return ("Bayes factor %.3g (log %.2f ± %.2f)"):format(math.exp(a.log_evidence - b.log_evidence),
+    a.log_evidence - b.log_evidence,
+    math.sqrt((a.log_evidence_error or 0) ^ 2 + (b.log_evidence_error or 0) ^ 2))
+end
+
+--- What would separate forms the data leave together: a prior on the parameters that move most
+-- among the calibrations that fit (the chosen trial's strongest near-optimal push), a response
+-- (the undetermined ones, calibrated on), more specimens.
+function M.separate(D, c, R)
+  local k = c.chosen
+  local cal = R["trial" .. k .. "_calibration"]
+  local parts = {}
+  local w = M.weak_inputs(cal and cal.near_optimal)
+  local priors = {}
+  for _, n in ipairs(c.trials[k].unknowns) do priors[#priors + 1] = n .. ".mean" end
+  parts[#parts + 1] = ("a prior (--prior) on %s%s"):format(listed(priors, " or "),
+    w and (" (the means move most along: " .. w .. ")") or "")
+  if #c.undetermined > 0 then parts[#parts + 1] = ("calibrating on %s as well"):format(listed(c.undetermined)) end
+  parts[#parts + 1] = "more specimens"
+  return listed(parts, ", or ")
+end
+
+--- The conclusion in words after "Conclusion: the model is <verdict>": the form it names, the
+-- responses it rests on, the path, the forms the data cannot separate, and each undetermined
+-- response with its evidence. c: verdict.conclusion's table; R: the step results.
 function M.conclusion_detail(D, c, R)
-  local k = #c.trials
-  local last = c.trials[k]
+  local k = c.chosen or #c.trials
+  local chosen = c.trials[k]
   local refined = #c.refinements > 0
   local path = refined and ("after refinement by " .. table.concat(c.refinements, ", then ") .. " ") or ""
-  local where = ("(trial %d, %s%s)"):format(k, #last.applied > 0 and ("applied: " .. table.concat(last.applied, ", "))
+  local where = ("(trial %d, %s%s)"):format(k, #chosen.applied > 0 and ("applied: " .. table.concat(chosen.applied, ", "))
     or "initial model", refined and "" or ", no refinement")
   local val, cal = R["trial" .. k .. "_validation"], R["trial" .. k .. "_calibration"]
-  if c.verdict == "valid" then
-    local decided = {}
-    for _, m in ipairs(D.names) do if last.responses[m] == "valid" then decided[#decided + 1] = m end end
-    local s = ("on %s %s%s"):format(listed(decided), path, where)
-    for _, m in ipairs(c.undetermined) do s = s .. "; " .. M.undetermined_words(m, val, cal) end
-    return s
+  if c.verdict == "invalid" then
+    local failed = {}
+    for _, m in ipairs(D.names) do if chosen.responses[m] == "invalid" then failed[#failed + 1] = m end end
+    return ("%s%s: invalid on %s%s"):format(path, where, listed(failed), c.ended and ("; " .. c.ended) or "")
   end
-  if c.verdict == "inconclusive" then return ("%s%s: %s"):format(path, where, c.why or "") end
-  local failed = {}
-  for _, m in ipairs(D.names) do if last.responses[m] == "invalid" then failed[#failed + 1] = m end end
-  return ("%s%s: invalid on %s%s"):format(path, where, listed(failed), c.ended and ("; " .. c.ended) or "")
+  if next(chosen.responses) == nil then return ("%s%s: %s"):format(path, where, c.why or c.ended or "not validated") end
+  local decided = {}
+  for _, m in ipairs(D.names) do if chosen.responses[m] == "valid" then decided[#decided + 1] = m end end
+  local s = ("in %s, valid on %s %s%s"):format(form_name(chosen.applied), #decided > 0 and listed(decided) or "no response",
+    path, where)
+  local others = {}
+  for i, f in ipairs(c.forms) do
+    if i ~= k then
+      others[#others + 1] = f.verdict == "invalid" and ("%s is invalid"):format(form_name(f.applied))
+        or ("%s: %s%s"):format(form_name(f.applied), factor_words(c.forms[k], f),
+          f.supported and (", within the margin " .. ("%g"):format(D.evidence.margin)) or "")
+    end
+  end
+  if #others > 0 then s = s .. "; against the other forms tried: " .. table.concat(others, "; ") end
+  if c.verdict == "valid" then return s end
+  local open = false -- whether more knowledge or data could decide (else: the trial's own reason)
+  for _, r in ipairs(c.comparison or {}) do
+    open = open or r.kind ~= "trial"
+    if r.kind == "inseparable" then
+      local names = {}
+      for i, j in ipairs(r.forms) do names[i] = form_name(c.forms[j].applied) end
+      s = s .. ("; the data cannot separate it from %s (Bayes factor under %g)"):format(listed(names), D.evidence.margin)
+    elseif r.kind == "bounds" then
+      s = s .. ("; the calibrated %s on its range's bound: the data ask for more than the declared range, which"
+        .. " counts against this form"):format(listed(r.params))
+    elseif r.kind == "trial" and r.why then
+      s = s .. "; " .. r.why
+    end
+  end
+  for _, m in ipairs(c.undetermined) do
+    if val and val.responses then s = s .. "; " .. M.undetermined_words(m, val, cal) end
+  end
+  return open and (s .. "; what would separate the forms: " .. M.separate(D, c, R)) or s
 end
 
 --- The conclusion in one sentence starting "Conclusion: the model is <verdict>" (the console's
 -- last line; the report's verdict name and detail).
 function M.conclusion(D, c, R)
-  return ("Conclusion: the model is %s %s."):format(c.verdict, M.conclusion_detail(D, c, R))
+  return ("Conclusion: the model is %s %s."):format(c.verdict, (M.conclusion_detail(D, c, R):gsub("%.$", "")))
 end
 
 --- A trial's label in the report and the log: "Trial k (candidate)".
@@ -301,11 +359,19 @@ end
 -- disagree: the verdict, because it is the u-pooling of the calibrated distributions sampled
 -- val_n times, where the check runs the solver at solver_check stratified points only; the
 -- disagreement says the surrogate's error matters near this optimum.
-function M.solver_disagrees(label, title, metric, cfg)
+function M.solver_disagrees(label, title, v, cfg)
+  local sv = v.solver
+  if v.verdict == "inconclusive" then
+    return ("%s, %s: the verdict (inconclusive) governs. The solver check (U = %.4f, %s) runs the solver at the"
+      .. " optimum's distributions only, one of the calibrations that fit the calibrated responses as well; over"
+      .. " them U spans both sides of the threshold, which one calibration cannot settle. The response is"
+      .. " undetermined by these data, so the study refines or concludes undetermined, never valid on it."):format(
+      label, title, sv.metric, sv.pass and "valid" or "invalid")
+  end
   return ("%s, %s: the verdict governs. It is the u-pooling of the calibrated distributions on %d Kriging"
     .. " samples; the solver check (U = %.4f) runs the solver at %d points only, so it flags the surrogate's error"
     .. " near this optimum rather than overrules the verdict. More points (--solver-check N) or a larger design"
-    .. " would settle the disagreement."):format(label, title, cfg.val_n, metric, cfg.solver_check)
+    .. " would settle the disagreement."):format(label, title, cfg.val_n, sv.metric, cfg.solver_check)
 end
 
 -- ---------------------------------------------------------------------------------------------
@@ -328,7 +394,7 @@ end
 --- Why a trial is not refined (its verdict is not invalid).
 function M.nothing_to_refine(k, v)
   local und = v.undetermined and #v.undetermined > 0 and ("; %s undetermined"):format(listed(v.undetermined)) or ""
-  return ("trial %d is %s%s%s: nothing is refined without an invalid verdict"):format(k, v.verdict,
+  return ("trial %d is %s%s%s: nothing is refined without an invalid or undetermined response"):format(k, v.verdict,
     v.why and (" (" .. v.why .. ")") or "", und)
 end
 
@@ -339,7 +405,7 @@ function M.refinement_intro(k, out)
   local names = {}
   for j, c in ipairs(dm.candidates) do names[j] = c.name end
   local w = dm.weights
-  return ("Trial %d is invalid on %s. Candidates (each declaring its revision): %s. Each revised model (on top"
+  return ("Trial %d is %s on %s. Candidates (each declaring its revision): %s. Each revised model (on top"
     .. " of the revisions kept so far) is run at the start means; correctness is eq. (13)"
     .. " averaged over every response used in calibration (%s), whichever of them the calibration gave up;"
     .. " robustness the number of new unknowns, computational cost the measured run time (minutes, in whole"
@@ -349,7 +415,7 @@ function M.refinement_intro(k, out)
     .. " response cannot make the model valid). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s"
     .. " (rank %d; candidates"
     .. " already tried are passed over): %s. Trial %d applies %s; unknowns %s.%s"):format(
-    k, listed(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
+    k, out.undetermined_only and "undetermined" or "invalid", listed(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
     w.correctness, w.robustness, w.computational, w.implementation, table.concat(dm.ranking, " > "), out.chosen,
     out.rank, out.why, k + 1, table.concat(model.applied, " + "), table.concat(model.unknowns, ", "),
     #(model.dropped or {}) > 0 and (" Dropped: " .. M.dropped(model.dropped) .. ".") or "")

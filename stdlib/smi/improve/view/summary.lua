@@ -11,6 +11,18 @@ return function(run, r, out, R, walls, per)
   r:text(text.story(D, c, R, run.prior.labels))
   r:verdict{ name = "Conclusion: the model is " .. c.verdict, status = verdict.BADGE[c.verdict],
              detail = text.conclusion_detail(D, c, R) }
+  -- the forms tried, side by side: the paper's u-pooling verdict and the Bayes factors
+  local forms = {}
+  for i, f in ipairs(c.forms) do
+    forms[i] = { text.form_name(f.applied), f.verdict,
+                 type(f.log_evidence) == "number" and ("%.2f ± %.2f"):format(f.log_evidence, f.log_evidence_error or 0)
+                   or "not computed",
+                 f.supported and "yes" or "no", f.chosen and "yes" or "" }
+  end
+  r:table{ caption = ("The model forms tried: each trial's verdict (u-pooling), its log evidence under the"
+             .. " declared priors, and whether the data support it (within a Bayes factor of %g of the best)."):format(
+             D.evidence.margin),
+           columns = { "Form", "Trial verdict", "log evidence", "Supported", "Chosen" }, rows = forms }
   local rows = {}
   for name, cnt in pairs(cost.counts) do rows[#rows + 1] = { name, cnt.points, cnt.launched, cnt.reused } end
   table.sort(rows, function(a, b) return a[1] < b[1] end)

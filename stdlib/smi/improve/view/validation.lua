@@ -28,9 +28,10 @@ return function(run, r, res, cal, k, L, data)
     -- one entry per response: the verdict with its solver check beside it, and when the two
     -- disagree the sentence saying which one governs and why
     local checks = v.solver and { { name = "Solver check", pass = sv.pass, value = sv.metric } } or nil
+    local disagree = v.solver and BADGE[v.verdict] ~= (sv.pass and "pass" or "fail")
     r:verdict{ name = ("%s, %s"):format(L, resp.title), status = BADGE[v.verdict], value = v.metric,
                threshold = v.threshold, detail = v.detail, checks = checks,
-               governs = v.solver and v.pass ~= sv.pass and text.solver_disagrees(L, resp.title, sv.metric, cfg) or nil }
+               governs = disagree and text.solver_disagrees(L, resp.title, v, cfg) or nil }
   end
   r:figures(pdfs)
   r:figures(cdfs)
