@@ -1,5 +1,5 @@
-// A command model's deck made by a Lua function of the point (template = function(p) ... end,
-// issue 30): the function runs with no I/O so that a deck can compute (per-node stiffnesses,
+// A command model's deck made by a Lua function of the point (template = function(p) ... end): the function
+// runs with no I/O so that a deck can compute (per-node stiffnesses,
 // log-scaled inputs) without the study's evaluation depending on anything but the point.
 //  * The model keeps a copy of the function whose _ENV is a fresh table holding only the pure
 //    globals (string, math, table, utf8 and the base functions that touch nothing outside Lua);

@@ -96,8 +96,8 @@ class Runtime {
   vm::Watchdog watchdog_{cancel::process_token()};  // ends a run stuck in C code past --timeout or Ctrl-C
   vm::ModuleSearch modules_;
   lua_State* L_;
-  vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
-  RunRecord record_;  // what the run read and ran: smi.provenance() (issue 24)
+  vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs
+  RunRecord record_;  // what the run read and ran: smi.provenance()
 
  public:
   const vm::LibrarySet& libraries() const { return libs_; }

@@ -1,10 +1,11 @@
 #pragma once
-// Bootstrap confidence intervals on calibrated parameters (beyond the paper; issue 6 item 6).
+// Bootstrap confidence intervals on calibrated parameters (beyond the paper).
 // Each replicate resamples the experimental data with replacement (seeded), rebuilds the
 // objective on the resampled data and re-runs the whole calibration: its own starts (the given
 // start and the seeded multistart points), not a warm start at the optimum, which would only
-// measure the local spread and miss the other optima of a flat or multimodal problem (issue 11
-// item 4). warm_start keeps the old, cheaper replicate. Percentile intervals summarise the spread. When every response has the same number of data they are
+// measure the local spread and miss the other optima of a flat or multimodal problem. warm_start keeps the
+// old, cheaper replicate. Percentile intervals summarise the spread. When every response has the same number
+// of data they are
 // resampled as paired rows (one specimen gives all its responses), otherwise independently.
 #include <Eigen/Core>
 #include <cstdint>
