@@ -175,16 +175,27 @@ function M.unknown(u, where)
   return out
 end
 
-local function responses(list)
-  local out, seen, calibrate = {}, {}, 0
-  for i, r in ipairs(list) do
-    need(r, "table", ("response %d"):format(i), "response")
-    local where = type(r.name) == "string" and ("response '%s'"):format(r.name) or ("response %d"):format(i)
-    local x = part(r, "response", where)
+-- The entries of a named list (responses, candidates) checked as `kind`: each entry's checked
+-- fields and the words that name it; a name declared twice is an error.
+local function named(list, kind)
+  local out, seen = {}, {}
+  for i, e in ipairs(list) do
+    need(e, "table", ("%s %d"):format(kind, i), kind)
+    local where = type(e.name) == "string" and ("%s '%s'"):format(kind, e.name) or ("%s %d"):format(kind, i)
+    local x = part(e, kind, where)
     if seen[x.name] then fail(where, "declared twice") end
     seen[x.name] = true
+    out[i] = { fields = x, where = where }
+  end
+  return out
+end
+
+local function responses(list)
+  local out, calibrate = {}, 0
+  for i, e in ipairs(named(list, "response")) do
+    local x = e.fields
     if x.role ~= "calibrate" and x.role ~= "validate" then
-      fail(where, "field 'role' must be \"calibrate\" or \"validate\" (got %s)", tostring(x.role))
+      fail(e.where, "field 'role' must be \"calibrate\" or \"validate\" (got %s)", tostring(x.role))
     end
     if x.role == "calibrate" then calibrate = calibrate + 1 end
     out[i] = x
@@ -194,13 +205,9 @@ local function responses(list)
 end
 
 local function candidates(list, specs)
-  local out, seen = {}, {}
-  for i, c in ipairs(list) do
-    need(c, "table", ("candidate %d"):format(i), "candidate")
-    local where = type(c.name) == "string" and ("candidate '%s'"):format(c.name) or ("candidate %d"):format(i)
-    local x = part(c, "candidate", where)
-    if seen[x.name] then fail(where, "declared twice") end
-    seen[x.name] = true
+  local out = {}
+  for i, e in ipairs(named(list, "candidate")) do
+    local x, where = e.fields, e.where
     local r = part(x.revision, "revision", where .. ", revision")
     local rev = { form = r.form, fixed = r.fixed, unknowns = {}, specs = {}, n_design = r.n_design, trend = r.trend }
     for j, u in ipairs(r.unknowns) do
