@@ -11,6 +11,7 @@
 --   smi-lua --lib scripts --allow-read STUDY --allow-read DATA_DIR --allow-read /proc/loadavg --out OUT \
 --     bench/calibrate_trial2.lua --study STUDY [--data FILE] [--results FILE] [--label NAME] [--repeats 3]
 local calibration = require "smi.improve.calibration"
+local trial = require "smi.improve.trial"
 local ALL = { "mode1", "mode2", "mode4" } -- the study's responses in declared order
 local options = require "smi.options"
 
@@ -153,8 +154,7 @@ local function summary(r, walls, cpus)
            evaluations = r.evaluations, model_runs = r.model_runs, gradient = r.gradient, starts = starts,
            optima = optima, starts_agree = r.starts_agree, agreement = r.agreement, walls = walls, cpus = cpus,
            wall_median = median(walls), cpu_median = median(cpus), objective_gap = best_gap,
-           spreads = spreads(r.starts), at_bounds = r.at_bounds, tolerance = r.tolerance,
-           tolerance_basis = r.tolerance_basis }
+           spreads = spreads(r.starts), at_bounds = r.at_bounds }
 end
 
 -- One calibration, repeated: the summary of the first run and whether the repeats gave the same.
@@ -199,11 +199,13 @@ out.declared_start = repeated(declared, "declared start")
 out.load_after = loadavg()
 
 -- 3. The study's identifiability pass at the best of the four starts (optimum() in
--- calibration.lua: smi.calibrate's tolerance, a restart from the optimum with the directions).
+-- calibration.lua: the tolerance from the data, a restart from the optimum with the directions).
 do
   local best = out.stage1_start.objective <= out.declared_start.objective and out.stage1_start or out.declared_start
   local w0 = smi.now()
-  local tol = { value = best.tolerance, basis = best.tolerance_basis } -- as calibration.lua's optimum() uses it
+  local predicted = trial.predictor(kriging, T.unknowns, T.specs, t.n, t.seed)
+  local tol = calibration.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = best.params,
+                                     grids = grids, seed = t.seed + 11, calibrate = MODES }
   local r = calibration.pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = best.params, maxeval = 40,
     identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value }, threads = opt.threads })
   local dirs = {}

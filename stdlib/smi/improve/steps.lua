@@ -196,7 +196,7 @@ local function surrogate_step(run, k)
     local m = run.model(T, { purpose = "design", name = "trial" .. k .. "-design" })
     local res = trial.surrogate{ name = "trial" .. k, model = m, responses = D.names, unknowns = T.unknowns,
                                  specs = T.specs, trend = T.trend, n_design = T.n_design, design = cfg.design,
-                                 n_test = cfg.test_points, seed = stream(run.seed, "trial" .. k .. " design") }
+                                 n_test = cfg.test_points, seed = stream(run.seed, "trial design", k) }
     res.model = T
     -- data far outside everything the model gives over the design box: likely units
     local units = {}
@@ -222,7 +222,7 @@ local function calibration_step(run, k)
       unknowns = T.unknowns, specs = T.specs, calibrate = D.calibrate, validate = D.validate,
       data = run.vecs(ctx.results.data), f_exp = run.f_exp(ctx.results.data), grid_margins = run.margins,
       kriging = trial.krigings(sur), design_bounds = sur.design_bounds, n = cfg.cal_n,
-      seed = stream(run.seed, "trial" .. k .. " calibration"),
+      seed = stream(run.seed, "trial calibration", k),
       maxeval = cfg.maxeval, bootstrap = cfg.bootstrap, boot_maxeval = cfg.boot_maxeval, metric = opt.metric,
       multistart = opt.multistart, prior = run.prior.entries, prior_labels = run.prior.labels }
     view("calibration")(run, ctx.report, res, T, k)
@@ -251,7 +251,7 @@ local function validation_step(run, k)
     local res = trial.validate{ name = "trial" .. k, model = T, check_model = check, kriging = trial.krigings(sur),
                                 calibration = cal, data = run.vecs(ctx.results.data), responses = D.names,
                                 calibrate = D.calibrate, n = cfg.val_n, n_solver = cfg.solver_check,
-                                n_near = cfg.near_n, seed = stream(run.seed, "trial" .. k .. " validation") }
+                                n_near = cfg.near_n, seed = stream(run.seed, "trial validation", k) }
     for _, m in ipairs(D.names) do
       local v = res.responses[m]
       v.detail = v.range and text.range_detail(D, v, cal) or text.decisive_detail(v)
