@@ -144,7 +144,7 @@ function M.pr_stage(t, grids, o)
   return smi.calibrate(with_prior(t, {
     model = model, inputs = ins, data = dat, metric = t.metric, n = t.n, seed = t.seed, grid = g,
     method = "slsqp", maxeval = o.maxeval, identifiability = o.identifiability, multistart = o.multistart or 1,
-    threads = o.threads, moment_start = o.moment_start, bootstrap = o.bootstrap,
+    threads = o.threads, moment_start = o.moment_start,
   }))
 end
 local pr_stage = M.pr_stage
@@ -291,18 +291,47 @@ local function near_optimal_set(t, r, tol, params, predicted, data_objective)
         table.concat(t.validate, ", ")) }
 end
 
---- Bootstrap intervals (beyond the paper): smi.calibrate's bootstrap, each replicate the data
--- rows resampled with replacement (paired across responses: one specimen gives all its
--- responses), their plain KDEs as the experimental PDFs, SLSQP restarted at the optimum with a
--- small budget (warm). A replicate that fails is counted, with the kernel's warning.
-local function bootstrap(t, grids, r)
-  local rb = pr_stage(t, grids, { f_exp = t.data, data = t.data, start = r.params, maxeval = t.boot_maxeval,
-                                  identifiability = false,
-                                  bootstrap = { replicates = t.bootstrap, level = 0.9, warm = true,
-                                                maxeval = t.boot_maxeval, seed = stream(t.seed, "bootstrap") } })
-  local b = rb.bootstrap
-  return { level = b.level, kind = "percentile", replicates = b.replicates, failed = b.failed,
-           warnings = rb.warnings, maxeval = t.boot_maxeval, lower = b.lower, upper = b.upper, std = b.std }
+--- Bootstrap CIs (beyond the paper): the data rows resampled with replacement (paired across
+-- responses), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum
+-- with a small budget. A replicate that fails is recorded with its error (replicate number and
+-- message), never dropped silently. The interval is the normal one, estimate ± 1.645 sd of the
+-- replicates (clipped to the bounds): the replicates show the local pull of the data, and their
+-- percentiles can sit to one side of the estimate (seen: a thickness estimate of 4.385 with
+-- percentiles [4.387, 4.429]); the percentiles are kept too.
+local function bootstrap(t, grids, r, params)
+  local names = t.calibrate
+  local rng = smi.rng(stream(t.seed, "bootstrap"))
+  local n = #t.data[names[1]]
+  local samples, failures = {}, {}
+  local maxeval = t.boot_maxeval -- run_context.SIZES
+  for b = 1, t.bootstrap do
+    local idx = rng:uniform(n, 0, n)
+    local dv, f = {}, {}
+    for _, m in ipairs(names) do
+      local x = {}
+      for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
+      dv[m] = smi.vec(x)
+      f[m] = smi.kde(dv[m])
+    end
+    local ok, rb = pcall(pr_stage, t, grids,
+      { f_exp = f, data = dv, start = r.params, maxeval = maxeval, identifiability = false })
+    if ok then samples[#samples + 1] = rb.params
+    else failures[#failures + 1] = { replicate = b, error = tostring(rb) } end
+  end
+  local lower, upper, sd, plo, phi, bounds = {}, {}, {}, {}, {}, {}
+  for _, q in ipairs(params) do bounds[q.name] = { q.lower, q.upper } end
+  for name, est in pairs(#samples > 0 and r.params or {}) do
+    local v = {}
+    for i, th in ipairs(samples) do v[i] = th[name] end
+    local vv = smi.vec(v)
+    sd[name] = #v > 1 and vv:std() or 0
+    plo[name], phi[name] = vv:quantile(0.05), vv:quantile(0.95)
+    lower[name] = math.max(bounds[name][1], est - 1.645 * sd[name])
+    upper[name] = math.min(bounds[name][2], est + 1.645 * sd[name])
+  end
+  return { level = 0.9, kind = "normal (estimate ± 1.645 sd)", replicates = #samples, failed = #failures,
+           failures = failures,
+           maxeval = maxeval, lower = lower, upper = upper, std = sd, percentile = { lower = plo, upper = phi } }
 end
 
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
@@ -356,10 +385,10 @@ function M.calibrate(t)
   out.objective_study_sample = data_objective(r.params)
   out.near_optimal = near_optimal_set(t, r, tol, params1, predicted, data_objective)
   if (t.bootstrap or 0) > 0 then
-    out.bootstrap = bootstrap(t, grids, r)
+    out.bootstrap = bootstrap(t, grids, r, params1)
     if out.bootstrap.failed > 0 then
-      out.warnings[#out.warnings + 1] = ("bootstrap: %d of %d replicates failed (%s)"):format(
-        out.bootstrap.failed, t.bootstrap, table.concat(out.bootstrap.warnings, "; "))
+      out.warnings[#out.warnings + 1] = ("bootstrap: %d of %d replicates failed (first, replicate %d: %s)"):format(
+        out.bootstrap.failed, t.bootstrap, out.bootstrap.failures[1].replicate, out.bootstrap.failures[1].error)
     end
   end
   out.sensitivity = trial.sensitivity(t.kriging, out, t)

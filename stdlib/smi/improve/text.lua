@@ -298,10 +298,9 @@ end
 
 function M.parameters_caption(res)
   local b = res.bootstrap
-  local ci = b and ("%g %% bootstrap over the data (mean / std), the percentiles of %d replicates (smi.calibrate's"
-    .. " bootstrap: rows resampled, plain KDEs, SLSQP restarted at the optimum with %d evaluations each%s): the local"
-    .. " pull of the data, which understates the spread along the directions the calibrated responses leave"
-    .. " undetermined"):format(100 * b.level, b.replicates, b.maxeval,
+  local ci = b and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart"
+    .. " SLSQP at the optimum with %d evaluations each%s: the local pull of the data, which understates the spread"
+    .. " along the directions the calibrated responses leave undetermined"):format(b.replicates, b.maxeval,
       b.failed > 0 and ("; %d failed, see the warnings"):format(b.failed) or "") or "none (--quick)"
   return ("Calibrated statistical parameters. CI: %s."):format(ci)
 end
