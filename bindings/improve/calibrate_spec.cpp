@@ -530,6 +530,15 @@ void read_intervals(lua_State* L, int idx, CalibrateSpec& s) {
 
 }  // namespace
 
+void read_population(lua_State* L, int idx, CalibrateSpec& s) {
+  idx = lua_absindex(L, idx);
+  s.statistical = true;
+  read_model(L, idx, s);
+  read_inputs(L, idx, s);
+  read_data(L, idx, s);
+  validate_parameters(s.params);
+}
+
 // The values the calibration needs stay where they are read: functions (objective, metric,
 // penalty, priors' fn, progress) are left on the Lua stack and their slots recorded, in this order.
 CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {

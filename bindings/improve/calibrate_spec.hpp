@@ -57,5 +57,9 @@ struct CalibrateSpec : smi::improve::CalibrationOptions {
 
 /// Reads the spec table at `idx`; pushes the callback values (see slots above).
 CalibrateSpec read_calibrate_spec(lua_State* L, int idx);
+/// Reads only the model form's model, inputs and data at `idx` into s (params, inputs,
+/// responses, model_parts, input_names_slot, data_slot), with the same rules and messages as
+/// smi.calibrate; smi.calibrate_bayes reads its population through it. Pushes the same values.
+void read_population(lua_State* L, int idx, CalibrateSpec& s);
 
 }  // namespace smi::bind::improve

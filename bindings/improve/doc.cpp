@@ -1,7 +1,8 @@
-// Reference texts of smi.calibrate and smi.refine.decision_matrix (this folder). Defaults are
+// Reference texts of smi.calibrate, smi.calibrate_bayes and smi.refine.decision_matrix (this folder). Defaults are
 // read from the kernels' option structs (improve/bounded_optimizer.hpp, statistical_objective.hpp,
 // bootstrap.hpp, identifiability.hpp).
 #include "bindings/doc.hpp"
+#include "bindings/improve/calibrate_bayes_options.hpp"
 #include "bindings/improve/calibrate_options.hpp"
 #include "bindings/improve/decision_matrix_options.hpp"
 #include "kernels/improve/bootstrap.hpp"
@@ -60,6 +61,45 @@ example:
   }
   print(("a = %.3f, b = %.3f, converged = %s"):format(r.params.a, r.params.b, tostring(r.converged)))
 
+@ smi.calibrate_bayes{...} -> result
+Bayesian calibration: posterior samples of the parameters and the log evidence (marginal
+likelihood) log Z with its Monte Carlo error, by transitional MCMC (tempering from the prior to
+the posterior; log Z is the sum over stages of log mean w). Priors are densities: uniform on a
+range by default, or normal / lognormal (truncated to the range). Objective form:
+parameters = {{name =, lower =, upper =} | {name =, prior = {dist =, mean =, std =}}, ...} and
+loglik(Theta), called once per batch with an smi.mat of points (rows), returning a vec of
+log-likelihoods. Model form: model, inputs and data as smi.calibrate's; each specimen's
+responses are one joint observation: p(y_i | theta) is estimated from n propagated samples
+(common random numbers) by a Gaussian kernel of covariance noise^2 + H in response space (H the
+normal-reference bandwidth times the predictions' covariance), so log L is smooth in theta;
+r.loglik_error is its Monte Carlo error at the MAP. See docs/bayesian-calibration.md.
+options:
+${calibrate_bayes}
+returns: r with r.names (parameter order), r.samples (smi.mat, rows = posterior samples),
+  r.loglik (vec: log L at each sample), r.mean, r.std, r.map {name = value} (the sample of highest
+  posterior density), r.interval {name = {lo, hi}} (90 % central, r.interval_level),
+  r.log_evidence, r.log_evidence_error (the sampler's Monte Carlo standard error), r.loglik_error
+  (model form: Monte Carlo error of log L at the MAP; 0 in the objective form),
+  r.diagnostics {stages, beta = {...}, acceptance = {...}, ess = {...}, sweeps = {...},
+  chain_correlation = {...}, scale = {...}, converged, reasons = {...}}, r.converged,
+  r.evaluations (likelihood values), r.model_runs (model calls, each on many stacked samples),
+  r.seed; model form also r.n and r.noise {response = sd}; tostring(r) prints a summary
+errors: both or neither form; a parameter without a range or a prior; a prior on a name that
+  is not calibrated (the names listed); data of unequal lengths or a single specimen without
+  noise; loglik returning NaN or the wrong count; the model failing (its message)
+example:
+  local r = smi.calibrate_bayes{
+    parameters = {{name = "a", lower = -5, upper = 5},
+                  {name = "b", prior = {dist = "normal", mean = 0, std = 2}}},
+    loglik = function(T)
+      local a, b = T:col(1), T:col(2)
+      return -0.5 * ((a - 1) ^ 2 / 0.25 + (b + 1) ^ 2 / 0.04)
+    end,
+    samples = 500, seed = 1,
+  }
+  print(r)
+  print(("a = %.2f +- %.2f, log Z = %.2f"):format(r.mean.a, r.std.a, r.log_evidence))
+
 @ module smi.refine
 Model refinement: the weighted decision matrix (spec section 6) over candidate model revisions;
 the paper's criteria are in require "smi.refine.criteria".
@@ -91,6 +131,7 @@ DocText doc_improve() {
   const smi::improve::IdentifiabilityOptions id;
   // The option list from the schema first; then the nested tables' defaults it mentions.
   const std::string text = fill(kText, {{"calibrate", improve::calibrate_schema().doc()},
+                                             {"calibrate_bayes", improve::calibrate_bayes_schema().doc()},
                                              {"decision_matrix", improve::decision_matrix_schema().doc()}});
   return {"bindings/improve/doc.cpp",
           fill(text, {{"ident_points", num(id.points)},
