@@ -39,7 +39,7 @@ local function spec(D)
       meaning = "calibration metric per response: the paper's probability residual, or minus the log-likelihood" },
     { name = "multistart", type = "integer", default = 1, min = 1,
       meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
-    { name = "prior", type = "path", meaning = "a Lua file returning smi.calibrate prior entries; none by default" },
+    { name = "prior", type = "path", meaning = "a Lua file returning prior entries {param, mean, std[, dist]}: densities in the trials' evidence; none by default" },
     { name = "max-refinements", type = "integer", default = D.limits.refinements, min = 0,
       meaning = "how many refinements (revised trials) to try after an invalid trial" },
     { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" },
@@ -122,6 +122,13 @@ function M.run(declaration, argv, run_opts)
   local seed = smi.seed
   local MAX_TRIALS = 1 + opt.max_refinements
   local PRIOR = require("smi.improve.prior_file").load(opt.prior)
+  -- the declared priors beside the file's, in the report's words
+  for _, n in ipairs(D.unknowns) do
+    for _, part in ipairs{ "mean", "std" } do
+      local p = D.specs[n].prior and D.specs[n].prior[part]
+      if p then PRIOR.labels[#PRIOR.labels + 1] = ("%s.%s ~ %s(%.6g, %.6g)"):format(n, part, p.dist, p.mean, p.std) end
+    end
+  end
   -- wall time and solver-run counts differ between identical runs (reused runs count 0), and so
   -- does a refinement candidate's run time: left out of the steps' result hashes, so a rerun does
   -- not mark the later steps stale

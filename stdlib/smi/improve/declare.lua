@@ -49,6 +49,13 @@ local FIELDS = {
     { "mean", "bounds", nil, "{lower, upper, start} of its mean (required)" },
     { "std", "bounds", nil, "{lower, upper, start} of its standard deviation (required)" },
     { "unit", "string", "", "the unit, for tables" },
+    { "prior", "table", nil, "prior knowledge of its distribution parameters: {mean = P, std = P} with each"
+      .. " P = {dist = \"normal\"|\"lognormal\", mean =, std =} (default: uniform on the range)" },
+  },
+  prior = {
+    { "dist", "string", "normal", "\"normal\" or \"lognormal\" (of the parameter itself)" },
+    { "mean", "number", nil, "the prior's mean (required)" },
+    { "std", "number", nil, "the prior's standard deviation, > 0 (required)" },
   },
   candidate = {
     { "name", "string", nil, "the candidate's name (required)" },
@@ -90,6 +97,8 @@ local FIELDS = {
   evidence = {
     { "margin", "number", 3, "the Bayes factor by which the chosen form must beat every other tried form"
       .. " (3: \"positive\" evidence, Kass & Raftery 1995)" },
+    { "n", "number", 500, "propagated samples per likelihood value of a trial's evidence (smi.calibrate_bayes n)" },
+    { "samples", "number", 500, "particles of the evidence's sampler (smi.calibrate_bayes samples)" },
   },
 }
 M.FIELDS = FIELDS
@@ -163,7 +172,19 @@ function M.part(t, part, where, top)
 end
 local part = M.part
 
---- An unknown's declaration, checked ({name, dist, mean, std, unit}); returns a plain copy.
+-- A declared prior on one distribution parameter, checked ({dist, mean, std}).
+local function prior_of(p, where)
+  local q = part(p, "prior", where)
+  if q.dist ~= "normal" and q.dist ~= "lognormal" then
+    fail(where, "field 'dist' must be \"normal\" or \"lognormal\" (got %s)", tostring(q.dist))
+  end
+  if not (q.std > 0) then fail(where, "field 'std' must be > 0 (got %s)", tostring(q.std)) end
+  if q.dist == "lognormal" and not (q.mean > 0) then fail(where, "a lognormal prior needs mean > 0 (got %s)", tostring(q.mean)) end
+  return q
+end
+
+--- An unknown's declaration, checked ({name, dist, mean, std, unit, prior}); returns a plain copy
+-- (prior: {mean = P, std = P} with the declared ones, nil without any).
 function M.unknown(u, where)
   need(u, "table", where, "unknown")
   need(u.name, "string", where, "name")
@@ -172,6 +193,17 @@ function M.unknown(u, where)
   if not smi.dist[x.dist] then fail(where, "field 'dist': '%s' is not an smi.dist family", x.dist) end
   local out = { dist = x.dist, mean = { x.mean[1], x.mean[2], x.mean[3] }, std = { x.std[1], x.std[2], x.std[3] },
                 unit = x.unit }
+  if x.prior then
+    for k in pairs(x.prior) do
+      if k ~= "mean" and k ~= "std" then
+        fail(where, "field 'prior': unknown key '%s'; give prior = {mean = {dist =, mean =, std =}, std = {...}}", tostring(k))
+      end
+    end
+    out.prior = {}
+    for _, k in ipairs{ "mean", "std" } do
+      if x.prior[k] then out.prior[k] = prior_of(x.prior[k], where .. ", prior." .. k) end
+    end
+  end
   return out
 end
 
@@ -270,7 +302,7 @@ end
 --- The reference of the declaration, from FIELDS: one line per field, "part.field = default
 -- -- type: meaning" (the declaration's own fields without a part).
 function M.reference()
-  local order = { "declaration", "response", "unknown", "candidate", "revision", "design", "limits",
+  local order = { "declaration", "response", "unknown", "prior", "candidate", "revision", "design", "limits",
                   "screening", "weights", "evidence" }
   local lines = {}
   for _, p in ipairs(order) do

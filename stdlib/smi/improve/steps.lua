@@ -6,6 +6,7 @@
 -- (run_context.lua): the checked declaration, the options, the sample sizes, the seed, the study.
 local trial = require "smi.improve.trial"
 local calibration = require "smi.improve.calibration"
+local evidence = require "smi.improve.evidence"
 local verdict = require "smi.improve.verdict"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
@@ -211,6 +212,31 @@ local function surrogate_step(run, k)
   end)
 end
 
+-- The trial's posterior and log evidence under the declared priors (evidence.lua): on the
+-- Krigings, or on the model itself when it runs in-process and one batch of it is cheaper than
+-- the Krigings' fit and predict (measured here, recorded in the result). --quick halves the sizes.
+local function trial_evidence(run, T, sur, R, k)
+  local D = run.D
+  local n, samples = D.evidence.n, D.evidence.samples
+  if run.opt.quick then n, samples = math.ceil(n / 2), math.ceil(samples / 2) end
+  local direct, cost
+  local m = run.model(T, { purpose = "evidence", batch = true, name = "trial" .. k .. "-evidence" })
+  if m.kind == "lua" then
+    local Y = {}
+    for _, r in ipairs(D.names) do Y[r] = smi.vec(sur.diagnostics[r].observed) end
+    local box = {}
+    for i, u in ipairs(T.unknowns) do box[i] = sur.design_bounds[u] end
+    local model_s, kriging_s = evidence.costs(m.model, smi.mat(sur.design), Y, D.names, box, n,
+      stream(run.seed, "trial evidence cost", k), T.trend)
+    cost = { model_s = model_s, kriging_s = kriging_s, points = n }
+    direct = m.model
+  end
+  return evidence.calibrate{ unknowns = T.unknowns, specs = T.specs, responses = D.names, data = run.vecs(R.data),
+    kriging = trial.krigings(sur), direct = direct, cost = cost,
+    priors = evidence.priors(T.unknowns, T.specs, run.prior.entries),
+    n = n, samples = samples, seed = stream(run.seed, "trial evidence", k) }
+end
+
 local function calibration_step(run, k)
   local D, cfg, opt = run.D, run.cfg, run.opt
   return timed(function(ctx)
@@ -224,7 +250,12 @@ local function calibration_step(run, k)
       kriging = trial.krigings(sur), design_bounds = sur.design_bounds, n = cfg.cal_n,
       seed = stream(run.seed, "trial calibration", k),
       maxeval = cfg.maxeval, bootstrap = cfg.bootstrap, boot_maxeval = cfg.boot_maxeval, metric = opt.metric,
-      multistart = opt.multistart, prior = run.prior.entries, prior_labels = run.prior.labels }
+      multistart = opt.multistart, prior_labels = run.prior.labels }
+    if not calibration.units_stop(res) then
+      res.evidence = trial_evidence(run, T, sur, ctx.results, k)
+      ctx:log("log evidence %.3f ± %.3f on the %s", res.evidence.log_evidence, res.evidence.log_evidence_error, res.evidence.on)
+      if #res.evidence.priors > 0 then res.near_optimal = evidence.within_posterior(res.near_optimal, res.evidence) end
+    end
     view("calibration")(run, ctx.report, res, T, k)
     local extra = hook(run, "calibration", ctx, T, res)
     if type(extra) == "table" then for key, v in pairs(extra) do res[key] = v end end
