@@ -55,6 +55,8 @@ function M.declaration(name, data_file, priors)
                  { name = "k2", dist = "normal", mean = { 450, 750, 600 }, std = { 5, 45, 15 }, prior = prior(600) } },
     form = { base = "rigid", tip = "none" },
     design = { n = 20, test_points = 0, solver_check = 10 },
+    -- small evidence sizes keep the tests fast; the forms' evidence differs by far more than its error
+    evidence = { n = 200, samples = 200 },
     model = M.model,
     candidates = {
       { name = "tip mass", implement_minutes = 10, revision = { form = { tip = "mass" } } },

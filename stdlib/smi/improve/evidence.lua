@@ -91,25 +91,4 @@ function M.calibrate(t)
   return out
 end
 
---- With declared priors, the calibrations a validation-only response is judged over: those of
--- the near-optimal set (they fit the calibrated responses as well as the optimum) that the
--- posterior allows (every parameter inside its 90 % posterior interval), and the posterior mean.
--- Returns a copy of near (calibration.lua's near_optimal record) with its points replaced.
-function M.within_posterior(near, ev)
-  local out = {}
-  for k, v in pairs(near) do out[k] = v end
-  local points = { ev.mean }
-  for _, p in ipairs(near.points) do
-    local inside = true
-    for name, iv in pairs(ev.interval) do
-      local v = p[name]
-      if v and (v < iv[1] or v > iv[2]) then inside = false end
-    end
-    if inside then points[#points + 1] = p end
-  end
-  out.points, out.source = points, ("the posterior mean and %d of the %d near-optimal calibrations inside the 90 %%"
-    .. " posterior intervals (%s)"):format(#points - 1, #near.points, near.source)
-  return out
-end
-
 return M

@@ -254,7 +254,6 @@ local function calibration_step(run, k)
     if not calibration.units_stop(res) then
       res.evidence = trial_evidence(run, T, sur, ctx.results, k)
       ctx:log("log evidence %.3f ± %.3f on the %s", res.evidence.log_evidence, res.evidence.log_evidence_error, res.evidence.on)
-      if #res.evidence.priors > 0 then res.near_optimal = evidence.within_posterior(res.near_optimal, res.evidence) end
     end
     view("calibration")(run, ctx.report, res, T, k)
     local extra = hook(run, "calibration", ctx, T, res)
