@@ -220,7 +220,7 @@ local function trial_evidence(run, T, sur, R, k)
   local n, samples = D.evidence.n, D.evidence.samples
   if run.opt.quick then n, samples = math.ceil(n / 2), math.ceil(samples / 2) end
   local direct, cost
-  local m = run.model(T, { purpose = "evidence", batch = true, name = "trial" .. k .. "-evidence" })
+  local m = run.model(T, { purpose = "evidence", name = "trial" .. k .. "-evidence" })
   if m.kind == "lua" then
     local Y = {}
     for _, r in ipairs(D.names) do Y[r] = smi.vec(sur.diagnostics[r].observed) end
@@ -252,7 +252,9 @@ local function calibration_step(run, k)
       maxeval = cfg.maxeval, bootstrap = cfg.bootstrap, boot_maxeval = cfg.boot_maxeval, metric = opt.metric,
       multistart = opt.multistart, prior_labels = run.prior.labels }
     if not calibration.units_stop(res) then
+      local t0 = smi.now()
       res.evidence = trial_evidence(run, T, sur, ctx.results, k)
+      res.evidence.seconds = smi.now() - t0
       ctx:log("log evidence %.3f ± %.3f on the %s", res.evidence.log_evidence, res.evidence.log_evidence_error, res.evidence.on)
     end
     view("calibration")(run, ctx.report, res, T, k)
