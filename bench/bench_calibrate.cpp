@@ -1,4 +1,4 @@
-// Speed and accuracy of calibration (issue 11), run by run_calibrate.sh beside SciPy's SLSQP
+// Speed and accuracy of calibration, run by run_calibrate.sh beside SciPy's SLSQP
 // with finite differences on the same objective (the CRN matrix, data and grids are written to
 // a folder the peer reads). Prints "key value" lines: wall and CPU seconds, the optimiser's
 // evaluations, objective evaluations, model runs and Jacobian runs, status, optimum.

@@ -1,4 +1,4 @@
-// Speed of the PR / intersection paths (issue 11 item 6), run by run_overlap.sh beside SciPy's
+// Speed of the PR / intersection paths, run by run_overlap.sh beside SciPy's
 // quad on the same pairs. Prints "key value" lines (seconds per call, best of several runs).
 //   - calib_loop_pr: what the calibration objective does per response and evaluation (KDE of
 //     2,000 CRN outputs on its 4,001-node grid + the trapezoid of |f_exp − f_pred|); this path

@@ -1,4 +1,4 @@
-// Speed of the stats kernels (issue 3), run by run_stats.sh beside SciPy/OpenTURNS/numpy on the
+// Speed of the stats kernels, run by run_stats.sh beside SciPy/OpenTURNS/numpy on the
 // same data (written here to a folder the peers read). Prints "key value" lines.
 //   bench_stats <dir>
 #include <chrono>

@@ -1,4 +1,4 @@
-// Kriging and propagation benchmark (issue 4). Writes the designs and test points it uses to
+// Kriging and propagation benchmark. Writes the designs and test points it uses to
 // DIR (CSV) so that bench/surrogate_peers.py feeds OpenTURNS and scikit-learn the very same
 // data, and its own figures to DIR/ours.json. Run through bench/run_surrogate.sh.
 //   borehole (8 inputs) and Ishigami (3), N = 50, 200, 1000: fit time, predict 1e6 points

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Peer for bench/calibrate_hidden.lua (issue 29): SciPy's SLSQP with its default 2-point
+"""Peer for bench/calibrate_hidden.lua: SciPy's SLSQP with its default 2-point
 differences (k + 1 = 11 model passes a gradient for the 10 parameters) on the same PR objective
 as smi's -- the same CRN sample (recovered from the start's inputs x0.txt), data, grids, bounds,
 start and scaling to [0, 1] -- timed in the same run; merges the Lua bench's output and writes
@@ -98,7 +98,7 @@ def dist(th):
     return np.max(np.abs(th - th_scipy) / (HI - LO))
 
 
-L = [f"# The hidden-style calibration (issue 29): smi vs SciPy SLSQP, {datetime.date.today()}", "",
+L = [f"# The hidden-style calibration: smi vs SciPy SLSQP, {datetime.date.today()}", "",
      "Ten parameters (means and stds of five inputs: normal, lognormal, uniform, normal, lognormal), three responses of a",
      "smooth nonlinear Lua function model WITHOUT a gradient, nine measurements each, PR on 4001-node grids, n = 2000 CRN",
      "samples (tests/lua/hidden_problem.lua). smi runs through smi-lua (the model is the Lua function); SciPy 2-point",

@@ -1,4 +1,4 @@
---- The steering-column study's trial-2 PR calibration, timed (issue 11's target: "converges in at
+--- The steering-column study's trial-2 PR calibration, timed (the target: "converges in at
 -- most 10 s on 2 cores, with the same optimum from 4 starts"). From a study output folder (its
 -- results.json and trial2_mode{1,4}.kriging) and the data file the study ran on, it rebuilds the
 -- study's stage-2 call with the study's own code (calibration.lua: M.pr_stage, M.grids_of,
@@ -334,7 +334,7 @@ local function agree(s)
     a and a.largest_prediction_distance and ("%.2g"):format(a.largest_prediction_distance) or "?", #s.optima,
     tostring(s.starts_agree), out.identifiability.tolerance)
 end
-w("- issue 11's target, at most 10 s on 2 cores: from the stage-1 point %s, from the declared starts %s; the same"
+w("- the target, at most 10 s on 2 cores: from the stage-1 point %s, from the declared starts %s; the same"
   .. " optimum from 4 starts: from the stage-1 point %s, from the declared starts %s.", verdict(out.stage1_start),
   verdict(out.declared_start), agree(out.stage1_start), agree(out.declared_start))
 w("- the study's own call (one start, from the stage-1 point) reproduced: objective %.12g in %d evaluations (%s, %.2f s)"

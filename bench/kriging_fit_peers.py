@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Kriging fit speed against the fastest peer configuration that is accurate (issue 16): on the
+"""Kriging fit speed against the fastest peer configuration that is accurate: on the
 designs and test points bench_surrogate wrote to DIR (borehole, 8 inputs; Ishigami, 3 inputs; LHS
 of N = 200 and 1,000 points; 10,000 uniform test points), each peer configuration is fitted and
 scored (fit time, test RMSE, test Q2); the comparison is against the FASTEST configuration that
 reaches Q2 >= 0.99 (a peer's fast fit that collapses, e.g. OpenTURNS on raw borehole inputs, is
-no peer). Target (issue 16): ours >= 3x faster at test RMSE <= 1.1x that configuration's.
+no peer). Target: ours >= 3x faster at test RMSE <= 1.1x that configuration's.
 
 usage: kriging_fit_peers.py DIR OUT.md
 Peers: OpenTURNS 1.20 KrigingAlgorithm (constant basis, SquaredExponential, TNC): raw inputs
@@ -66,7 +66,7 @@ CONFIGS = [("OT scaled", ot_fit(True, 1), "ot"), ("OT raw, scales from ranges", 
            ("sk, 0 restarts", sk_fit(0), "sk"), ("sk, 2 restarts", sk_fit(2), "sk"), ("sk, 5 restarts", sk_fit(5), "sk")]
 
 ours = json.load(open(f"{DIR}/ours.json"))
-L = ["# Kriging fit speed against the fastest accurate peer configuration (issue 16)", "",
+L = ["# Kriging fit speed against the fastest accurate peer configuration", "",
      "Same designs (LHS, N points) and the same 10,000 uniform test points for every fit; written by",
      "bench/run_kriging_fit.sh. 'Fastest accurate' = the fastest peer configuration with test Q2 >= 0.99.",
      "Target: fit ratio (that peer's time / ours) >= 3 at RMSE ratio (ours / that peer's) <= 1.1.",

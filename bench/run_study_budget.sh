@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The steering-column study at the real solver's cost (issue 16): the whole study run both ways in
+# The steering-column study at the real solver's cost: the whole study run both ways in
 # one run, each in a fresh output folder (a fresh evaluation store: no run reused):
 #   economical  the default (surrogate screening of 300 runs, 20 Kriging test points, a 40-point
 #               stratified solver check)
-#   full        --screening full --test-points 50 --solver-check 300 (the study before issue 16:
+#   full        --screening full --test-points 50 --solver-check 300 (the study before the surrogate screening:
 #               eq.-3 screening on smi-column-fe itself, (46 + 1) x 200 runs)
 # then bench/study_budget.lua writes solver runs per step, wall time and the conclusions side by
 # side to bench/results/study_budget.md.

@@ -1,4 +1,4 @@
---- Screening at the real solver's cost (issue 16): the 46 steering-column inputs screened by the
+--- Screening at the real solver's cost: the 46 steering-column inputs screened by the
 -- full eq.-3 PDF-area method ((46 + 1) x n smi-column-fe solutions) and by the surrogate method
 -- (`runs` solutions, a ridge quadratic per mode, eq.-3 on it; Borgonovo delta from the same
 -- runs), both on model A (rigid airbag) through the study's own batch driver. Writes
@@ -48,7 +48,7 @@ local t_sur = smi.now() - t0
 
 local L = {}
 local function w(fmt, ...) L[#L + 1] = fmt:format(...) end
-w("# Screening at the solver's cost: full eq.-3 vs surrogate (issue 16)")
+w("# Screening at the solver's cost: full eq.-3 vs surrogate")
 w("")
 w("Model A (rigid airbag), the 46 inputs at the spec's default distributions, smi-column-fe in batch mode on 2 cores,")
 w("CRN seed %d. Written by bench/run_screening_budget.sh on %s.", seed, os.date("!%Y-%m-%d %H:%M UTC"))

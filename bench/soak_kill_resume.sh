@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak test of "nothing lost" (issue 14): runs the quick steering-column study once to the end
+# Soak test of "nothing lost": runs the quick steering-column study once to the end
 # (the reference), then again in a fresh folder killed with SIGKILL at KILLS random moments,
 # resuming each time, and finally to the end. Reports per kill the moment, the solver processes
 # launched and the runs reused by the resume (from the store), PRAGMA integrity_check, whether

@@ -1,4 +1,4 @@
---- The study's two paths side by side (issue 16): reads the results.json of the economical and
+--- The study's two paths side by side: reads the results.json of the economical and
 -- the full run (bench/run_study_budget.sh) and writes study_budget.md under --out: solver runs
 -- per step, wall time and the conclusions the issue names (screening's top four per mode, each
 -- trial's verdicts, the refinement's choice, the calibrated means against the full run's bootstrap
@@ -15,13 +15,13 @@ local function w(fmt, ...) L[#L + 1] = fmt:format(...) end
 local same = true
 local function mark(ok) if not ok then same = false end return ok and "yes" or "**no**" end
 
-w("# The study at the solver's cost: economical vs full path (issue 16)")
+w("# The study at the solver's cost: economical vs full path")
 w("")
 w("scripts/steering_column.lua on the committed data, each path in a fresh output folder (no run reused),")
 w("smi-column-fe on 2 cores%s. Written by bench/run_study_budget.sh on %s.", extra ~= "" and (", extra options `" .. extra .. "`") or "",
   os.date("!%Y-%m-%d %H:%M UTC"))
 w("Economical (the default): surrogate screening of 300 runs, 20 Kriging test points, a 40-point stratified solver check.")
-w("Full: `--screening full --design fixed --test-points 50 --solver-check 300` (the study before issue 16); both with `--design fixed`.")
+w("Full: `--screening full --design fixed --test-points 50 --solver-check 300` (the study before the surrogate screening); both with `--design fixed`.")
 w("")
 w("## Solver runs (smi-column-fe solutions) per step")
 w("")

@@ -97,7 +97,7 @@ if CACHE:
 def fmt(v, p=3):
     return "–" if v is None else (f"{v:.{p}g}" if isinstance(v, float) else str(v))
 
-L = ["# Surrogate benchmark (issue 4)", "",
+L = ["# Surrogate benchmark", "",
      "Same LHS designs and the same 10,000 uniform test points for all three; 'predict' = mean at 1e6 points",
      "(the test points repeated 100 times; peers timed on the first 1e5 of them x 10, their cost being linear in",
      "the points). Times in seconds, one repeat, on the shared 2-core machine (other jobs running: noisy).",

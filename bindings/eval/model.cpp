@@ -66,7 +66,7 @@ int model_plan(lua_State* L) {
     lua::set_integer(L, "reused", static_cast<lua_Integer>(p.reused));
     lua::set_integer(L, "runs", static_cast<lua_Integer>(p.runs));
     if (p.eta_seconds >= 0) lua::set_number(L, "eta", p.eta_seconds);
-    // the stored mean run time of this program and version (a study's cost plan, issue 16)
+    // the stored mean run time of this program and version (a study's cost plan)
     if (p.timing.count > 0) lua::set_number(L, "mean_seconds", p.timing.mean);
     return 1;
   });

@@ -313,7 +313,7 @@ void place_solver_outputs(lua::Policy& pol, const RunContext& ctx, const SolverO
 
 // version_args = {"--version"}: the program run once with these arguments (no shell, in its runs
 // folder, at most kVersionSeconds); the first non-empty line of its stdout is the version line
-// the provenance records (issue 24). Throws naming the program when it fails or prints nothing.
+// the provenance records. Throws naming the program when it fails or prints nothing.
 constexpr double kVersionSeconds = 10;  // literal: how long a --version probe may take
 std::string version_line(const se::CommandConfig& c, const std::vector<std::string>& args) {
   se::SpawnSpec sp;
@@ -351,7 +351,7 @@ std::string version_line(const se::CommandConfig& c, const std::vector<std::stri
                           c.program_name, se::describe_wait_status(st)));
 }
 
-// Provenance (issue 24): the program this model runs, its hash, declared version and version line.
+// Provenance: the program this model runs, its hash, declared version and version line.
 void record_program(const lua::Policy& pol, bool dry_run, const se::CommandConfig& c, const SolverOptions& so) {
   if (!pol.record) return;
   ProgramRun p;

@@ -1,5 +1,5 @@
 #pragma once
-// The model's Jacobian for smi.calibrate's analytic gradient (issue 11 item 1): per response,
+// The model's Jacobian for smi.calibrate's analytic gradient: per response,
 // dY/dX at the CRN inputs. A part that is an smi.kriging gives it in closed form (no Lua call);
 // a model object with a gradient method gives m:gradient(X) (an N×k smi.mat for its one output,
 // or {output = mat}); a plain function, or an object without one, has none and the calibration

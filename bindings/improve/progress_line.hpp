@@ -1,5 +1,5 @@
 #pragma once
-// The terminal line of a calibration's long stages (issue 29 item 4), drawn by the same
+// The terminal line of a calibration's long stages, drawn by the same
 // show_progress/format_duration as the solver runs' line (platform/eval/progress_line.hpp):
 //   calibration: start 2/4, 137 evaluations, best 0.2881, ETA 0:42
 //   bootstrap: 12/100 replicates, 1234 evaluations, ETA 3:10

@@ -2,7 +2,7 @@
 //            bootstrap = 200, level = 0.95, output =, order =,
 //            method = "full"|"surrogate", runs = 300, basis = "quadratic"|"linear", q2_min = 0.9,
 //            delta = true, classes = 0}
-// method = "surrogate" (issue 16) runs the model `runs` times only, fits a ridge polynomial per
+// method = "surrogate" runs the model `runs` times only, fits a ridge polynomial per
 // output and screens that: the result adds method, runs (model runs), q2, r2, lambda, terms,
 // delta_floor, delta_classes and a `delta` (Borgonovo, from the runs) in every row.
 // -> a ranked table (one per output; with several outputs and no `output`, a table of them by

@@ -296,14 +296,14 @@ void Runtime::build_policy() {
   policy_.write_roots.push_back(policy_.out_root);
   for (const auto& d : cfg_.allow_write) policy_.write_roots.push_back(lua::resolve_path(d));
   // --store is read-only: the evaluator opens it read-only and immutable, and a script may read
-  // it but not write it (issue 13 item 5).
+  // it but not write it.
   if (!cfg_.store_path.empty()) policy_.read_roots.push_back(lua::resolve_path(cfg_.store_path));
   policy_.exec_allowed = cfg_.allow_exec;
 
   policy_.unrestricted = !cfg_.sandbox;
   policy_.allow_env = cfg_.allow_env;
 
-  // Provenance (issue 24): the options of smi-lua that change results, and where reads are
+  // Provenance: the options of smi-lua that change results, and where reads are
   // outputs of the run rather than inputs (the output folder: results.json, the runs' folders).
   policy_.record = &record_;
   record_.exclude_roots.push_back(policy_.out_root.string());

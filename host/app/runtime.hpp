@@ -102,8 +102,8 @@ class Runtime {
   vm::ModuleSearch modules_;
   lua_State* L_;
   bool one_line_ = false;  // set_one_line_errors
-  vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs (issue 7)
-  RunRecord record_;  // what the run read and ran: smi.provenance() (issue 24)
+  vm::LibrarySet libs_;  // --lib / SMI_PATH libraries, checked before anything runs
+  RunRecord record_;  // what the run read and ran: smi.provenance()
 
  public:
   const vm::LibrarySet& libraries() const { return libs_; }

@@ -1,5 +1,5 @@
 // smi-lua verify RESULTS.json [--json]: re-checks everything a study's results depend on, as its
-// results file recorded it under "provenance" (issue 24): the study script, every file the run
+// results file recorded it under "provenance": the study script, every file the run
 // read (Lua modules, data, priors, templates; the stdlib embedded in the binary), every program
 // it ran, the libraries (--lib / SMI_PATH now, else the folder recorded), and the build of
 // smi-lua. Each difference is listed (changed, with both hashes; missing; added files of a
@@ -462,7 +462,7 @@ int cmd_verify(const Args& a, const std::vector<std::string>& words) {
     return 2;
   }
   // Everything shown comes from the results file: escaped, so a study cannot print its own
-  // "ok" lines over the real ones with terminal escapes (issue 23).
+  // "ok" lines over the real ones with terminal escapes.
   for (std::string* f : {&rec.smi_lua, &rec.script_path, &rec.script_hash, &rec.cwd}) *f = printable(*f);
   for (std::string& c : rec.command) c = printable(c);
   for (auto& [path, info] : rec.files) path = printable(path);

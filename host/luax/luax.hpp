@@ -1,5 +1,5 @@
 #pragma once
-// The helper layer between the Lua-free kernels and Lua (shared/conventions.md §3.4-3.6, 3.11).
+// The helper layer between the Lua-free kernels and Lua (docs/design.md).
 //
 // Rules every binding follows:
 //  * A bound function runs its C++ work inside protect(): a std::exception becomes a Lua error
@@ -69,7 +69,7 @@ void call(lua_State* L, int nargs, int nresults);
 // ---------------------------------------------------------------------------------------------
 // Boxes: userdata holding a pointer to a heap object owned by Lua's GC.
 //
-// A script must not be able to free what C++ is still using (issue 13):
+// A script must not be able to free what C++ is still using:
 //  * every smi metatable has __metatable (a copy without __gc/__close), so getmetatable() never
 //    hands out a finalizer or the metatable itself;
 //  * __gc and __close check the type of their argument (luaL_checkudata on their own type), so

@@ -1,5 +1,5 @@
 #pragma once
-// One option schema per bound function (issue 27): a static table of entries {key, member,
+// One option schema per bound function: a static table of entries {key, member,
 // type, range, doc line} from which come
 //   * the typed reads of an options table into the function's option struct,
 //   * the unknown-key check with its "did you mean" suggestion,

@@ -51,11 +51,11 @@ struct Policy {
   // sandbox's: they are in the RunContext (core/run_context.hpp, luax/run_context.hpp).
 
   std::filesystem::path out_root;                  // output_root(out_dir) at start (made on demand, no symlinks)
-  /// What the run read and ran (provenance, issue 24); set by the runtime, null in kernel tests.
+  /// What the run read and ran (provenance); set by the runtime, null in kernel tests.
   /// open_read records every file it opens here (hashed from the opened descriptor).
   RunRecord* record = nullptr;
 
-  // Files a script names are opened only through these (issue 13 item 1): the path is walked
+  // Files a script names are opened only through these: the path is walked
   // one component at a time through descriptors (core/path_walk.hpp), the canonical path reached
   // is checked against the roots, and the file is opened relative to the folder descriptor that
   // was checked, with O_NOFOLLOW. Nothing is re-opened by name afterwards. Symlinks are followed

@@ -1,6 +1,5 @@
 #pragma once
-// The sandbox: the globals a script sees, built by allow-list (Redis, LuaSandbox, LÖVE; see
-// shared/conventions.md §3.8).
+// The sandbox: the globals a script sees, built by allow-list (as Redis, LuaSandbox and LÖVE do).
 //
 // The state is made for one run and restricted before any script code runs, so the standard
 // libraries' dangerous entries are never reachable: removed, or replaced by wrappers that check

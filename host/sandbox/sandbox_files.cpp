@@ -1,7 +1,7 @@
 // The file functions of the sandbox. Each opens its file through the policy (luax/policy.hpp:
 // walked component by component, checked, opened relative to the checked folder) and hands
 // Lua a file made from that descriptor; nothing is re-opened by name, so the checked path and
-// the opened file cannot differ (issue 13 item 1). os.remove and os.rename act on the checked
+// the opened file cannot differ. os.remove and os.rename act on the checked
 // folder's descriptor (unlinkat, renameat). A denial is a Lua error naming the function, the
 // path, the rule and the flag that allows it; an OS failure is returned as io.open returns it
 // (nil, message, errno).

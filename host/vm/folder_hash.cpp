@@ -28,7 +28,7 @@ namespace {
 /// (opened without following a symlink); a symlink whose target, resolved component-wise, is a
 /// regular file inside the library by that file's content (what the module loader reads); any
 /// other symlink (out of the library, dangling, to a folder) by its link text, so provenance
-/// records that the link changed without hashing what it points to (issue 13 item 6).
+/// records that the link changed without hashing what it points to.
 /// Returns "" for entries that are left out (FIFOs, sockets, devices, links to folders inside).
 std::string entry_digest(const fs::path& p, const std::string& top) {
   struct stat st;

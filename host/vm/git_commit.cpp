@@ -18,7 +18,7 @@ constexpr std::size_t kPackedMax = 64u << 20;        // packed-refs
 /// The text of a regular file reached from `file` without leaving `top` (canonical), at most
 /// `limit` bytes; "" otherwise. The walk and open are the sandbox's (core/path_walk.hpp): a
 /// .git file, commondir or symlink pointing out of the checkout is not followed, and a FIFO or
-/// device (which would hang or never end) is not read (issue 13 item 6).
+/// device (which would hang or never end) is not read.
 std::string read_within(const fs::path& file, const std::string& top, std::size_t limit) {
   const pathwalk::Walk w = pathwalk::walk(file.string(), true);
   if (w.error || !w.exists || !S_ISREG(w.st.st_mode) || !pathwalk::within(w.canonical(), top)) return {};

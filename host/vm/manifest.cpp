@@ -206,7 +206,7 @@ Manifest parse_manifest(const std::string& text, const std::filesystem::path& fi
 }
 
 Manifest read_manifest(const std::filesystem::path& file) {
-  // Read as the sandbox reads (issue 13 item 6): the manifest must be a regular file inside its
+  // Read as the sandbox reads: the manifest must be a regular file inside its
   // library folder (a symlink to /dev/zero, a FIFO or a file elsewhere would hang the run before
   // any script code, or read what the library may not), at most 1 MiB.
   const pathwalk::Walk w = pathwalk::walk(file.string(), true);

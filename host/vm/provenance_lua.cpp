@@ -135,7 +135,7 @@ int smi_provenance(lua_State* L) {
   int i = 0;
   for (const Library& l : set.all()) {
     lua_newtable(L);
-    push_library_fields(L, l);  // libs (issue 25): where a library came from (source, locked commit) goes there
+    push_library_fields(L, l);  // libs: where a library came from (source, locked commit) goes there
     set_string(L, "hash", l.hash().digest);
     if (files) {
       lua_newtable(L);

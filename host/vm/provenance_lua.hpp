@@ -1,5 +1,5 @@
 #pragma once
-// smi.provenance(): everything a run's numbers depend on (issue 24), as results.json records it
+// smi.provenance(): everything a run's numbers depend on, as results.json records it
 // under "provenance" and `smi-lua verify` re-checks it:
 //   smi_lua, lua, build = {compiler =, eigen =, nlopt =, sqlite =, re2 =, ...}, seed,
 //   command = {argv...}, cwd, arguments = {script args...}, options = {seed =, executor =, ...},

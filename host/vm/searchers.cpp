@@ -89,7 +89,7 @@ int stdlib_found(lua_State* L) {
 
 /// searcher 2: the stdlib, from disk when a stdlib dir is set (development), else embedded.
 /// The stdlib folder is a root of this searcher only: scripts' read roots do not grow with it
-/// (issue 13 item 6), and a file reached through a symlink out of it is refused.
+///, and a file reached through a symlink out of it is refused.
 int stdlib_searcher(lua_State* L) {
   const char* name = luaL_checkstring(L, 1);
   const ModuleSearch& ms = search(L);

@@ -31,7 +31,7 @@ function M.add(text)
 end
 
 -- The public stdlib modules (the rest are their parts). Walked like the smi table.
-M.stdlib = { "smi.options", "smi.study", "smi.report", "smi.testing", "smi.refine.criteria", "smi.improve" }
+M.stdlib = { "smi.options", "smi.study", "smi.report", "smi.testing", "smi.refine.criteria", "smi.improve", "smi.strict" }
 
 -- Lua classes have no registry metatable: their methods are found on an instance.
 local classes = {

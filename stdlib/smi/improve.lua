@@ -1,13 +1,13 @@
 --- smi.improve: the method of statistical model improvement (Son et al. 2020) as a library. A
 -- study declares its responses, unknowns, model factory, refinement candidates, criteria and
--- limits (docs/new-product.md, IMPROVE_API.md); smi.improve.run(declaration, arg) runs the loop
--- through smi.study (resume, --only/--from, --dry-run cost plan):
+-- limits (docs/new-product.md; the fields: declare.lua); smi.improve.run(declaration, arg) runs
+-- the loop through smi.study (resume, --only/--from, --dry-run cost plan):
 --   data (and a units check on one nominal run), characterize (KDE vs KDE-ebd), [screening],
---   then per trial k: trialk_surrogate, trialk_calibration, trialk_validation and, after an
---   invalid trial, refinementk (decision matrix; the chosen revision goes on top of the kept
+--   then per trial k: trialk_surrogate, trialk_calibration, trialk_validation and, after a trial
+--   that is not valid, refinementk (decision matrix; the chosen revision goes on top of the kept
 --   ones); summary. It stops when a trial is valid, when the data cannot decide, or at the limit.
 -- The numerics are the kernels' (smi.kriging, smi.calibrate, smi.propagate, smi.metric, ...);
--- this file places them and the report; smi/improve/*.lua hold one job each.
+-- smi/improve/*.lua hold one job each: steps.lua computes, view/*.lua write the report.
 local doc = require "smi.doc"
 doc.add[==[
 @ module smi.improve
@@ -21,8 +21,9 @@ local declare = require "smi.improve.declare"
 local verdict = require "smi.improve.verdict"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
-local figs = require "smi.improve.figures"
 local revise = require "smi.improve.revise"
+local factory = require "smi.improve.factory"
+local run_context = require "smi.improve.run_context"
 
 local M = {}
 
@@ -38,7 +39,7 @@ local function spec(D)
       meaning = "calibration metric per response: the paper's probability residual, or minus the log-likelihood" },
     { name = "multistart", type = "integer", default = 1, min = 1,
       meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
-    { name = "prior", type = "path", meaning = "a Lua file returning smi.calibrate prior entries; none by default" },
+    { name = "prior", type = "path", meaning = "a Lua file returning prior entries {param, mean, std[, dist]}: densities in the trials' evidence; none by default" },
     { name = "max-refinements", type = "integer", default = D.limits.refinements, min = 0,
       meaning = "how many refinements (revised trials) to try after an invalid trial" },
     { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" },
@@ -63,19 +64,6 @@ local function spec(D)
   return s
 end
 
--- Sample sizes. Quick differs only where the verdicts do not depend on it.
-local function config(opt, D)
-  local cfg = opt.quick and {
-    screen_n = 40, cal_n = 2000, maxeval = 300, bootstrap = 0, val_n = 20000, near_n = 5000,
-  } or {
-    screen_n = 200, cal_n = 2000, maxeval = 300, bootstrap = 50, val_n = 20000, near_n = 5000,
-  }
-  cfg.screening, cfg.screen_runs, cfg.design = opt.screening, opt.screening_runs, opt.design
-  cfg.test_points = opt.test_points or D.design.test_points
-  cfg.solver_check = opt.solver_check or D.design.solver_check
-  return cfg
-end
-
 doc.add[==[
 @ smi.improve.model(D, opt, trial, ctx) -> model
 The declaration's model factory called for one trial model (smi.improve.revise's record): the
@@ -95,25 +83,7 @@ example:
   local m = improve.model(D, {}, trial, {purpose = "nominal", name = "doc"})
   print(m:evaluate(smi.mat{{2}}).y[1])
 ]==]
---- The factory's model for `T` (a trial model record or the initial one), checked and counted:
--- a factory error names the candidate; missing outputs name the response.
-function M.model(D, opt, T, ctx)
-  local who = #T.applied > 0 and ("candidate '%s'"):format(T.applied[#T.applied]) or "the initial model"
-  ctx.form, ctx.fixed, ctx.opt = T.form, T.fixed, opt
-  local ok, m = pcall(D.model, T.applied, T.unknowns, ctx)
-  if not ok then error(("smi.improve: %s: the model factory failed (%s): %s"):format(who, ctx.purpose, tostring(m)), 0) end
-  if type(m) ~= "table" and type(m) ~= "userdata" then
-    error(("smi.improve: %s: the model factory returned a %s, not an smi.model"):format(who, type(m)), 0)
-  end
-  declare.outputs(D, m, who)
-  local ins = m.inputs
-  if type(ins) == "table" and table.concat(ins, ",") ~= table.concat(T.unknowns, ",") then
-    error(("smi.improve: %s: the model factory's model takes inputs {%s}, but the trial's unknowns are {%s} (%s):"
-      .. " give smi.model the `unknowns` list it receives, in that order"):format(who, table.concat(ins, ", "),
-      table.concat(T.unknowns, ", "), ctx.purpose), 0)
-  end
-  return cost.wrap(m, ctx.name)
-end
+M.model = factory.model
 
 doc.add[==[
 @ smi.improve.run(declaration, arg [, run_opts]) -> results, conclusion
@@ -146,14 +116,19 @@ example:
 function M.run(declaration, argv, run_opts)
   run_opts = run_opts or {}
   local D = declare.check(declaration)
-  text.declare(D)
-  figs.declare(D)
   local opt = options.parse(argv or {}, spec(D))
   if not opt.data then error(("smi.improve: %s: no data: give --data FILE.csv or declare `data`"):format(D.name), 0) end
-  local cfg = config(opt, D)
-  local seed = smi.seed or 20200214
+  local cfg = run_context.config(opt, D)
+  local seed = smi.seed
   local MAX_TRIALS = 1 + opt.max_refinements
   local PRIOR = require("smi.improve.prior_file").load(opt.prior)
+  -- the declared priors beside the file's, in the report's words
+  for _, n in ipairs(D.unknowns) do
+    for _, part in ipairs{ "mean", "std" } do
+      local p = D.specs[n].prior and D.specs[n].prior[part]
+      if p then PRIOR.labels[#PRIOR.labels + 1] = ("%s.%s ~ %s(%.6g, %.6g)"):format(n, part, p.dist, p.mean, p.std) end
+    end
+  end
   -- wall time and solver-run counts differ between identical runs (reused runs count 0), and so
   -- does a refinement candidate's run time: left out of the steps' result hashes, so a rerun does
   -- not mark the later steps stale
@@ -161,8 +136,9 @@ function M.run(declaration, argv, run_opts)
     volatile = { "wall_seconds", "solver_runs", "run_seconds" },
     report = { title = D.title or D.name, subtitle = (D.subtitle or "") .. (opt.quick and " (quick run)" or ""),
                author = D.author or "smi.improve" } }
-  local E = { D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR, max_trials = MAX_TRIALS }
-  require("smi.improve.steps").add(E)
+  local run = run_context.new{ D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR,
+                               max_trials = MAX_TRIALS }
+  require("smi.improve.steps").add(run)
 
   -- the declared cap on solver runs holds for the plan's upper bound, before anything runs
   local plan_rows = cost.plan{ cfg = cfg, max_trials = MAX_TRIALS, D = D }
@@ -191,12 +167,13 @@ function M.run(declaration, argv, run_opts)
     s:annotate("conclusion", verdict.top_level(c))
     s:annotate("cost", { solver_runs = summary.solver_runs_total, screening = D.screening and cfg.screening or "none",
                          test_points = cfg.test_points, solver_check = cfg.solver_check })
-    for i, t in ipairs(c.trials) do print(text.trial_line(i, t, c.refinements[i])) end
+    for i, t in ipairs(c.trials) do print(text.trial_line(D, i, t, c.refinements[i])) end
     print(summary.words or ("Conclusion: the model is " .. tostring(c.verdict)))
     return results, verdict.top_level(c)
   end
   return results, nil
 end
 
-M.BADGE = BADGE
+--- The declaration's reference (declare.lua's schema), as `smi-lua doc smi.improve.declaration` shows it.
+M.declaration = declare.reference
 return M

@@ -1,4 +1,4 @@
---- What each step of a smi.study used (issue 24), so that a partial run (--only, --from) never
+--- What each step of a smi.study used, so that a partial run (--only, --from) never
 -- mixes old and new inputs without saying so. A step's inputs, saved beside its result in
 -- results.json:
 --   inputs = {

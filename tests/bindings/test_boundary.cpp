@@ -1,4 +1,4 @@
-// Errors across the C++/Lua boundary (shared/conventions.md §3.4-3.5), on a real sandboxed
+// Errors across the C++/Lua boundary, on a real sandboxed
 // runtime: a kernel exception becomes a Lua error with its message and the script's file:line;
 // an error raised in a Lua callback called from C++ keeps its message; no C++ destructor is
 // skipped while a Lua error unwinds C++ frames (we link Debian's C++ build of Lua).
@@ -177,7 +177,7 @@ TEST_CASE("a boxed C++ object is destroyed by __gc and by __close, exactly once"
     CHECK(g_alive == 1);  // tmp collected, keep alive
     CHECK(rt.run_string("do local c <close> = new_counted() end", "=t") == 0);
     CHECK(g_alive == 1);  // closed at the end of the block
-    // Scripts never see the metatable (issue 13): getmetatable gives a copy without finalizers.
+    // Scripts never see the metatable: getmetatable gives a copy without finalizers.
     CHECK(rt.run_string("local mt = getmetatable(new_counted()) assert(mt.__name == 'test.Counted' and not mt.__gc "
                         "and not mt.__close) collectgarbage() collectgarbage()",
                         "=t") == 0);

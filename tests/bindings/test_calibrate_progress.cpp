@@ -1,4 +1,4 @@
-// The calibration's progress line (issue 29 item 4): the rows the kernel's tracker makes (stage,
+// The calibration's progress line: the rows the kernel's tracker makes (stage,
 // units done, evaluations, best, ETA from the rate so far) and the text the terminal shows, the
 // solver runs' show_progress/format_duration reused. Whether it shows (a terminal, not --quiet,
 // progress ~= false) is the binding's; the tests below need no terminal.

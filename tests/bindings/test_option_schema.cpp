@@ -1,4 +1,4 @@
-// The option schema (host/luax/option_schema.hpp, issue 27) on a real lua_State: an unknown key
+// The option schema (host/luax/option_schema.hpp) on a real lua_State: an unknown key
 // names the key, the function and the closest key; a wrong type names the key, the expected and
 // the given type; a value out of range names the range; every schema of the bindings reads an
 // empty table into a struct equal to the default-constructed one, and its reference lines show

@@ -1,4 +1,4 @@
-// --max-memory is checked before the allocation (issue 23, class 5): each binding that allocates
+// --max-memory is checked before the allocation: each binding that allocates
 // a size the script chose asks the budget first, inside protect(). The old bindings allocated
 // the whole result and counted it when pushing it, so a study under --max-memory 64 reached
 // 1 GB before being refused (and smi.vec.range failed with the error value "1"). Each case asks

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Options in any order (issue 28): smi-lua's own options go before the script. After it, one the
+# Options in any order: smi-lua's own options go before the script. After it, one the
 # study did not declare is refused with the command line that works; one the study declares
 # (--dry-run, --quiet) is the study's. smi.options' list of smi-lua's options matches --help.
 source "$(dirname "$0")/lib.sh"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Results never shrink or tear (issue 14 item 2): results.json and report.html are replaced
+# Results never shrink or tear: results.json and report.html are replaced
 # whole (temporary file, checked writes, fsync, rename). A full disk while results.json is
 # written is an error naming the file, exit 1, and the previous results.json stays valid; a
 # rerun that fails keeps every saved step (no shrinking) and leaves report.html as it was.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The executor is the user's choice (issue 23, class 1): a study's executor = {...} may only
+# The executor is the user's choice: a study's executor = {...} may only
 # narrow what --executor/--slurm-opt allow. Slurm runs only with --executor slurm; partition,
 # account, qos, time, mem, cpus and sbatch arguments only from --slurm-opt; sbatch arguments are
 # read as sbatch reads them and held to an allow-list. Fake sbatch/scontrol first in PATH record

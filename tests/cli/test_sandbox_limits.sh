@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Limits that reach C++ (issue 13 item 4, issue 14 item 5): --timeout and Ctrl-C stop long
+# Limits that reach C++: --timeout and Ctrl-C stop long
 # kernels through smi::cancel; a pattern match or a finalizer that the Lua hook cannot reach is
 # ended by the watchdog with a message; vec/mat data count against --max-memory; os.getenv
 # answers only for --allow-env names; the globals are an allow-list. Every case here hung,

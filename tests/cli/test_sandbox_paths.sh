@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sandbox's path checks against hostile paths (issue 13 items 1 and 5): one test per denial,
+# The sandbox's path checks against hostile paths: one test per denial,
 # for every function that opens, writes, removes or renames a file a script names. Each attack
 # here got through the resolver of before (it canonicalised the existing part of a path, then
 # normalised the rest as text and opened the *name*): a missing folder then "..", an over-long

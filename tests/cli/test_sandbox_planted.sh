@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Links planted before the run (issue 23, class 4), as a study bundle unpacked in the working
+# Links planted before the run, as a study bundle unpacked in the working
 # folder brings them: at smi-out, smi-out/<script>, --out, .smi-lock, the store and its -wal and
 # -shm. Roots are opened, never resolved: a link where smi-lua will make a folder or write a
 # file is refused by name, and nothing outside changes. Hard links are refused for every write.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Solvers (issue 23, class 6): the environment is a list (tested in test_sandbox_executor.sh);
+# Solvers: the environment is a list (tested in test_sandbox_executor.sh);
 # a failing solver's log is read without following a link it left in its place; an allowed
 # program that lies under a folder the script may write is refused (write or execute, not both).
 source "$(dirname "$0")/lib.sh"

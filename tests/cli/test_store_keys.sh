@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The evaluation store against forged records (issue 13 item 5): a record's key includes the
+# The evaluation store against forged records: a record's key includes the
 # SHA-256 of the program file, so a record made by another program of the same file name and
 # a version string the script chose is not reused; a store of the old key scheme is refused
 # with a message saying why; --store is read, never written.
@@ -44,7 +44,7 @@ run "an old --store is refused with a message" 1 "$SMI" --quiet --allow-exec "$W
     --store old/evaluations.sqlite study/run.lua "$WORK/b/solver"
 has_err "(it was given as --store)"
 
-# keys include the study script's hash wherever a store is read (issue 23): a store made by
+# keys include the study script's hash wherever a store is read: a store made by
 # another script with the same program, deck and version is not reused, --store or local
 sed 's/print("y=" .. Y.y\[1\]/print("forged by another script"); print("y=" .. Y.y[1]/' study/run.lua > study/other.lua
 printf '#!/bin/sh\necho "y = 1"\n' > b/solver

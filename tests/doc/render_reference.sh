@@ -36,7 +36,7 @@ chrome --dump-dom "file://$REF/index.html?q=bandwidth" > "$WORK/search.dom" 2> "
 if console_lines "$WORK/search.log"; then fail "console messages while loading index.html (above)"; fi
 grep -q 'entries mention' "$WORK/search.dom" || fail "the search produced no results list (see $WORK/search.dom)"
 grep -q 'href="smi.kde_ebd.html#smi.kde_ebd"' "$WORK/search.dom" || fail "searching 'bandwidth' did not find smi.kde_ebd"
-# Several words: entries holding all of them, in any order (issue 28: "prior weight" found nothing).
+# Several words: entries holding all of them, in any order ("prior weight" must find the prior options).
 chrome --dump-dom "file://$REF/index.html?q=weight%20prior" > "$WORK/search2.dom" 2> "$WORK/search2.log" || fail "chromium --dump-dom failed"
 grep -q 'href="smi.calibrate.html#smi.calibrate"' "$WORK/search2.dom" || fail "searching 'weight prior' did not find smi.calibrate"
 

@@ -18,7 +18,7 @@ has_out 'smi.kriging:predict(X [, opts]) -> mean, mse'
 run "doc WORD searches" 0 "$SMI" doc bandwidth
 has_out "entries mention 'bandwidth'"
 has_out 'smi.kde_ebd'
-# A name that matches nothing: the closest names, status 2 (issue 28: smi.kdee said nothing, 0)
+# A name that matches nothing: the closest names, status 2 (smi.kdee once said nothing, status 0)
 run "doc misspelt NAME" 2 "$SMI" doc smi.kdee
 has_err "did you mean smi.kde"
 run "doc words in any order" 0 "$SMI" doc prior weight

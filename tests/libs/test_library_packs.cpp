@@ -1,4 +1,4 @@
-// The Lua-free parts of `smi-lua libs` (issue 25): the ustar+gzip reader/writer (checked against
+// The Lua-free parts of `smi-lua libs`: the ustar+gzip reader/writer (checked against
 // the system's tar, a peer implementation), the lockfile's checksums, SOURCE@REF splitting,
 // version tags, and the manifest's `sources` field.
 #include <catch2/catch.hpp>

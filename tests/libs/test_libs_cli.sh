@@ -21,7 +21,7 @@ run new-lib-bad-name 2 "$SMI" new-lib 9lives
 has_err "not a valid library name"
 run test-roundtrip 0 "$SMI" test kdetools
 has_out "ok    tests/test_kdetools.lua (2 passed, 0 failed)"
-# the summary counts cases, as each file does (issue 25 item 5)
+# the summary counts cases, as each file does
 has_out "2 passed, 0 failed (1 test file, 0 failed)"
 # a wrong expectation makes the test file fail, and the count says so
 sed -i 's|9 / 4|9 / 5|' kdetools/tests/test_kdetools.lua
@@ -133,7 +133,7 @@ mv team/kdetools kdetools.gone
 run verify-missing 1 "$SMI" verify --lib team $results
 has_out "MISSING  kdetools 1.3.0"
 mv kdetools.gone team/kdetools
-run verify-no-provenance 2 "$SMI" verify study/uses.lua   # not a results file: exit 2 (issue 24)
+run verify-no-provenance 2 "$SMI" verify study/uses.lua   # not a results file: exit 2
 has_err "not valid JSON"
 # the recorded seed is the integer itself, also above 2^53 (a double rounded it to another seed)
 # and above 2^63 (smi.seed is a Lua integer: the results file holds it negative)

@@ -1,4 +1,4 @@
-# Library metadata held to the library (issue 13 item 6): the git commit is read only from
+# Library metadata held to the library: the git commit is read only from
 # inside the checkout, and provenance never hashes what a symlink out of the library points to.
 # One test per denial; each passed the data through (or hung) before the fix.
 source "${SMI_SOURCE_DIR:?}/tests/cli/lib.sh"   # run / has_out / has_err / finish; cd's to a temp dir

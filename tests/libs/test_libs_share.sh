@@ -1,4 +1,4 @@
-# Sharing libraries between teams (issue 25), end to end and without network: team A's
+# Sharing libraries between teams, end to end and without network: team A's
 # libraries are git repositories made here with tags, reached through file:// URLs.
 # libs add (with a dependency chain), smi-lock.json, sync after deleting the tree (same
 # commits, same bytes), sync --check after tampering, side-by-side versions chosen by the

@@ -1,4 +1,4 @@
--- The hidden-style calibration of issue 29 (shared by tests/lua/test_calibrate_model_differences.lua
+-- The hidden-style calibration (shared by tests/lua/test_calibrate_model_differences.lua
 -- and bench/calibrate_hidden.lua): ten parameters (the means and standard deviations of five
 -- inputs: normal, lognormal, uniform, normal, lognormal), three responses of a smooth nonlinear
 -- Lua function model with no gradient, nine measurements each, PR, n = 2000.

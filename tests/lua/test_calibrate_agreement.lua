@@ -1,5 +1,5 @@
 -- smi.calibrate: whether several starts reached the same optimum where the data can tell
--- (r.agreement), and basin hopping (hops, hop_step) (issue 11 item 2).
+-- (r.agreement), and basin hopping (hops, hop_step).
 local T = require "smi.testing"
 
 T.case("y = x1 + 2 x2: four starts end at different points of the valley and agree where the data can tell", function()

@@ -1,5 +1,5 @@
 -- smi.calibrate: identifiability as directions, near-optimal sets, priors, distinct optima
--- (issue 11 items 1-3, 5; CONTRACT.md).
+-- (the contract in `smi-lua doc smi.calibrate`).
 local T = require "smi.testing"
 
 local function find_weak(r)

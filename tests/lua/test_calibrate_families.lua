@@ -1,4 +1,4 @@
--- All nine smi.dist families as smi.calibrate inputs (issue 11 item 7): each of the six new
+-- All nine smi.dist families as smi.calibrate inputs: each of the six new
 -- families is calibrated (mean and std, or the parent's for truncnormal) on an identity model
 -- against the family's own pdf, and must recover the true values; bad families name the choices.
 local T = require "smi.testing"

@@ -1,4 +1,4 @@
--- smi.calibrate with the analytic gradient (issue 11 item 1): through Kriging surrogates in
+-- smi.calibrate with the analytic gradient: through Kriging surrogates in
 -- closed form and through a model's own gradient method; the same optimum as finite
 -- differences, on tolerances, in fewer evaluations.
 local T = require "smi.testing"
@@ -82,7 +82,7 @@ T.case("a model object's own gradient method is used; a function model is differ
   T.near(r.params["b.mean"], 2, 0.05, "b.mean")
   local f = smi.calibrate{model = function(M) return model:evaluate(M) end, inputs = spec.inputs, order = {"a", "b"}, data = data,
                           n = 500, grid_nodes = 1001, seed = 5, identifiability = false, maxeval = 30}
-  T.eq(f.gradient, "model_differences", "a function model: its own differences at the CRN sample (issue 29)")
+  T.eq(f.gradient, "model_differences", "a function model: its own differences at the CRN sample")
   T.near(f.params["a.mean"], r.params["a.mean"], 0.01, "the same optimum as the analytic gradient")
   local o = smi.calibrate{model = function(M) return model:evaluate(M) end, inputs = spec.inputs, order = {"a", "b"}, data = data,
                           n = 500, grid_nodes = 1001, seed = 5, identifiability = false, maxeval = 30, gradient = "differences"}

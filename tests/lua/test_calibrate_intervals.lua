@@ -1,4 +1,4 @@
--- smi.calibrate intervals (issue 11 item 4): profile intervals that equal the closed-form
+-- smi.calibrate intervals: profile intervals that equal the closed-form
 -- likelihood-ratio intervals, "not determined" for a flat parameter, and bootstrap replicates
 -- that are whole calibrations.
 local T = require "smi.testing"

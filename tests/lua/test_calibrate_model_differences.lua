@@ -1,4 +1,4 @@
--- smi.calibrate on a model without a gradient (issue 29): the model itself is differentiated at
+-- smi.calibrate on a model without a gradient: the model itself is differentiated at
 -- the CRN sample (one batch of k + 1 model passes a gradient), the hidden-style 10-parameter
 -- problem ends on its tolerances within 300 evaluations, and predictions that cannot overlap the
 -- data end as status "no_overlap" instead of a false "converged".

@@ -19,7 +19,7 @@ T.case("SLSQP from (30.0, 0.5) reaches the spec optimum (30.21768, 0.42734), PR 
   local r = smi.calibrate(spec())
   -- The default tolerances stop where a step changes PR by less than ftol_abs = 1e-8: at this flat
   -- minimum that is 4e-5 in the mean (PR 5e-8 above the minimum) with the model's own differences
-  -- (issue 29: the default gradient of a function model); tight tolerances reach it (below).
+  -- (the default gradient of a function model); tight tolerances reach it (below).
   T.near(r.params["x.mean"], 30.21768, 5e-5, "mean")
   T.near(r.params["x.std"], 0.42734, 2e-5, "std")
   T.near(r.objective, 0.0786579, 2e-7, "PR")

@@ -1,5 +1,5 @@
 -- smi.calibrate: a start where PR saturates at 2 (no overlap, no gradient) is moved to a
--- moment-matching start inside the kernel (issue 11 item 2).
+-- moment-matching start inside the kernel.
 local T = require "smi.testing"
 
 T.case("no overlap at the start: moved by moment matching, then calibrated", function()

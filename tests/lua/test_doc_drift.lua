@@ -1,4 +1,4 @@
--- Issue 28: the reference cannot drift from the code. Documented option lists are compared with
+-- The reference cannot drift from the code. Documented option lists are compared with
 -- the names the bindings check (smi.kde's here, after a call); misspelt module members and doc
 -- names get the closest names.
 local T = require "smi.testing"

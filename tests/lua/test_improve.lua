@@ -1,6 +1,6 @@
 -- smi.improve: a declaration's mistakes are errors naming the field and the response or
--- candidate (issue 30 item 6), the data step's units check stops before any solver budget
--- (issue 28 item 3), and the whole loop runs on a small product whose truth needs one revision.
+-- candidate, the data step's units check stops before any solver budget
+--, and the whole loop runs on a small product whose truth needs one revision.
 -- The product and its truth: tests/lua/small_product.lua.
 local T = require "smi.testing"
 local improve = require "smi.improve"
@@ -184,7 +184,7 @@ end
 T.case("no overlap a power of ten apart (a units mistake) stops the study before validation", function()
   local R, C = run_forced_no_overlap("improve_no_overlap_units",
     "the predictions are about 1000x the data: are the inputs in the units the model expects?")
-  T.eq(C.verdict, "inconclusive")
+  T.eq(C.verdict, "undetermined", "the data cannot decide: neither valid nor invalid")
   T.eq(#C.trials, 1, "no trial after it")
   T.eq(#C.refinements, 0)
   T.truthy(R.trial1_validation.skipped and R.trial1_validation.reason:find("no_overlap", 1, true), "validation skipped, why")

@@ -1,4 +1,4 @@
--- Object lifetimes in bindings (issue 23, class 2): a bound function holds every object it uses
+-- Object lifetimes in bindings: a bound function holds every object it uses
 -- until it returns, whatever Lua code runs in between. Each case passes a Kriging inside a table
 -- and an options table whose __index, when a later option is read, empties that table, drops
 -- every other reference and collects (and closes through a <close> variable, which must only

@@ -1,4 +1,4 @@
--- Lua 5.4.4's known bugs (Debian 12 ships it), each met by a host guard (issue 23, class 3):
+-- Lua 5.4.4's known bugs (Debian 12 ships it), each met by a host guard:
 --  * string.gmatch's iterator called again after "pattern too complex" recursed without limit
 --    (upstream fix: lua/lua efddc230): the wrapped iterator refuses to run after an error;
 --  * nested coroutine.close with pcalls inside __close overflowed the C stack under the old

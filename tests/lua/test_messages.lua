@@ -1,4 +1,4 @@
--- Messages for inputs a new user gets wrong (issue 14 item 7): each names the culprit and the fix
+-- Messages for inputs a new user gets wrong: each names the culprit and the fix
 -- instead of a wrong result, a silent acceptance or a number as an error.
 local T = require "smi.testing"
 

@@ -1,5 +1,5 @@
 -- smi.refine.decision_matrix: spec §8.5 values, and a refinement of a different model with its
--- own criteria written in Lua (issue 6 item 4).
+-- own criteria written in Lua.
 local T = require "smi.testing"
 
 local M = {{0.08, 5, 12, 120}, {0.05, 0, 10, 30}, {0.02, 1, 11, 60}}

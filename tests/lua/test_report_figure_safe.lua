@@ -1,4 +1,4 @@
--- Report figures are held to an allow-list of static SVG (issue 23, class 7): the report
+-- Report figures are held to an allow-list of static SVG: the report
 -- promises no scripts and no network, and a figure is embedded in the page as it is. The old
 -- check only asked for well-formed XML, so each hostile figure below went into report.html.
 local T = require "smi.testing"

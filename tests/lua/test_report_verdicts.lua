@@ -1,4 +1,4 @@
--- smi.report, issue 28: one verdict list (every check once, one status), "not run" and
+-- smi.report: one verdict list (every check once, one status), "not run" and
 -- "inconclusive" statuses, the header's counts, a verdict contradicting its solver check says
 -- which governs, numbers in text without binary noise, units beside numbers, tables that wrap.
 local T = require "smi.testing"

@@ -1,5 +1,5 @@
 -- A script cannot free what C++ is still using, and options it sets are capped by the machine
--- (issue 13 items 2, 4 and 7). Each case crashed or corrupted memory on the build before the fix
+--. Each case crashed or corrupted memory on the build before the fix
 -- (double free, use-after-free, segfault, SIGFPE) or gave a meaningless message.
 local T = require "smi.testing"
 

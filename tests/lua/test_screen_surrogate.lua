@@ -1,4 +1,4 @@
--- smi.screen{method = "surrogate"} (issue 16): the model runs `runs` times in one call, the
+-- smi.screen{method = "surrogate"}: the model runs `runs` times in one call, the
 -- eq.-3 indices on the surrogate match spec §8.5's analytic N_e for a model the surrogate
 -- reproduces, a poor surrogate is reported, and misplaced options are errors.
 local T = require "smi.testing"

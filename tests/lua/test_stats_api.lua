@@ -1,4 +1,4 @@
--- The public stats API of issue 3, asserted against spec §8 values and closed forms.
+-- The public stats API, asserted against spec §8 values and closed forms.
 local T = require "smi.testing"
 local X = {30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20}
 
@@ -132,7 +132,8 @@ T.case("metrics: pr's and intersection's grid options are checked by their schem
     "smi.metric.intersection grid: unknown option 'lowr' (did you mean 'lower'?)")
   T.raises(function() smi.metric.pr(a, b, {grid = {lower = "a", upper = 1}}) end, "option 'lower' must be a number, got string")
   T.raises(function() smi.metric.pr(a, b, {grid = 3}) end, "option 'grid' must be a table")
-  -- a missing bound is a message naming it (it was a C++ exception escaping the binding: the options table as the error)
+  -- a missing bound is a message naming it (it was a C++ exception escaping the binding: the options table as
+  -- the error)
   T.raises(function() smi.metric.pr(a, b, {grid = {lower = -1}}) end, "smi.metric.pr: missing field 'upper' (a number)")
 end)
 

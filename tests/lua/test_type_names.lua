@@ -1,4 +1,4 @@
--- One naming scheme for the metatables users see (issue 18): all lowercase, the name of the smi
+-- One naming scheme for the metatables users see: all lowercase, the name of the smi
 -- function or module that makes the value. The name shows in type errors ("smi.kriging
 -- expected"), in the doc names of methods ("smi.kriging:predict") and in getmetatable(v).__name.
 local T = require "smi.testing"

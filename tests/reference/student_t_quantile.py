@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Reference values for tests/kernels/improve/test_profile_intervals.cpp (issue 11 item 4):
+"""Reference values for tests/kernels/improve/test_profile_intervals.cpp:
 SciPy's Student t quantiles and the small-sample profile delta n/2 ln(1 + t²/(n − k)).
 The output below is stored in the test as literals.
 usage: student_t_quantile.py"""

@@ -1,6 +1,6 @@
---- The full path's conclusions on the committed data, for tests/study/check_budget.lua (issue 16):
+--- The full path's conclusions on the committed data, for tests/study/check_budget.lua:
 -- reads the results.json of `scripts/steering_column.lua --screening full --design fixed
--- --test-points 50 --solver-check 300` (the study before issue 16: eq.-3 screening on smi-column-fe
+-- --test-points 50 --solver-check 300` (the study before the surrogate screening: eq.-3 screening on smi-column-fe
 -- itself, (46 + 1) x 200 runs) and writes tests/reference/study_full_path.json: the screening's
 -- ranks per mode (top four, N_e of each input), each trial's candidate and verdicts, the
 -- refinements, the conclusion and the solver runs. Made by tests/reference/study_full_path.sh

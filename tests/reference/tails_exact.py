@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Exact tail values (issue 29 item 6) for tests/kernels/stats/test_tails_exact.cpp, by mpmath at
+"""Exact tail values for tests/kernels/stats/test_tails_exact.cpp, by mpmath at
 60 significant digits from the closed forms (every argument is the exact double the test uses):
   - triangular with its mode at a bound: cdf, logcdf, sf, quantile, isf near that bound
     (where 1 - (b - x)^2/... and b - sqrt(...) cancel);

@@ -1,4 +1,4 @@
---- A report with what made issue 28's report overflow and read wrong: a ten-column table of
+--- A report with what once made a report overflow and read wrong: a ten-column table of
 -- calibrated parameters with long names and intervals, numbers with binary noise in the text
 -- and the provenance, a chart with a long title, a verdict contradicting its solver check, and
 -- steps that do not run. tests/report/print_report.sh renders it on screen and printed.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# --dry-run plans a study whose later steps depend on solver outputs (issue 14 item 6): with an
+# --dry-run plans a study whose later steps depend on solver outputs: with an
 # empty store it stops cleanly (exit 0) at the first evaluation that needs runs, prints the plan
 # so far, launches nothing and writes no results (before: exit 1, "model output 1 is not
 # finite"). After a real run, a dry run plans the whole study from the store: 0 runs.

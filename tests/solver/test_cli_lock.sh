@@ -1,5 +1,5 @@
 #!/bin/sh
-# One study per output folder (issue 14 item 3): while one smi-lua runs solvers in --out X, a
+# One study per output folder: while one smi-lua runs solvers in --out X, a
 # second smi-lua on X stops at once with a message naming the holder (pid, host, start time)
 # and the fix, and launches nothing (before the lock both ran, shared work folders and one
 # failed "exit status 1"). Once the first has stopped, the folder is free again (flock: even

@@ -1,4 +1,4 @@
--- A command model whose template is a Lua function of the point (issue 30): the deck computes,
+-- A command model whose template is a Lua function of the point: the deck computes,
 -- I/O is refused inside it, and a writable store's missing folder is made. Drives the in-tree
 -- test solver (f = x1^2 + x2^2, g = x1 + 2 x2). arg[1] = its path, arg[2] = the fixtures folder.
 local T = require "smi.testing"
@@ -68,7 +68,7 @@ T.case("I/O inside a deck function is refused, naming what was tried", function(
   T.raises(function() model(function(p) return string.dump(p) end):evaluate(X) end, "attempt to call a nil value (field 'dump')")
   T.raises(function() model(print) end, "must be a Lua function")
   -- after the refusals, the study's own I/O works
-  T.eq(read_helper(), "-- A command model whose template is a Lua function of the point (issue 30): the deck computes,")
+  T.eq(read_helper(), "-- A command model whose template is a Lua function of the point: the deck computes,")
   local f = assert(io.open(out, "w")); f:write("ok"); f:close()
 end)
 

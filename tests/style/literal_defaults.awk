@@ -1,4 +1,4 @@
-# Numeric literals in binding code (issue 27): a default belongs in its option struct (a kernel's
+# Numeric literals in binding code: a default belongs in its option struct (a kernel's
 # *Options, platform/core/defaults.hpp), never beside a read in bindings/. Prints
 #   <file>:<line>: <literal>   <the line>
 # for each literal outside the allow-list below. Comments, "strings", 'chars', raw strings

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# No literal default in the bindings (issue 27): lists the numeric literals of bindings/**/*.cpp
+# No literal default in the bindings: lists the numeric literals of bindings/**/*.cpp
 # outside the allow-list of literal_defaults.awk; exits 1 when there is one. A default belongs
 # in its option struct (a kernel's *Options, platform/core/defaults.hpp), read through the
 # function's option schema (host/luax/option_schema.hpp).

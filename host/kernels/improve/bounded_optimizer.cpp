@@ -246,7 +246,7 @@ double trampoline(const std::vector<double>& u, std::vector<double>& grad, void*
   return (*static_cast<Run*>(data))(u, grad);
 }
 
-/// Which stopping criterion a start ended on, or which it missed and by how much (issue 29): the
+/// Which stopping criterion a start ended on, or which it missed and by how much: the
 /// last two points the optimiser asked for (not probes) give the relative step in scaled units and
 /// the objective change that xtol_rel and ftol_abs are compared with.
 std::string stop_criterion(const std::string& status, const OptimizerOptions& opt, const std::vector<Parameter>& params,

@@ -1,5 +1,5 @@
 #pragma once
-// The whole calibration pipeline behind one entry point (issue 29 item 5): the objective (a
+// The whole calibration pipeline behind one entry point: the objective (a
 // caller's objective, or the statistical objective of Son et al. eq. 9 on a model), the prior
 // and penalty terms, the gradient choice, the start preparation, the optimiser, and the analyses
 // after the optimum (identifiability, start agreement, profile intervals, design bounds,

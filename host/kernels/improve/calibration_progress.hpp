@@ -1,5 +1,5 @@
 #pragma once
-// Turns a calibration's evaluations into progress rows (issue 29 item 4): which stage, how many
+// Turns a calibration's evaluations into progress rows: which stage, how many
 // of its units are done, the evaluations, the best objective and an ETA from the rate so far.
 // Thread-safe (starts optimised side by side report from several threads); rows are throttled
 // to ten a second, the final row always goes out.

@@ -1,6 +1,6 @@
 #pragma once
-// Warns when a calibrated input walks outside the region its surrogate was fitted on (issue 6
-// item 6): a Kriging model extrapolates badly, so an optimum there is not to be trusted.
+// Warns when a calibrated input walks outside the region its surrogate was fitted on: a Kriging model
+// extrapolates badly, so an optimum there is not to be trusted.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Identifiability as directions (issue 11 item 3). A one-parameter-at-a-time sweep misses a
+// Identifiability as directions. A one-parameter-at-a-time sweep misses a
 // combination the data cannot determine (y = x1 + 2 x2: only mu1 + 2 mu2 is seen). Directions
 // come, in parameters scaled to [0, 1] by their bounds, from
 //   - the Jacobian of the predicted responses' summaries (quantiles, in units of the data's

@@ -1,5 +1,5 @@
 #pragma once
-// Identifiability check (beyond the paper; issue 6 item 6): a parameter is flagged when the
+// Identifiability check (beyond the paper): a parameter is flagged when the
 // objective barely changes as that parameter sweeps its whole range with the others held at the
 // optimum. Such a parameter is not determined by the data; its calibrated value means little.
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 #pragma once
 // Derivatives of the CRN-mapped inputs x_i = Q(Φ(z_i); mean, std) with respect to the mean and
-// std (issue 11 item 1: the chain rule through each family's quantile function):
+// std (the chain rule through each family's quantile function):
 //   normal     x = m + s z                     dx/dm = 1, dx/ds = z
 //   lognormal  x = exp(mu + sig z), sig² = ln(1 + s²/m²), mu = ln m − sig²/2
 //              dx = x (dmu + z dsig)

@@ -1,5 +1,5 @@
 #pragma once
-// "No overlap" at a calibration's optimum (issue 29 item 3): a response whose predicted and
+// "No overlap" at a calibration's optimum: a response whose predicted and
 // measured distributions do not overlap at all (PR within 1e-3 of its maximum 2, or the
 // predicted and measured ranges more than 4 bandwidths apart, or, for the log-likelihood, every
 // datum outside the predicted support) is not a fit, whatever the

@@ -1,5 +1,5 @@
 #pragma once
-// Starts that work (issue 11 item 2). PR is ∫|f_exp − f_pre|: when the predicted and the
+// Starts that work. PR is ∫|f_exp − f_pre|: when the predicted and the
 // experimental PDFs do not overlap it sits at 2 and is flat, so a gradient method started there
 // never moves (and differences see only noise). Before optimising, a start whose PR for some
 // response is within `saturation` of 2 is moved by a short minimisation of a moment mismatch,
@@ -41,7 +41,7 @@ struct MomentStartOptions {
   double ftol_abs = 1e-4;
 };
 
-/// Moment-matching start (issue 11 item 2, and fewer evaluations for the optimiser after it):
+/// Moment-matching start (and fewer evaluations for the optimiser after it):
 /// Levenberg–Marquardt on moment_residuals in scaled [0, 1] units, projected on the box; a
 /// parameter on a bound that the descent pushes out of the box is held there for the step. With
 /// more parameters than residuals each step is the smallest that reduces the mismatch, so

@@ -1,5 +1,5 @@
 #pragma once
-// Profile intervals (issue 11 item 4). For each parameter the objective is minimised over the
+// Profile intervals. For each parameter the objective is minimised over the
 // others with that parameter held at a value, walking out from the optimum on each side until
 // the profile rises by `delta` (then the crossing is bisected) or the bound is reached. For a
 // negative log-likelihood, delta = ½ χ²₁(level) gives the likelihood-ratio interval at `level`.

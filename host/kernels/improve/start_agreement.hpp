@@ -1,6 +1,6 @@
 #pragma once
 // Whether the starts of a multistart calibration reached the same optimum where the data can
-// tell (issue 11 item 2). Two starts that end at different points need not disagree: along a
+// tell. Two starts that end at different points need not disagree: along a
 // direction the data do not determine (y = x1 + 2 x2: only mu1 + 2 mu2 and sigma1^2 + 4 sigma2^2
 // are seen) every point of the valley fits as well, and the optimiser stops wherever it enters
 // it. A start is at the best's optimum "where the data can tell" when its objective is within

@@ -84,7 +84,7 @@ class StatisticalObjective {
   /// Set when the model has a gradient (a Kriging's closed form, a model's own `gradient`).
   void set_model_jacobian(ModelJacobian j) { jacobian_ = std::move(j); }
   bool has_model_jacobian() const { return static_cast<bool>(jacobian_); }
-  /// Without a model Jacobian: differentiate the model itself at the CRN sample (issue 29). Each
+  /// Without a model Jacobian: differentiate the model itself at the CRN sample. Each
   /// gradient is ONE model call on the stacked batch [X; X + h_1 e_1; ...; X + h_k e_k] (forward,
   /// k + 1 passes for the k inputs that carry a calibrated parameter) or [X; X ± h_j e_j] (central,
   /// 2k + 1), so a solver model runs the perturbed points as one parallel, resumable evaluation.

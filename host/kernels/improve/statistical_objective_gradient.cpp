@@ -1,4 +1,4 @@
-// The statistical objective's gradient in θ (issue 11 item 1). On common random numbers the
+// The statistical objective's gradient in θ. On common random numbers the
 // objective is a smooth function of the distribution parameters:
 //   θ -> X = Q(Φ(Z); θ) -> Y = model(X) -> KDE of each response (bandwidth c·sd(y)) -> metric.
 // Each link's derivative is analytic: input_derivatives (quantile functions), the model's

@@ -72,7 +72,7 @@ class Kde : public Distribution {
   /// Inverse CDF by safeguarded Newton (bracketed by the data range ± 10h); below p = 1e-3 by
   /// bisection on logcdf (relative accuracy down to p = 1e-300).
   double quantile(double p) const override;
-  // The tails in log space or by complements (issue 29): each kernel's own tail, summed by
+  // The tails in log space or by complements: each kernel's own tail, summed by
   // log-sum-exp, so the values keep their relative accuracy far from the data (exact sums, O(N)).
   double logpdf(double x) const override;
   double logcdf(double x) const override;

@@ -1,4 +1,4 @@
-// Gradient of the Kriging predictor with respect to its inputs, in closed form (issue 11 item 1:
+// Gradient of the Kriging predictor with respect to its inputs, in closed form (for the
 // gradients of a calibration objective through the surrogate). With x~ = (x − mS)/sS,
 //   yhat = mY + sY (f(x~)' beta + Σ_l gamma_l g(s_l)),  s_l = Σ_d theta_d D_d(x~_d − S_ld)
 // so d yhat / d x_d = sY / sS_d (d f/d x~_d ' beta + theta_d Σ_l gamma_l g'(s_l) D_d'(x~_d − S_ld)),

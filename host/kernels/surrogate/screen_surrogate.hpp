@@ -1,5 +1,5 @@
 #pragma once
-// Economical screening (issue 16): the eq.-3 PDF-area screening of screen.hpp computed on a
+// Economical screening: the eq.-3 PDF-area screening of screen.hpp computed on a
 // cheap surrogate of all inputs instead of the model. The model runs once, on a Latin hypercube
 // of `runs` points mapped through the inputs' quantiles; a ridge polynomial (poly_ridge.hpp)
 // is fitted per output with its closed-form leave-one-out Q2; the full screening (n CRN points,

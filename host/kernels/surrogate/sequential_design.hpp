@@ -1,5 +1,5 @@
 #pragma once
-// Sequential Kriging designs (issue 16): instead of one fixed Latin hypercube sized for the worst
+// Sequential Kriging designs: instead of one fixed Latin hypercube sized for the worst
 // case, start from a small design, fit, and add batches of points where the Kriging is least sure
 // weighted by where the input distributions put their mass; stop when every output's
 // leave-one-out Q2 (and RMSE, when given) meets its target, or at max_points. The Kriging

@@ -1,6 +1,6 @@
 #pragma once
 // Path resolution as the kernel does it, but one component at a time through descriptors, so
-// that what is checked is what is opened (issue 13 item 1).
+// that what is checked is what is opened.
 //
 // walk() starts at "/" (a relative path is taken from the working directory's canonical path)
 // and opens every component with openat(O_PATH | O_NOFOLLOW). A symlink is never followed by

@@ -1,5 +1,5 @@
 #pragma once
-// What a run's numbers depend on, recorded while it runs (issue 24): every file the script read
+// What a run's numbers depend on, recorded while it runs: every file the script read
 // (data, priors, templates, Lua modules), every program it ran, its arguments and the options of
 // smi-lua that change results. Each file is hashed (SHA-256) when it is read, from the descriptor
 // that was read, so the digest is the one of the bytes the run used. smi.provenance() turns this

@@ -117,7 +117,7 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
     for (const auto& in : cfg_.inputs) trial[in] = DeckValue::num(0);
     cfg_.deck->render(trial);
   }
-  // The program's content always goes into the key (issue 13 item 5): a version string is the
+  // The program's content always goes into the key: a version string is the
   // script's to choose, so a record keyed on name + version alone could be forged by one study
   // and reused by another. The version stays in the key too (a solver reading data files).
   std::string program_hash;
@@ -135,7 +135,7 @@ Evaluator::Evaluator(CommandConfig cfg) : cfg_(std::move(cfg)) {
   h.field(cfg_.deck_file);
   // The study script decides what a record holds (its parse function reads the outputs), and a
   // store may come from elsewhere (--store, or one unpacked with a study bundle): a record is
-  // reused only by the script that made it (issue 23). Editing the script means running again.
+  // reused only by the script that made it. Editing the script means running again.
   h.field(cfg_.script_hash);
   for (const auto& [name, value] : cfg_.env_set) h.field("env").field(name).field(value);
   for (std::size_t i = 0; i < cfg_.files.size(); ++i)

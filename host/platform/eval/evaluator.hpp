@@ -30,7 +30,7 @@ struct CommandConfig {
   DeckValues constants;                       // extra placeholder values (numbers or strings)
   std::vector<std::string> files;             // absolute paths copied into every work directory
   // Their descriptors, opened by the sandbox when it checked them (same order; may be empty):
-  // hashed and copied from these, never re-opened by name (issue 13 item 1).
+  // hashed and copied from these, never re-opened by name.
   std::vector<std::shared_ptr<const pathwalk::Fd>> file_fds;
   std::string program;                        // absolute path (checked by the sandbox)
   std::string program_name;                   // as the study wrote it; goes into the key

@@ -1,5 +1,5 @@
 // make-steering-data: the "experimental" natural frequencies of the steering-column study
-// (issue 6 item 2), as Son et al. (2020) had them: 3 steering wheels x 3 column assemblies = 9
+//, as Son et al. (2020) had them: 3 steering wheels x 3 column assemblies = 9
 // combinations, each the mean of 5 impact tests.
 //
 // The "real" product is the refined model (airbag_model = spring, mesh_refinement = 1) at TRUE

@@ -103,7 +103,7 @@ end
 local LINE = "%-4s %-6s %-6s %-74s %-5s %-9s %s"
 local confusion, order, lines, all_ok = {}, {}, {}, true
 local totals = { launched = 0, points = 0, reused = 0 }
-local per_study = {} -- each study's solver runs as if it ran alone (results.json `cost`, issue 16)
+local per_study = {} -- each study's solver runs as if it ran alone (results.json `cost`)
 print(LINE:format("exp", "truth", "noise", "conclusion", "right", "converged",
   "calibrated mean / true mean - 1 (last trial)"))
 for _, r in ipairs(rows) do
@@ -137,7 +137,7 @@ print(("Solver runs over these experiments (one shared store): %d points, %d pro
   .. " reused."):format(totals.points, totals.launched, totals.reused))
 if #per_study > 0 then
   table.sort(per_study)
-  print(("Solver runs per study as if run alone (issue 16's budget: 1,000): %d to %d."):format(per_study[1],
+  print(("Solver runs per study as if run alone (the budget: 1,000): %d to %d."):format(per_study[1],
     per_study[#per_study]))
 end
 for _, l in ipairs(lines) do print("WRONG " .. l) end

@@ -10,38 +10,41 @@
 -- (near_optimal.lua, the validation's "inconclusive") instead of choosing for the analyst.
 local trial = require "smi.improve.trial"
 local near = require "smi.improve.near_optimal"
+local stream = require "smi.improve.stream"
 
 local M = {}
 
 -- The objective increase that still counts as fitting the data as well as the optimum, from the
 -- data: for "pr" the standard deviation of the summed PR at the optimum over bootstrap
 -- resamples of the data rows (two calibrations whose objectives differ by less than that are not
--- told apart by a few measurements); for "loglik" (minus the log-likelihood of the data, summed as
--- smi.calibrate's model form does) the likelihood-ratio bound ½ χ²₁(0.95).
+-- told apart by a few measurements; smi.calibrate's own r.tolerance, 0.01 per response, is a
+-- default for callers without data to measure it on, ten times tighter than nine specimens can
+-- tell); for "loglik" (minus the log-likelihood of the data, summed as smi.calibrate's model form
+-- does) smi.calibrate's r.tolerance, the likelihood-ratio bound ½ χ²₁(0.95).
 local BOOT = 200 -- resamples for the PR tolerance
 
 --- The tolerance and its basis: t {metric, calibrate, data = {response = vec}, predicted, theta,
 -- grids, seed, result (the smi.calibrate result at the optimum)}.
--- The resamples are paired across modes (a row is one impact test); each resample's
+-- The resamples are paired across responses (a row is one impact test); each resample's
 -- experimental PDF is the plain KDE (the KDE-ebd's loop on every resample would cost more than
 -- the calibration, and the spread is what is measured).
 function M.tolerance(t)
-  local MODES = t.calibrate
-  local n = #t.data[MODES[1]]
+  local names = t.calibrate
+  local n = #t.data[names[1]]
   if t.metric ~= "pr" then
-    return { value = M.loglik_threshold(t.result),
+    return { value = t.result.tolerance,
              basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows")
                :format(n) }
   end
-  local Y = t.predicted(t.theta, MODES)
+  local Y = t.predicted(t.theta, names)
   local pred = {}
-  for _, m in ipairs(MODES) do pred[m] = smi.kde(Y[m]) end
+  for _, m in ipairs(names) do pred[m] = smi.kde(Y[m]) end
   local rng = smi.rng(t.seed)
   local sums = {}
   for b = 1, BOOT do
     local idx = rng:uniform(n, 0, n)
     local sum = 0
-    for _, m in ipairs(MODES) do
+    for _, m in ipairs(names) do
       local x = {}
       for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
       sum = sum + smi.metric.pr(smi.kde(smi.vec(x)), pred[m], { grid = t.grids[m] })
@@ -51,31 +54,15 @@ function M.tolerance(t)
   local v = smi.vec(sums)
   return { value = v:std(), resamples = BOOT, mean = v:mean(),
            basis = ("standard deviation of the summed PR of %s at the optimum over %d bootstrap resamples of"
-             .. " the %d data rows"):format(table.concat(MODES, ", "), BOOT, n) }
+             .. " the %d data rows"):format(table.concat(names, ", "), BOOT, n) }
 end
 
--- SWITCH (issue 29, /work/wt/CALIBRATE_API.md): smi.calibrate's result now may carry
--- r.tolerance (the "fits as well" threshold; for loglik ½ χ²₁(0.95)) and r.prior_at(theta) (the
--- prior part at any point). These read them when present and fall back to the constant and the
--- one-evaluation call below on a kernel without them. The only places to change.
-function M.loglik_threshold(r)
-  if r and type(r.tolerance) == "number" then return r.tolerance end
-  return 1.920729 -- ½ χ²₁(0.95)
-end
-
---- The analyst's prior part at th, computed by smi.calibrate itself (its sum, weight and `fn`
--- handling: one evaluation at th, no optimization), so the near-optimal points are checked
--- against the very objective the calibration minimized. 0 without a prior.
-function M.prior_at(prior, params, th, r)
+--- The analyst's prior part at th: smi.calibrate's own r.prior_at (its sum and weight), so the
+-- near-optimal points are checked against the very objective the calibration minimized. 0
+-- without a prior.
+local function prior_at(prior, th, r)
   if not prior then return 0 end
-  if r and type(r.prior_at) == "function" then return r.prior_at(th) end
-  local p = {}
-  for i, q in ipairs(params) do
-    p[i] = { name = q.name, lower = q.lower, upper = q.upper, start = math.min(q.upper, math.max(q.lower, th[q.name])) }
-  end
-  local r = smi.calibrate{ parameters = p, objective = function() return 0 end, prior = prior, maxeval = 1,
-                           method = "slsqp", identifiability = false }
-  return r.metrics.prior or 0
+  return r.prior_at(th)
 end
 
 -- The parameters' bounds and starts as the model declares them ({name, lower, upper, start}).
@@ -100,7 +87,7 @@ end
 function M.experimental_pdfs(data, seed, names)
   local d = {}
   for k, m in ipairs(names) do
-    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = seed + k })
+    d[m] = smi.kde_ebd(smi.vec(data[m]), { alpha = 0.1, critical_area = 0.95, seed = stream(seed, "experimental pdf", k) })
   end
   return d
 end
@@ -119,7 +106,7 @@ local grids_of = M.grids_of
 
 --- The study's objective on its own CRN sample (smi.propagate through the Krigings): "pr" against
 -- the experimental PDFs f_exp, or minus the log-likelihood of the data points. Returns
--- objective(th) -> sum, {mode = part}.
+-- objective(th) -> sum, {response = part}.
 function M.objective(metric, predicted, grids, f_exp, data, MODES)
   return function(th)
     local Y = predicted(th, MODES)
@@ -133,7 +120,7 @@ function M.objective(metric, predicted, grids, f_exp, data, MODES)
   end
 end
 
---- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of modes 1 and 4 as
+--- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of the calibrated responses as
 -- the model, the unknowns' distributions as the inputs (every Kriging input is an unknown: the
 -- fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
 -- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
@@ -163,10 +150,10 @@ end
 local pr_stage = M.pr_stage
 
 -- Stage 1 is smi.calibrate's moment start (overlap_start.cpp), the first part of the PR call:
--- every start is moved by Levenberg-Marquardt on the means and sds of modes 1 and 4 with the
+-- every start is moved by Levenberg-Marquardt on the means and sds of the calibrated responses with the
 -- Krigings' analytic Jacobian, the smallest steps that lower the mismatch (directions the moments
 -- do not see stay at the declared values), and kept when PR is lower there. PR saturates at 2
--- when the predicted and measured PDFs do not overlap (the initial values put mode 1 about 4 Hz
+-- when the predicted and measured PDFs do not overlap (the steering column's initial values put mode1 about 4 Hz
 -- below the data), so SLSQP needs an overlapping start (algorithms.md §2.1). The study's own
 -- objective-form stage 1 (SLSQP on central differences, 21 evaluations a gradient) ran out of
 -- its 400 evaluations on trial 2 of the committed data instead of ending on its tolerances. The
@@ -201,7 +188,7 @@ local function optimum(t, predicted, grids, params)
   local r0 = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = start, maxeval = t.maxeval,
                                   identifiability = false, multistart = t.multistart, moment_start = true })
   local tol = M.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = r0.params, grids = grids,
-                           seed = t.seed + 11, calibrate = t.calibrate, result = r0 }
+                           seed = stream(t.seed, "tolerance"), calibrate = t.calibrate, result = r0 }
   local r = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = r0.params, maxeval = 40,
                                  identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value } })
   r.evaluations = r.evaluations + r0.evaluations
@@ -235,9 +222,25 @@ end
 
 -- Beyond the paper: the kernel's warnings, and whether the calibrated sample stays inside the
 -- Kriging design box.
-local function box_warnings(r, params, design_bounds)
+-- smi.calibrate's "at a bound" warning says "widen the range if physically allowed". For a mean
+-- the range is the analyst's prior: the data ask for more than it allows, which counts against
+-- the form (forms.lua). For a standard deviation a few specimens cannot resolve it: its bound is
+-- where a flat objective ended, not a reason to widen the range.
+local function bound_words(w, n)
+  local name = w:match("^parameter '([^']+)' = .- sits at a bound")
+  if not name then return w end
+  local head = w:gsub(": widen the range if physically allowed$", "")
+  if name:match("%.std$") then
+    return ("%s: %d specimens resolve a standard deviation poorly, so its value at the bound is weakly determined"
+      .. " (not a reason to widen the range)"):format(head, n)
+  end
+  return ("%s: the data ask for a mean beyond the declared range, the prior; this counts against the form (widen"
+    .. " the range only if the physics allows it)"):format(head)
+end
+
+local function box_warnings(r, params, design_bounds, n)
   local warnings = {}
-  for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = w end
+  for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = bound_words(w, n) end
   for _, p in ipairs(params) do
     local d = smi.dist[p.dist]{ mean = p.mean, std = p.std }
     local lo, hi = d:quantile(0.001), d:quantile(0.999)
@@ -265,16 +268,16 @@ function M.mean_ranges(unknowns, points)
   return r
 end
 
---- The calibrations that fit modes 1 and 4 as well as the optimum (objective within the
+--- The calibrations that fit the calibrated responses as well as the optimum (objective within the
 -- tolerance): smi.calibrate's r.near_optimal (points along the weak directions of the objective,
 -- to the bounds) and the study's pushes of the validation response's prediction up and down
 -- (near_optimal.lua). The union: a generic set cannot know which prediction matters, and a
 -- verdict over too narrow a set would be falsely decisive.
 local function near_optimal_set(t, r, tol, params, predicted, data_objective)
-  local function full_objective(th) return data_objective(th) + M.prior_at(t.prior, params, th, r) end
+  local function full_objective(th) return data_objective(th) + prior_at(t.prior, th, r) end
   local pushes = #t.validate == 0 and { points = {}, directions = {} } or near.by_prediction_extremes{ params = params, optimum = r.params, objective = full_objective,
     value = full_objective(r.params), predicted = predicted, prior = t.prior, tolerance = tol.value,
-    calibration_modes = t.calibrate, validation_modes = t.validate, data = t.data }
+    calibration_responses = t.calibrate, validation_responses = t.validate, data = t.data }
   local points, from_calib = {}, 0
   for _, p in ipairs(r.near_optimal and r.near_optimal.points or {}) do points[#points + 1] = p end
   from_calib = #points
@@ -289,22 +292,22 @@ local function near_optimal_set(t, r, tol, params, predicted, data_objective)
 end
 
 --- Bootstrap CIs (beyond the paper): the data rows resampled with replacement (paired across
--- modes), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum
+-- responses), plain KDEs of the resamples as experimental PDFs, stage 2 restarted from the optimum
 -- with a small budget. A replicate that fails is recorded with its error (replicate number and
 -- message), never dropped silently. The interval is the normal one, estimate ± 1.645 sd of the
 -- replicates (clipped to the bounds): the replicates show the local pull of the data, and their
 -- percentiles can sit to one side of the estimate (seen: a thickness estimate of 4.385 with
 -- percentiles [4.387, 4.429]); the percentiles are kept too.
 local function bootstrap(t, grids, r, params)
-  local MODES = t.calibrate
-  local rng = smi.rng(t.seed + 7)
-  local n = #t.data[MODES[1]]
+  local names = t.calibrate
+  local rng = smi.rng(stream(t.seed, "bootstrap"))
+  local n = #t.data[names[1]]
   local samples, failures = {}, {}
-  local maxeval = t.boot_maxeval or 60
+  local maxeval = t.boot_maxeval -- run_context.SIZES
   for b = 1, t.bootstrap do
     local idx = rng:uniform(n, 0, n)
     local dv, f = {}, {}
-    for _, m in ipairs(MODES) do
+    for _, m in ipairs(names) do
       local x = {}
       for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
       dv[m] = smi.vec(x)
@@ -360,7 +363,7 @@ function M.calibrate(t)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
     status = r.status, message = r.message, no_overlap = r.no_overlap,
-    warnings = box_warnings(r, params, t.design_bounds), at_bounds = r.at_bounds, params = params,
+    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]]), at_bounds = r.at_bounds, params = params,
     theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
     n = t.n, seed = t.seed, calibrate = t.calibrate,
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,

@@ -1,4 +1,4 @@
---- The points of the validation's solver check (issue 16): n points of the calibrated
+--- The points of the validation's solver check: n points of the calibrated
 -- distributions, stratified: a maximin Latin hypercube in probability space mapped through each
 -- input's quantile function. Every input's marginal is covered evenly, tails included, so 40
 -- such points check the Kriging where the calibrated model puts its mass about as well as a few

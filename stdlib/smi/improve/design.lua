@@ -1,16 +1,18 @@
---- The sequential Kriging design of a trial (issue 16, --design sequential; the default is the
+--- The sequential Kriging design of a trial (--design sequential; the default is the
 -- fixed maximin hypercube of n_design points). Sequential: a maximin hypercube of 4 points per unknown, then
 -- batches of 8 (a multiple of the solver concurrency) chosen by smi.kriging.sequential where the
--- Kriging variance weighted by the calibration's reach is largest, until every mode's
+-- Kriging variance weighted by the calibration's reach is largest, until every response's
 -- leave-one-out Q2 reaches Q2_TARGET or the design holds the model's n_design points (the size
 -- of the fixed design it replaces, so it never costs more). Measured on the committed data
 -- (--quick): trial 1 ends at 80 points with Q2 0.9993/0.99999/0.9985, trial 2 at 120 with
--- 0.998/0.9999/0.992, no fewer runs, and trial 1's calibration lands at another optimum (its mode
--- 1 and 2 verdicts change): smi-column-fe's modes vary over the whole box, so the variance-weighted
+-- 0.998/0.9999/0.992, no fewer runs, and trial 1's calibration lands at another optimum (its mode1
+-- and mode2 verdicts change): smi-column-fe's modes vary over the whole box, so the variance-weighted
 -- points buy no accuracy a space-filling design lacks. Hence not the default.
+local stream = require "smi.improve.stream"
+
 local M = {}
 
-M.Q2_TARGET = 0.999  -- the fixed 80-point design of trial 1 reaches 0.9987-0.99998 over the modes
+M.Q2_TARGET = 0.999  -- the fixed 80-point design of trial 1 reaches 0.9987-0.99998 over the responses
 M.BATCH = 8
 M.CANDIDATES = 2000
 
@@ -36,12 +38,12 @@ function M.weights(C, unknowns, specs)
 end
 
 --- t: {box = {{lo, hi}, ...}, unknowns, specs, model (the solver model), max, seed, trend}
--- -> X (mat), Y ({mode = vec}), info {rounds, reached, stop, history}
+-- -> X (mat), Y ({response = vec}), info {rounds, reached, stop, history}
 function M.sequential(t)
   local d = #t.unknowns
   local n0 = math.min(t.max, 4 * d)
   local X0 = smi.doe.lhs(n0, t.box, { seed = t.seed, criterion = "maximin" })
-  local C = smi.doe.lhs(M.CANDIDATES, t.box, { seed = t.seed + 2000, criterion = "none" })
+  local C = smi.doe.lhs(M.CANDIDATES, t.box, { seed = stream(t.seed, "sequential candidates"), criterion = "none" })
   local r = smi.kriging.sequential{ model = t.model, design = X0, candidates = C,
                                     weights = M.weights(C, t.unknowns, t.specs),
                                     batch = M.BATCH, max = t.max, q2 = M.Q2_TARGET, trend = t.trend, corr = "gauss",

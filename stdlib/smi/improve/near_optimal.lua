@@ -17,8 +17,8 @@
 -- one objective evaluation per point checked.
 local M = {}
 
--- The summaries of modes `all` predicted at th: each mode's mean and std, in units of the data's
--- std (the pushes' penalty and targets compare them across modes on one scale).
+-- The summaries of responses `all` predicted at th: each response's mean and std, in units of the data's
+-- std (the pushes' penalty and targets compare them across responses on one scale).
 local function summaries(t, all, th)
   local Y = t.predicted(th, all)
   local s = {}
@@ -43,7 +43,7 @@ local function push_plan(t, nc, n)
   end
   plan[#plan + 1] = { nil, 0 }
   local target = {}
-  for i, m in ipairs(t.validation_modes) do
+  for i, m in ipairs(t.validation_responses) do
     target[nc + 2 * i - 1] = t.data[m]:mean() / t.data[m]:std()
     target[nc + 2 * i] = 1
   end
@@ -100,15 +100,15 @@ end
 
 --- t: params ({name, lower, upper} list), optimum ({name = value}), value (objective at the
 -- optimum, with the analyst's prior terms if any), objective(th) -> value (the same),
--- predicted(th, modes) -> {mode = vec},
--- tolerance, calibration_modes, validation_modes, data ({mode = vec}), maxeval (per push),
+-- predicted(th, responses) -> {response = vec},
+-- tolerance, calibration_responses, validation_responses, data ({response = vec}), maxeval (per push),
 -- prior: the analyst's smi.calibrate prior list (nil: none), held by the pushes like the summaries.
 -- Returns {source, tolerance, points = {optimum, ...}, objectives = {...}, directions = {...}}.
 function M.by_prediction_extremes(t)
   local all = {}
-  for _, m in ipairs(t.calibration_modes) do all[#all + 1] = m end
-  for _, m in ipairs(t.validation_modes) do all[#all + 1] = m end
-  local ctx = { all = all, nc = 2 * #t.calibration_modes, s0 = summaries(t, all, t.optimum) }
+  for _, m in ipairs(t.calibration_responses) do all[#all + 1] = m end
+  for _, m in ipairs(t.validation_responses) do all[#all + 1] = m end
+  local ctx = { all = all, nc = 2 * #t.calibration_responses, s0 = summaries(t, all, t.optimum) }
   local nc = ctx.nc
   local points, objectives = { t.optimum }, { t.value }
   local function between(a, b, f)
@@ -134,7 +134,7 @@ function M.by_prediction_extremes(t)
       for _, f in ipairs{ 1 / 3, 2 / 3 } do keep(between(t.optimum, reached, f)) end
     end
     local loadings, norm = push_loadings(t, reached)
-    pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_modes, ", ")
+    pushes[#pushes + 1] = { response = sign == 0 and table.concat(t.validation_responses, ", ")
                                          or all[math.floor((r - 1) / 2) + 1],
                             summary = sign == 0 and "mean and std" or ((r - nc) % 2 == 1 and "mean" or "std"),
                             way = sign > 0 and "up" or (sign < 0 and "down" or "to the data"), kept = kept,
@@ -143,7 +143,7 @@ function M.by_prediction_extremes(t)
   -- strongest first: the push that moved the parameters furthest while still fitting
   table.sort(pushes, function(a, b) return (a.kept and a.length or -1) > (b.kept and b.length or -1) end)
   return { source = ("pushes of %s's mean and std up and down with %s held, checked against the objective"):format(
-             table.concat(t.validation_modes, ", "), table.concat(t.calibration_modes, ", ")),
+             table.concat(t.validation_responses, ", "), table.concat(t.calibration_responses, ", ")),
            tolerance = t.tolerance, points = points, objectives = objectives, directions = pushes }
 end
 

@@ -1,27 +1,16 @@
 --- smi.improve.text: a study's words: the report's paragraphs and the console's closing lines,
 -- each a function of the run's results and the declaration (response names and units, candidate
 -- names; thresholds, sample sizes and ranges are the numbers the run computed, never retyped).
--- smi.improve computes and places; this file says. M.declare(D) takes the declaration.
+-- The steps compute and the views place; this file says. D: the checked declaration, passed to
+-- every function that names responses.
 local M = {}
-
-local MODES, CAL, VAL = {}, {}, {}
-
---- Takes the checked declaration's response lists.
-function M.declare(D) MODES, CAL, VAL = D.names, D.calibrate, D.validate end
 
 local function join(list, last)
   if #list <= 1 then return list[1] or "" end
   return table.concat(list, ", ", 1, #list - 1) .. (last or " and ") .. list[#list]
 end
 
---- A response's name in words ("mode 1" for "mode1").
-function M.mode_name(m) return (m:gsub("^mode(%d+)$", "mode %1")) end
-
-local function mode_list(list)
-  local w = {}
-  for i, m in ipairs(list) do w[i] = M.mode_name(m) end
-  return join(w)
-end
+local function listed(list, last) return join(list, last) end
 
 -- ---------------------------------------------------------------------------------------------
 -- Verdicts and conclusion
@@ -44,65 +33,128 @@ function M.weak_inputs(no)
 end
 
 --- What would settle an undetermined validation response.
-function M.settle(mode, cal)
+function M.settle(response, cal)
   local w = M.weak_inputs(cal and cal.near_optimal)
   return ("calibrate on %s as well, or measure an input that moves it%s and give it as --prior"):format(
-    M.mode_name(mode), w and (" (the means move most along: " .. w .. ")") or "")
+    response, w and (" (the means move most along: " .. w .. ")") or "")
 end
 
---- One validation-only mode's verdict detail (the report's verdict list).
-function M.range_detail(v, cal)
+--- One validation-only response's verdict detail (the report's verdict list).
+function M.range_detail(D, v, cal)
   local d = ("U = %.4f at the optimum; over %d near-optimal calibrations U in [%.4f, %.4f] against %.4f;"
     .. " not used by the calibration"):format(v.metric, v.range.points, v.range.lower, v.range.upper, v.threshold)
   if v.verdict ~= "inconclusive" then return d end
   return d .. (". %s fit equally well across calibrations that predict it on both sides of the"
-    .. " threshold. What would settle it: %s"):format(mode_list(CAL), M.settle(v.name, cal))
+    .. " threshold. What would settle it: %s"):format(listed(D.calibrate), M.settle(v.name, cal))
 end
 
---- A calibrated mode's verdict detail.
+--- A calibrated response's verdict detail.
 function M.decisive_detail(v)
   return ("U = %.4f %s %.4f (p = %.3f); used by the calibration"):format(v.metric, v.pass and "≤" or ">",
     v.threshold, v.p)
 end
 
---- An undetermined mode of the last trial in words, with its evidence (the U range over the
+--- An undetermined response of the last trial in words, with its evidence (the U range over the
 -- near-optimal set and the threshold the run computed) and what would settle it.
 function M.undetermined_words(m, val, cal)
   local v = val.responses[m]
   local r = v.range
   local evidence = r and ("U over %d near-optimal calibrations in [%.4f, %.4f] against threshold %.4f"):format(
     r.points, r.lower, r.upper, r.threshold) or "no near-optimal range"
-  return ("%s not determined by these data: %s; to settle it: %s"):format(M.mode_name(m), evidence, M.settle(m, cal))
+  return ("%s not determined by these data: %s; to settle it: %s"):format(m, evidence, M.settle(m, cal))
 end
 
---- The conclusion in words after "Conclusion: the model is <verdict>": the responses it rests on,
--- the path, and each undetermined response with its evidence. c: verdict.conclusion's table;
--- R: the step results.
-function M.conclusion_detail(c, R)
-  local k = #c.trials
-  local last = c.trials[k]
+-- A form in words: "the initial model" or "the form with a, b applied".
+local function form_name(applied)
+  return #applied > 0 and ("{" .. table.concat(applied, " + ") .. "}") or "the initial model"
+end
+M.form_name = form_name
+
+-- The Bayes factor of form a over form b in words, or why there is none.
+local function factor_words(a, b)
+  if type(a.log_evidence) ~= "number" or type(b.log_evidence) ~= "number" then return "no evidence computed" end
+  return ("Bayes factor %.3g (log %.2f ± %.2f)"):format(math.exp(a.log_evidence - b.log_evidence),
+    a.log_evidence - b.log_evidence,
+    math.sqrt((a.log_evidence_error or 0) ^ 2 + (b.log_evidence_error or 0) ^ 2))
+end
+
+--- What would separate forms the data leave together: a prior on the parameters that move most
+-- among the calibrations that fit (the chosen trial's strongest near-optimal push), a response
+-- (the undetermined ones, calibrated on), more specimens.
+function M.separate(D, c, R)
+  local k = c.chosen
+  local cal = R["trial" .. k .. "_calibration"]
+  local parts = {}
+  local w = M.weak_inputs(cal and cal.near_optimal)
+  local priors = {}
+  for _, n in ipairs(c.trials[k].unknowns) do priors[#priors + 1] = n .. ".mean" end
+  parts[#parts + 1] = ("a prior (--prior) on %s%s"):format(listed(priors, " or "),
+    w and (" (the means move most along: " .. w .. ")") or "")
+  if #c.undetermined > 0 then parts[#parts + 1] = ("calibrating on %s as well"):format(listed(c.undetermined)) end
+  parts[#parts + 1] = "more specimens"
+  return listed(parts, ", or ")
+end
+
+--- The conclusion in words after "Conclusion: the model is <verdict>": the form it names, the
+-- responses it rests on, the path, the forms the data cannot separate, and each undetermined
+-- response with its evidence. c: verdict.conclusion's table; R: the step results.
+function M.conclusion_detail(D, c, R)
+  local k = c.chosen or #c.trials
+  local chosen = c.trials[k]
   local refined = #c.refinements > 0
   local path = refined and ("after refinement by " .. table.concat(c.refinements, ", then ") .. " ") or ""
-  local where = ("(trial %d, %s%s)"):format(k, #last.applied > 0 and ("applied: " .. table.concat(last.applied, ", "))
+  local where = ("(trial %d, %s%s)"):format(k, #chosen.applied > 0 and ("applied: " .. table.concat(chosen.applied, ", "))
     or "initial model", refined and "" or ", no refinement")
   local val, cal = R["trial" .. k .. "_validation"], R["trial" .. k .. "_calibration"]
-  if c.verdict == "valid" then
-    local decided = {}
-    for _, m in ipairs(MODES) do if last.responses[m] == "valid" then decided[#decided + 1] = m end end
-    local s = ("on %s %s%s"):format(mode_list(decided), path, where)
-    for _, m in ipairs(c.undetermined) do s = s .. "; " .. M.undetermined_words(m, val, cal) end
-    return s
+  if c.verdict == "invalid" then
+    local failed = {}
+    for _, m in ipairs(D.names) do if chosen.responses[m] == "invalid" then failed[#failed + 1] = m end end
+    return ("%s%s: invalid on %s%s"):format(path, where, listed(failed), c.ended and ("; " .. c.ended) or "")
   end
-  if c.verdict == "inconclusive" then return ("%s%s: %s"):format(path, where, c.why or "") end
-  local failed = {}
-  for _, m in ipairs(MODES) do if last.responses[m] == "invalid" then failed[#failed + 1] = m end end
-  return ("%s%s: invalid on %s%s"):format(path, where, mode_list(failed), c.ended and ("; " .. c.ended) or "")
+  if next(chosen.responses) == nil then return ("%s%s: %s"):format(path, where, c.why or c.ended or "not validated") end
+  local decided = {}
+  for _, m in ipairs(D.names) do if chosen.responses[m] == "valid" then decided[#decided + 1] = m end end
+  local s = ("in %s, valid on %s %s%s"):format(form_name(chosen.applied), #decided > 0 and listed(decided) or "no response",
+    path, where)
+  local others = {}
+  for i, f in ipairs(c.forms) do
+    if i ~= k then
+      others[#others + 1] = f.verdict == "invalid" and ("%s is invalid"):format(form_name(f.applied))
+        or ("%s: %s%s"):format(form_name(f.applied), factor_words(c.forms[k], f),
+          f.supported and (", within the margin " .. ("%g"):format(D.evidence.margin)) or "")
+    end
+  end
+  if #others > 0 then s = s .. "; against the other forms tried: " .. table.concat(others, "; ") end
+  if c.verdict == "valid" then return s end
+  local open = false -- whether more knowledge or data could decide (else: the trial's own reason)
+  for _, r in ipairs(c.comparison or {}) do
+    open = open or r.kind ~= "trial"
+    if r.kind == "inseparable" then
+      local names = {}
+      for i, j in ipairs(r.forms) do names[i] = form_name(c.forms[j].applied) end
+      s = s .. ("; the data cannot separate it from %s (Bayes factor under %g)"):format(listed(names), D.evidence.margin)
+    elseif r.kind == "bounds" then
+      s = s .. ("; the calibrated %s on its range's bound: the data ask for more than the declared range, which"
+        .. " counts against this form"):format(listed(r.params))
+    elseif r.kind == "trial" and r.why then
+      s = s .. "; " .. r.why
+    end
+  end
+  for _, m in ipairs(c.undetermined) do
+    if val and val.responses then s = s .. "; " .. M.undetermined_words(m, val, cal) end
+  end
+  return open and (s .. "; what would separate the forms: " .. M.separate(D, c, R)) or s
 end
 
 --- The conclusion in one sentence starting "Conclusion: the model is <verdict>" (the console's
 -- last line; the report's verdict name and detail).
-function M.conclusion(c, R)
-  return ("Conclusion: the model is %s %s."):format(c.verdict, M.conclusion_detail(c, R))
+function M.conclusion(D, c, R)
+  return ("Conclusion: the model is %s %s."):format(c.verdict, (M.conclusion_detail(D, c, R):gsub("%.$", "")))
+end
+
+--- A trial's label in the report and the log: "Trial k (candidate)".
+function M.trial_label(model, k)
+  return ("Trial %d (%s)"):format(k, model.candidate == "initial" and "initial model" or model.candidate)
 end
 
 --- A trial's verdict in one sentence (the end of its validity-check section).
@@ -110,27 +162,27 @@ function M.trial_verdict(label, res)
   local s = ("%s is %s"):format(label, res.verdict)
   if res.why then s = s .. ": " .. res.why end
   if res.undetermined and #res.undetermined > 0 then
-    s = s .. ("; %s not determined by the calibration data"):format(mode_list(res.undetermined))
+    s = s .. ("; %s not determined by the calibration data"):format(listed(res.undetermined))
   end
   return s .. "."
 end
 
 --- One line per trial for the console (what the conclusion says, in words).
-function M.trial_line(i, t, refinement)
-  local modes = {}
-  for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. (t.responses[m] or "not validated") end
+function M.trial_line(D, i, t, refinement)
+  local parts = {}
+  for _, m in ipairs(D.names) do parts[#parts + 1] = m .. " " .. (t.responses[m] or "not validated") end
   return ("Trial %d: %s, applied {%s}, unknowns %s: %s%s"):format(i, t.candidate, table.concat(t.applied, ", "),
     table.concat(t.unknowns, ", "),
-    table.concat(modes, ", "), refinement and ("; refined by " .. refinement) or "")
+    table.concat(parts, ", "), refinement and ("; refined by " .. refinement) or "")
 end
 
 -- ---------------------------------------------------------------------------------------------
 -- Data and characterization
 -- ---------------------------------------------------------------------------------------------
 
-function M.data_intro(n, file)
-  return ("%d measurements from %s. %s calibrate the model%s."):format(n, file, mode_list(CAL),
-    #VAL > 0 and ("; " .. mode_list(VAL) .. (#VAL > 1 and " are" or " is") .. " kept for validation") or "")
+function M.data_intro(D, n, file)
+  return ("%d measurements from %s. %s calibrate the model%s."):format(n, file, listed(D.calibrate),
+    #D.validate > 0 and ("; " .. listed(D.validate) .. (#D.validate > 1 and " are" or " is") .. " kept for validation") or "")
 end
 
 --- The data step's units check: the nominal run against the data, per response.
@@ -153,10 +205,10 @@ end
 
 --- The screening's paragraph: out is the screening step's record (method, n, inputs,
 -- solver_solutions, the surrogate's leave-one-out Q² per response).
-function M.screening_intro(out)
+function M.screening_intro(D, out)
   if out.method == "surrogate" then
     local q = {}
-    for _, m in ipairs(MODES) do q[#q + 1] = ("%s %.4f"):format(m, out.responses[m].q2 or 0 / 0) end
+    for _, m in ipairs(D.names) do q[#q + 1] = ("%s %.4f"):format(m, out.responses[m].q2 or 0 / 0) end
     return ("Area-metric screening (eq. 3 and 7) at the solver's cost: the initial model ran %d times on a Latin"
       .. " hypercube of the %d inputs through their declared distributions; a ridge quadratic per response"
       .. " (leave-one-out Q² %s) stands in for the model, and each input is fixed at its mean in turn on one"
@@ -174,7 +226,7 @@ end
 
 --- A trial's surrogate paragraph: T the trial's model, res its surrogate step's record, fixed the
 -- words for its fixed inputs ("" or ", fixed a = 1, ..."), test_points the independent test points.
-function M.surrogate_intro(T, res, fixed, test_points)
+function M.surrogate_intro(D, T, res, fixed, test_points)
   local form = {}
   for k, v in pairs(T.form) do form[#form + 1] = ("%s = %s"):format(k, tostring(v)) end
   table.sort(form)
@@ -183,14 +235,14 @@ function M.surrogate_intro(T, res, fixed, test_points)
     .. " where the Kriging variance, weighted by where the calibration can put the unknowns' mass, is largest;"
     .. " %s; the fixed design it replaces has %d)"):format(
     res.n_design, sq.initial, sq.batch,
-    sq.reached and ("stopped at leave-one-out Q² ≥ " .. sq.q2_target .. " in every mode")
+    sq.reached and ("stopped at leave-one-out Q² ≥ " .. sq.q2_target .. " in every response")
       or ("stopped at its limit: " .. sq.stop), T.n_design)
     or ("a %d-point maximin Latin hypercube"):format(res.n_design)
   return ("Kriging (Gauss correlation, %s trend, hyperparameters by maximum likelihood) of %s on"
     .. " %s of the unknowns %s over the design box (mean bounds widened by 3 std bounds; uniform: √3), model"
     .. " form {%s}%s. Every solution is a solver run of the declared model, kept in the evaluation store."
     .. " An independent %d-point hypercube measures the test RMSE (the paper's Tables 3 and 7)."):format(
-    T.trend, mode_list(MODES), how, table.concat(T.unknowns, ", "), table.concat(form, ", "), fixed, test_points)
+    T.trend, listed(D.names), how, table.concat(T.unknowns, ", "), table.concat(form, ", "), fixed, test_points)
 end
 
 -- ---------------------------------------------------------------------------------------------
@@ -216,10 +268,10 @@ end
 
 --- The calibration section's paragraph. T: the trial model; res: calibration.calibrate's result;
 -- cfg: the run's sample sizes.
-function M.calibration_intro(T, res, cfg, prior_file, labels)
+function M.calibration_intro(D, T, res, cfg, prior_file, labels)
   local pr = res.metric == "pr"
   local parts = {}
-  for _, m in ipairs(CAL) do parts[#parts + 1] = ("%s %.4f"):format(M.mode_name(m), res.metrics[m]) end
+  for _, m in ipairs(D.calibrate) do parts[#parts + 1] = ("%s %.4f"):format(m, res.metrics[m]) end
   return ("Means and standard deviations of the %d unknowns (types, bounds and start values as declared: the"
     .. " study's unknowns, and each applied candidate's new ones) minimize %s over the KDEs of %d"
     .. " common-random-number samples propagated through the Kriging models; SLSQP (NLopt), in"
@@ -229,7 +281,7 @@ function M.calibration_intro(T, res, cfg, prior_file, labels)
     .. " PR stage starts from there. %s Objective at the optimum %.4f (%s %s), %d"
     .. " evaluations from %d start(s), %s (converged: %s)."):format(
     #T.unknowns, (pr and "the summed PR between the KDE-ebd PDFs of the data and the predicted ones, over %s"
-      or "minus the log-likelihood of the data points of %s"):format(mode_list(CAL)), cfg.cal_n, mode_list(CAL),
+      or "minus the log-likelihood of the data points of %s"):format(listed(D.calibrate)), cfg.cal_n, listed(D.calibrate),
     res.moments_stage.evaluations, M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
     res.objective, pr and "PR" or "-logL", table.concat(parts, ", "), res.evaluations,
     res.starts and #res.starts or 1, res.status, tostring(res.converged))
@@ -262,71 +314,77 @@ local function mean_ranges(no)
   return table.concat(r, ", ")
 end
 
---- The identifiability callout: what modes 1 and 4 fix and the near-optimal set.
-function M.identifiability(res)
+--- The identifiability callout: what the calibrated responses fix and the near-optimal set.
+function M.identifiability(D, res)
   local sv, no = res.sensitivity, res.near_optimal
   local shares = {}
-  for _, m in ipairs(VAL) do
+  for _, m in ipairs(D.validate) do
     shares[#shares + 1] = ("%.0f %% of %s's sensitivity lies outside what they constrain"):format(
-      100 * (sv.unconstrained_share[m] or 0), M.mode_name(m))
+      100 * (sv.unconstrained_share[m] or 0), m)
   end
   return ("Identifiability (beyond the paper): %s fix %d combinations of the %d means and leave %d"
     .. " undetermined%s. Near-optimal calibrations (objective within %.3g of the optimum, the %s; %s): %d points;"
-    .. " the means over them: %s."):format(mode_list(CAL), sv.constrained, #sv.inputs, sv.undetermined,
+    .. " the means over them: %s."):format(listed(D.calibrate), sv.constrained, #sv.inputs, sv.undetermined,
     #shares > 0 and ("; " .. table.concat(shares, "; ")) or "", no.tolerance,
     no.tolerance_basis and no.tolerance_basis.basis or "tolerance", no.source, #no.points, mean_ranges(no))
 end
 
-function M.weak_parameters(weak)
+function M.weak_parameters(D, weak)
   return ("Identifiability: the objective hardly changes with %s over its whole range; these parameters are not"
-    .. " determined by %s."):format(table.concat(weak, ", "), mode_list(CAL))
+    .. " determined by %s."):format(table.concat(weak, ", "), listed(D.calibrate))
 end
 
 -- ---------------------------------------------------------------------------------------------
 -- Validity check
 -- ---------------------------------------------------------------------------------------------
 
---- The validity check's paragraph; the threshold is the run's (res.modes.*.threshold).
-function M.validation_intro(res, n, cfg)
-  local val = #VAL == 0 and "" or (" %s %s not: the calibration data may leave combinations of the means"
+--- The validity check's paragraph; the threshold is the run's (res.responses.*.threshold).
+function M.validation_intro(D, res, n, cfg)
+  local val = #D.validate == 0 and "" or (" %s %s not: the calibration data may leave combinations of the means"
     .. " undetermined, so the metric is computed over every near-optimal calibration (%d samples each) and the"
     .. " verdict is valid or invalid only when that whole range lies on one side of the threshold, else"
     .. " inconclusive; an undecided one in a trial that is otherwise valid is listed as undetermined, not hidden."):format(
-    mode_list(VAL), #VAL > 1 and "were" or "was", cfg.near_n)
+    listed(D.validate), #D.validate > 1 and "were" or "was", cfg.near_n)
   return ("u-pooling area metric (eq. 11 and 12) of the data of each response against the KDE of %d samples of"
     .. " the calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
     .. " docs/spec/algorithms.md §5). %s were used by the calibration: their verdict is the optimum's.%s The"
     .. " trial is valid when every calibrated response is valid and its calibration converged. As a check of the"
     .. " surrogate, %d points of the calibrated distributions, stratified (a Latin hypercube in probability"
     .. " space), were also run through the solver itself."):format(
-    res.n, res.responses[CAL[1]].threshold, n, mode_list(CAL), val, res.n_solver)
+    res.n, res.responses[D.calibrate[1]].threshold, n, listed(D.calibrate), val, res.n_solver)
 end
 
 --- The sentence that says which of the Kriging verdict and the solver check governs when they
 -- disagree: the verdict, because it is the u-pooling of the calibrated distributions sampled
 -- val_n times, where the check runs the solver at solver_check stratified points only; the
 -- disagreement says the surrogate's error matters near this optimum.
-function M.solver_disagrees(label, mode_title, metric, cfg)
+function M.solver_disagrees(label, title, v, cfg)
+  local sv = v.solver
+  if v.verdict == "inconclusive" then
+    return ("%s, %s: the verdict (inconclusive) governs. The solver check (U = %.4f, %s) runs the solver at the"
+      .. " optimum's distributions only, one of the calibrations that fit the calibrated responses as well; over"
+      .. " them U spans both sides of the threshold, which one calibration cannot settle. The response is"
+      .. " undetermined by these data, so the study refines or concludes undetermined, never valid on it."):format(
+      label, title, sv.metric, sv.pass and "valid" or "invalid")
+  end
   return ("%s, %s: the verdict governs. It is the u-pooling of the calibrated distributions on %d Kriging"
     .. " samples; the solver check (U = %.4f) runs the solver at %d points only, so it flags the surrogate's error"
     .. " near this optimum rather than overrules the verdict. More points (--solver-check N) or a larger design"
-    .. " would settle the disagreement."):format(label, mode_title, cfg.val_n, metric, cfg.solver_check)
+    .. " would settle the disagreement."):format(label, title, cfg.val_n, sv.metric, cfg.solver_check)
 end
 
 -- ---------------------------------------------------------------------------------------------
 -- Refinement
 -- ---------------------------------------------------------------------------------------------
 
-local CRITERIA = { "correctness", "robustness", "computational cost", "implementation cost" }
-
---- Why the chosen candidate (index jc) won against the runner-up (jr, or none): its rating and
--- the weighted differences of its standardized criteria.
+--- Why the chosen candidate (index jc of the matrix dm) won against the runner-up (jr, or
+-- none): its rating and the weighted differences of its standardized criteria.
 function M.why_chosen(dm, jc, jr)
   local w = { dm.weights.correctness, dm.weights.robustness, dm.weights.computational, dm.weights.implementation }
   local why = {}
-  for i = 1, 4 do
-    local d = w[i] * (dm.candidates[jc].standardized[i] - (jr and dm.candidates[jr].standardized[i] or 0))
-    why[#why + 1] = ("%s %+.3f"):format(CRITERIA[i], d)
+  for i, name in ipairs(dm.criteria) do
+    local d = (w[i] or 1) * (dm.candidates[jc].standardized[i] - (jr and dm.candidates[jr].standardized[i] or 0))
+    why[#why + 1] = ("%s %+.3f"):format(name, d)
   end
   return ("rating %.3f%s; weighted difference by criterion: %s"):format(dm.overall[jc],
     jr and (" against %.3f for %s"):format(dm.overall[jr], dm.candidates[jr].name) or "", table.concat(why, ", "))
@@ -334,8 +392,8 @@ end
 
 --- Why a trial is not refined (its verdict is not invalid).
 function M.nothing_to_refine(k, v)
-  local und = v.undetermined and #v.undetermined > 0 and ("; %s undetermined"):format(mode_list(v.undetermined)) or ""
-  return ("trial %d is %s%s%s: nothing is refined without an invalid verdict"):format(k, v.verdict,
+  local und = v.undetermined and #v.undetermined > 0 and ("; %s undetermined"):format(listed(v.undetermined)) or ""
+  return ("trial %d is %s%s%s: nothing is refined without an invalid or undetermined response"):format(k, v.verdict,
     v.why and (" (" .. v.why .. ")") or "", und)
 end
 
@@ -346,15 +404,17 @@ function M.refinement_intro(k, out)
   local names = {}
   for j, c in ipairs(dm.candidates) do names[j] = c.name end
   local w = dm.weights
-  return ("Trial %d is invalid on %s. Candidates (each declaring its revision): %s. Each revised model (on top"
+  return ("Trial %d is %s on %s. Candidates (each declaring its revision): %s. Each revised model (on top"
     .. " of the revisions kept so far) is run at the start means; correctness is eq. (13)"
     .. " averaged over every response used in calibration (%s), whichever of them the calibration gave up;"
     .. " robustness the number of new unknowns, computational cost the measured run time (minutes, in whole"
     .. " seconds: shorter differences are timing noise), implementation cost the analyst's estimate (minutes)."
-    .. " Weights: correctness %g, robustness %g, computational cost %g, implementation cost %g (criteria.lua"
-    .. " explains why). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s (rank %d; candidates"
+    .. " Weights: correctness %g, robustness %g, computational cost %g, implementation cost %g (the"
+    .. " declaration's weights; by default correctness counts double: a revision that does not move the failed"
+    .. " response cannot make the model valid). S = 1 − M / max M (eq. 14); rating = Σ w·S. Ranking: %s. Chosen: %s"
+    .. " (rank %d; candidates"
     .. " already tried are passed over): %s. Trial %d applies %s; unknowns %s.%s"):format(
-    k, mode_list(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
+    k, out.undetermined_only and "undetermined" or "invalid", listed(out.failed_responses), table.concat(names, "; "), table.concat(dm.responses, ", "),
     w.correctness, w.robustness, w.computational, w.implementation, table.concat(dm.ranking, " > "), out.chosen,
     out.rank, out.why, k + 1, table.concat(model.applied, " + "), table.concat(model.unknowns, ", "),
     #(model.dropped or {}) > 0 and (" Dropped: " .. M.dropped(model.dropped) .. ".") or "")
@@ -375,15 +435,15 @@ M.solver_use_caption = "Solver use in this run (steps run alone count only their
   .. " processes launched, points reused from the store."
 
 --- The loop as it ran, in words (the summary's paragraph).
-function M.story(c, R, prior_labels)
+function M.story(D, c, R, prior_labels)
   local story = {}
   for i, t in ipairs(c.trials) do
-    local modes = {}
-    for _, m in ipairs(MODES) do modes[#modes + 1] = m .. " " .. (t.responses[m] or "not validated") end
+    local parts = {}
+    for _, m in ipairs(D.names) do parts[#parts + 1] = m .. " " .. (t.responses[m] or "not validated") end
     story[#story + 1] = ("Trial %d (%s, applied {%s}, calibration %s): %s."):format(i, t.candidate,
       table.concat(t.applied, ", "),
       t.calibration.converged and "converged" or ("stopped: " .. tostring(t.calibration.status)),
-      table.concat(modes, ", "))
+      table.concat(parts, ", "))
     if c.refinements[i] then
       story[#story + 1] = ("The decision matrix chose %s (%s)."):format(c.refinements[i], R["refinement" .. i].why)
     end

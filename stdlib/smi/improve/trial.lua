@@ -5,6 +5,8 @@
 -- over the near-optimal calibrations. This file computes; the words are in text.lua.
 -- `responses` below is the declaration's list of response names (calibrate ones first or not:
 -- the roles come from `calibrate` / `validate` name lists).
+local stream = require "smi.improve.stream"
+
 local M = {}
 
 --- Box of an unknown's Kriging design (spec {dist, mean, std}): every value its distribution
@@ -57,7 +59,7 @@ function M.surrogate(t)
     X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
     Y = model:evaluate(X)
   end
-  local Xt = t.n_test > 0 and smi.doe.lhs(t.n_test, box, { seed = t.seed + 1000, criterion = "maximin" }) or nil
+  local Xt = t.n_test > 0 and smi.doe.lhs(t.n_test, box, { seed = stream(t.seed, "test points"), criterion = "maximin" }) or nil
   local Yt = Xt and model:evaluate(Xt) or nil
   local k, diag = {}, {}
   for _, m in ipairs(t.responses) do
@@ -169,20 +171,20 @@ function M.distributions(cal)
   return d
 end
 
---- The u-pooling metric of the data of `mode` over the calibration's near-optimal points (each
+--- The u-pooling metric of the data of `response` over the calibration's near-optimal points (each
 -- propagated through the Kriging, n samples), and the verdict it allows: "valid" when every
 -- point's metric is at most the threshold, "invalid" when every one is above it, else
 -- "inconclusive".
-function M.metric_range(t, mode)
+function M.metric_range(t, response)
   local cal, specs = t.calibration, t.model.specs
   local names = {}
   for i, p in ipairs(cal.params) do names[i] = p.input end
-  local predicted = M.predictor(t.kriging, names, specs, t.n_near, t.seed + 5)
+  local predicted = M.predictor(t.kriging, names, specs, t.n_near, stream(t.seed, "near-optimal predictions"))
   local lo, hi, threshold, metrics = math.huge, -math.huge, nil, {}
   for i, th in ipairs(cal.near_optimal.points) do
-    local Y = predicted(th, { mode })
-    local v = smi.metric.upool{ data = { t.data[mode] }, predicted = { smi.kde(Y[mode]) }, confidence = 0.95,
-                                seed = t.seed + 3 }
+    local Y = predicted(th, { response })
+    local v = smi.metric.upool{ data = { t.data[response] }, predicted = { smi.kde(Y[response]) }, confidence = 0.95,
+                                seed = stream(t.seed, "u-pooling") }
     metrics[i], threshold = v.metric, v.threshold
     lo, hi = math.min(lo, v.metric), math.max(hi, v.metric)
   end
@@ -206,21 +208,21 @@ function M.validate(t)
   local out = { n = t.n, n_solver = t.n_solver, responses = {} }
   local Ysol
   if t.check_model and t.n_solver > 0 then
-    local Xs = require("smi.improve.check_points")(dists, t.n_solver, t.seed + 7)
+    local Xs = require("smi.improve.check_points")(dists, t.n_solver, stream(t.seed, "solver check points"))
     Ysol = t.check_model:evaluate(Xs)
   end
   local used = {}
   for _, m in ipairs(t.calibrate) do used[m] = true end
   for _, m in ipairs(t.responses) do
     local pred = smi.kde(Ys[m])
-    local v = smi.metric.upool{ data = { t.data[m] }, predicted = { pred }, confidence = 0.95, seed = t.seed + 3 }
+    local v = smi.metric.upool{ data = { t.data[m] }, predicted = { pred }, confidence = 0.95, seed = stream(t.seed, "u-pooling") }
     local c = v:curve()
     local o = { metric = v.metric, threshold = v.threshold, p = v.p, pass = v.pass, u = col_table(v.u),
       predicted_mean = Ys[m]:mean(), predicted_std = Ys[m]:std(),
       curve = { x = col_table(c.x), y = col_table(c.y) }, used_in_calibration = used[m] == true, name = m }
     if Ysol then
       local vs = smi.metric.upool{ data = { t.data[m] }, predicted = { smi.kde(Ysol[m]) }, confidence = 0.95,
-                                   seed = t.seed + 3 }
+                                   seed = stream(t.seed, "u-pooling") }
       o.solver = { metric = vs.metric, pass = vs.pass, p = vs.p, mean = Ysol[m]:mean(), std = Ysol[m]:std() }
     end
     if used[m] then

@@ -10,6 +10,8 @@
 --   inconclusive  when its calibration did not converge, or a calibrated response is undecided;
 --   valid         otherwise, with the undecided validation-only responses listed as `undetermined`.
 -- A trial that is not invalid ends the study: nothing is refined without an invalid verdict.
+local forms = require "smi.improve.forms"
+
 local M = {}
 
 --- t: {names = {response, ...}, responses = {name = {verdict, used_in_calibration}}, converged, status}.
@@ -35,15 +37,37 @@ function M.trial(t)
   return "valid", undetermined, nil
 end
 
+--- Whether a trial's validation (its step result) calls for a refinement: an invalid trial, or
+-- one that leaves a validation response undetermined (the data cannot say whether this form
+-- predicts it; another form may).
+function M.needs_refinement(v)
+  return v.verdict == "invalid" or (v.undetermined ~= nil and #v.undetermined > 0)
+end
+
+--- The report's and console's badge of a verdict.
+M.BADGE = { valid = "pass", invalid = "fail", inconclusive = "inconclusive", undetermined = "inconclusive" }
+
 local function skipped(r) return r == nil or r.skipped end
+
+-- The calibrated means on a bound of their range (smi.calibrate's at_bounds, the means only):
+-- the range is the analyst's prior, and the data ask for more than it allows.
+local function means_at_bounds(cal)
+  local out = {}
+  for _, p in ipairs(cal.at_bounds or {}) do if p:match("%.mean$") then out[#out + 1] = p end end
+  return out
+end
 
 --- The conclusion from the saved step results R (trialk_surrogate, trialk_calibration,
 -- trialk_validation, refinementk) for at most max_trials trials: {verdict, refinements,
 -- undetermined, trials = {{candidate, applied, unknowns, responses, calibration = {converged,
--- status, means, stds}}}} plus `ended` (why the loop stopped) and `why` (of an inconclusive
--- verdict), which stay in the summary step. extra(model, responses) -> more keys of a trial.
+-- status, means, stds, at_bounds}}}, forms = {{applied, log_evidence, log_evidence_error,
+-- supported, chosen}}} plus, kept in the summary step, `chosen` (the index of the chosen form's
+-- trial), `comparison` (forms.lua's reasons), `ended` (why the loop stopped) and `why`. The
+-- verdict is forms.lua's over the tried forms; the margin is the declaration's
+-- evidence.margin. extra(model, responses) -> more keys of a trial.
 function M.conclusion(R, D, max_trials, extra)
-  local c = { trials = {}, refinements = {}, undetermined = {} }
+  local c = { trials = {}, refinements = {}, undetermined = {}, forms = {} }
+  local records = {}
   for k = 1, max_trials do
     local sur = R["trial" .. k .. "_surrogate"]
     if skipped(sur) then break end
@@ -54,27 +78,43 @@ function M.conclusion(R, D, max_trials, extra)
     if not skipped(val) then for _, m in ipairs(D.names) do responses[m] = val.responses[m].verdict end end
     local T = sur.model
     local t = { candidate = T.candidate, applied = T.applied, unknowns = T.unknowns, responses = responses,
-                calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds } }
+                calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds,
+                                at_bounds = means_at_bounds(cal) } }
     for key, v in pairs(extra and extra(T, responses) or {}) do t[key] = v end
     c.trials[#c.trials + 1] = t
+    local ev = cal.evidence or {}
+    local rec = { applied = T.applied, at_bounds = t.calibration.at_bounds, log_evidence = ev.log_evidence,
+                  log_evidence_error = ev.log_evidence_error }
+    records[#records + 1] = rec
     if skipped(val) then
-      c.verdict, c.why, c.ended = "inconclusive", val and val.reason, val and val.reason
+      rec.verdict, rec.undetermined, rec.why = "inconclusive", {}, val and val.reason
+      c.ended = val and val.reason
       break
     end
-    c.verdict, c.undetermined, c.why = M.trial{ names = D.names, responses = val.responses,
-                                                converged = cal.converged == true, status = cal.status }
+    rec.verdict, rec.undetermined, rec.why = M.trial{ names = D.names, responses = val.responses,
+                                                      converged = cal.converged == true, status = cal.status }
     if k < max_trials then
       local ref = R["refinement" .. k]
       if ref and not ref.skipped then c.refinements[#c.refinements + 1] = ref.chosen
       elseif ref then c.ended = ref.reason end
     end
   end
+  local cmp = forms.compare(records, D.evidence.margin)
+  c.verdict, c.chosen, c.comparison = cmp.verdict, cmp.chosen, cmp.reasons
+  local chosen = records[cmp.chosen]
+  c.undetermined = chosen and chosen.undetermined or {}
+  c.why = chosen and chosen.why
+  for i, f in ipairs(records) do
+    c.forms[i] = { applied = f.applied, log_evidence = f.log_evidence, log_evidence_error = f.log_evidence_error,
+                   supported = f.supported, chosen = f.chosen, verdict = f.verdict }
+  end
   return c
 end
 
 --- The top-level entry of results.json: exactly the generic fields.
 function M.top_level(c)
-  return { verdict = c.verdict, refinements = c.refinements, trials = c.trials, undetermined = c.undetermined }
+  return { verdict = c.verdict, refinements = c.refinements, trials = c.trials, undetermined = c.undetermined,
+           forms = c.forms }
 end
 
 return M

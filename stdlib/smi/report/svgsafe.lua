@@ -1,5 +1,5 @@
 --- smi.report.svgsafe: the figure sanitiser. A report promises no scripts and no network, and
--- a figure's SVG is embedded in the page as it is, so it is held to an allow-list (issue 23):
+-- a figure's SVG is embedded in the page as it is, so it is held to an allow-list:
 -- elements and attributes of static vector graphics only; no script, foreignObject, iframe,
 -- image, animation or link element; no on* handler; href only to "#id" inside the figure;
 -- CSS (style attributes, <style> sheets, presentation attributes such as fill) held to the

@@ -1,4 +1,4 @@
-// The calibration pipeline behind smi::improve::calibrate (issue 29): the gradient it chooses,
+// The calibration pipeline behind smi::improve::calibrate: the gradient it chooses,
 // the tolerance and prior it reports, and "no overlap" instead of a false "converged".
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// All nine smi.dist families as calibration inputs (issue 11 item 7): the (mean, std) mapping of
+// All nine smi.dist families as calibration inputs: the (mean, std) mapping of
 // each family is checked against the family's own closed-form mean and std, the CRN mapping
 // against the family's quantile, and the errors name the parameterisation.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// Identifiability as directions (issue 11 item 3) on closed-form objectives.
+// Identifiability as directions on closed-form objectives.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The calibration objective's analytic gradient (issue 11 item 1) against central differences
+// The calibration objective's analytic gradient against central differences
 // of the objective itself, on CRN: quantile functions of normal, lognormal and uniform inputs,
 // a model Jacobian, the KDE with its bandwidth (sd-based, IQR-based robust, MAD), PR (with outside mass)
 // and loglik.
@@ -172,7 +172,7 @@ TEST_CASE("no gradient for a custom metric, a data-driven bandwidth or a model w
   CHECK_THROWS_WITH(f.value_and_gradient(Eigen::VectorXd::Constant(6, 1.0), g), Catch::Contains("no analytic gradient"));
 }
 
-TEST_CASE("model differences (issue 29): one batch of k + 1 (forward) or 2k + 1 (central) model passes gives the analytic gradient") {
+TEST_CASE("model differences: one batch of k + 1 (forward) or 2k + 1 (central) model passes gives the analytic gradient") {
   for (MetricKind m : {MetricKind::pr, MetricKind::loglik}) {
     const StatisticalObjective exact = make(m);
     StatisticalObjective fwd = exact, ctr = exact;

@@ -1,4 +1,4 @@
-// Profile intervals (issue 11 item 4) against the closed-form likelihood-ratio intervals of a
+// Profile intervals against the closed-form likelihood-ratio intervals of a
 // normal sample's mean and standard deviation.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Long stats kernels stop when the run is cancelled (issue 14 item 5): a KDE sum over large
+// Long stats kernels stop when the run is cancelled: a KDE sum over large
 // data and the u-pooling Monte Carlo throw smi::Interrupted with the token's reason, also from
 // worker threads, instead of running on (49 s past --timeout 3 before).
 #include <catch2/catch.hpp>

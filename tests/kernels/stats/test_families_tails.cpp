@@ -89,7 +89,7 @@ TEST_CASE("families match SciPy to 1e-9 relative in body and both tails") {
   CHECK(seen.size() == ds.size());
 }
 
-TEST_CASE("issue 11: truncnormal on [6, inf) and the gamma/beta upper tails") {
+TEST_CASE("truncnormal on [6, inf) and the gamma/beta upper tails") {
   const smi::stats::TruncNormal t(0.0, 1.0, 6.0, kInf);
   // Independent values (families_tails.csv, SciPy quad of the normal pdf): the old Φ-difference
   // cdf gave 1.1e-7-sized noise here and the 1 − 1e-12 quantile 8.43 (p = 1 − 1e-12 as a double

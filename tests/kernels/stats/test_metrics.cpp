@@ -73,7 +73,7 @@ TEST_CASE("log-likelihood (spec 8.2)") {
   CHECK(floored == 1);
 }
 
-// ---- issue 11 item 6: pdfs infinite at a bound, narrow, skewed; never NaN ----------------
+// ---- pdfs infinite at a bound, narrow, skewed; never NaN ----------------
 
 #include <fstream>
 #include <map>

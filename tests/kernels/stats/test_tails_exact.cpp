@@ -1,8 +1,8 @@
-// Tails against exact values (issue 29 item 6): mpmath at 60 digits from the closed forms
+// Tails against exact values: mpmath at 60 digits from the closed forms
 // (tests/reference/tails_exact.py -> tails_exact.csv), down to 1e-300 where representable:
 // triangular with its mode at a bound (cdf, logcdf, sf, quantile, isf), logcdf far in the lower
 // tail of weibull, truncnormal and triangular, and the Gaussian KDE's sf, logpdf, logcdf,
-// quantile and isf far from its data. Before issue 29 these lost up to 1e-4 relative
+// quantile and isf far from its data. Before, these lost up to 1e-4 relative
 // (triangular), returned −inf (logcdf; the KDE's logpdf 10 h and logcdf 5 h away), 0 (the KDE's
 // sf 8 h away) or inf (the KDE's isf(1e-20)).
 #include <catch2/catch.hpp>

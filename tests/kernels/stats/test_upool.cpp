@@ -90,7 +90,7 @@ TEST_CASE("verdicts for the spec data under two normal predictions") {
   CHECK_THAT(v3.metric, WithinAbs(v1.metric, 1e-15));
 }
 
-// Large n (issue 14 item 5): sqrt(n)·U tends to A = ∫|B(t)|dt (Brownian bridge), whose mean is
+// Large n: sqrt(n)·U tends to A = ∫|B(t)|dt (Brownian bridge), whose mean is
 // exactly sqrt(pi/32) (E|B(t)| = sqrt(2t(1-t)/pi)). The fitted table's limit must have that mean,
 // and the fitted form must agree with a Monte Carlo at n just above the switch.
 TEST_CASE("large-n u-pooling thresholds: fitted form against a closed form and Monte Carlo") {

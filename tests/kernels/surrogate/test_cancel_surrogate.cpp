@@ -1,4 +1,4 @@
-// Long surrogate kernels stop when the run is cancelled (issue 14 item 5): LHS optimisation,
+// Long surrogate kernels stop when the run is cancelled: LHS optimisation,
 // the Kriging likelihood search and block prediction throw smi::Interrupted with the reason.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Surrogate screening (issue 16): the ridge polynomial's closed-form leave-one-out error, the
+// Surrogate screening: the ridge polynomial's closed-form leave-one-out error, the
 // eq.-3 PDF areas of a linear model with normal inputs against their closed form, a quadratic
 // model the surrogate reproduces against the full screening on the same CRN sample, a poor
 // surrogate reported, and Borgonovo's delta against numerical integration of its definition.

@@ -1,4 +1,4 @@
-// The run's one cancellation token (issue 27): it carries the reason and its detail, the first
+// The run's one cancellation token: it carries the reason and its detail, the first
 // reason wins, a passed deadline becomes the reason only if nothing came first, and the readers
 // (a kernel's loop through the thread pool, a Poller given the token) stop with the reason's
 // message. The old token knew only "interrupted" and "timeout" and had no detail: the memory

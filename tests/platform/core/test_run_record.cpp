@@ -1,4 +1,4 @@
-// The run record (provenance, issue 24): files hashed from the descriptor read (FIPS 180-2 "abc"
+// The run record (provenance): files hashed from the descriptor read (FIPS 180-2 "abc"
 // vector), a Lua record upgrading a data one, a file read twice with other contents marked,
 // outputs excluded, files over 1 GB identified by size and mtime (a sparse file: no gigabyte
 // written), the read counter for per-step inputs.

@@ -1,6 +1,6 @@
 // The extra sbatch arguments: read as sbatch 22.05 reads them (glibc's getopt_long over sbatch's
 // option table is the oracle), then held to an allow-list. The family of redirecting forms the
-// old deny-list let through (issue 23): glued short options, abbreviations, values in the next
+// old deny-list let through: glued short options, abbreviations, values in the next
 // word, letters bunched together, the hetjob separator, bare words that become the script.
 #include <catch2/catch.hpp>
 
@@ -46,7 +46,7 @@ TEST_CASE("sbatch arguments resolve as getopt_long resolves them") {
 }
 
 TEST_CASE("every redirecting or identity-changing form is refused, whatever its spelling") {
-  // The ten forms of issue 23 and their relatives: output, error, input, folder, script text,
+  // The ten forms a deny-list let through and their relatives: output, error, input, folder, script text,
   // array, job name, environment, files sbatch reads.
   for (const char* s : {"-o/tmp/x", "-e/tmp/x", "-D/tmp", "-i/tmp/x", "--outp=/tmp/x", "--err=/tmp/x", "--chd=/tmp",
                         "--wra=id", "-a0-3", "-Jname", "-Ho/tmp/x", "-o /tmp/x", "--output /tmp/x", "--ou=/x",

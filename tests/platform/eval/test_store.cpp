@@ -81,7 +81,7 @@ TEST_CASE("values encode in shortest round-trip text, NaN included") {
   CHECK(encode_values({{"a", 0.1}}) == "a\t0.1\n");
 }
 
-// Issue 14: SQLite's own words ("disk I/O error", "no such column: program") named no fix.
+// SQLite's own words ("disk I/O error", "no such column: program") named no fix.
 TEST_CASE("a store path that is a folder, a foreign table or not a database: the message names the fix") {
   const fs::path d = fresh_dir("messages");
   for (bool ro : {false, true})

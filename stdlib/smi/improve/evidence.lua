@@ -1,0 +1,94 @@
+--- smi.improve.evidence: a trial's Bayesian calibration and log evidence (smi.calibrate_bayes):
+-- the posterior of the unknowns' means and stds given every measured response of every specimen
+-- (a specimen's responses are jointly distributed through its shared inputs; the kernel
+-- estimates that likelihood from propagated samples), under the declared priors (an unknown's
+-- `prior`, the --prior file's entries; without one a parameter is uniform on its range). The
+-- evidence of each tried form, on the same data and priors, is what the study's Bayes factors
+-- compare (forms.lua).
+--
+-- Where the likelihood runs: on the trial's Krigings, or on the model itself when a model pass is
+-- cheaper than the Krigings' fit and predict (a Lua model of a few degrees of freedom is). The
+-- choice is measured, not assumed: one batch of `n` points through each, timed; a model that
+-- launches a solver process is never run directly (its runs are the study's budget).
+local M = {}
+
+--- The kernel's prior list from the declaration's unknowns (their `prior`) and the --prior file's
+-- entries ({param, dist, mean, std}); a file entry with a function (`fn`) has no density and is
+-- refused by name. unknowns: the trial's names; specs: their declarations.
+function M.priors(unknowns, specs, file_entries)
+  local list, have = {}, {}
+  for _, n in ipairs(unknowns) do
+    for _, part in ipairs{ "mean", "std" } do
+      local p = specs[n].prior and specs[n].prior[part]
+      if p then
+        local param = n .. "." .. part
+        list[#list + 1] = { param = param, dist = p.dist, mean = p.mean, std = p.std }
+        have[param] = true
+      end
+    end
+  end
+  local known = {}
+  for _, n in ipairs(unknowns) do known[n .. ".mean"], known[n .. ".std"] = true, true end
+  for i, e in ipairs(file_entries or {}) do
+    if e.fn then
+      error(("--prior entry %d ('%s'): a prior given as a function has no density for the Bayesian calibration;"
+        .. " give {param = \"input.mean\", dist = \"normal\"|\"lognormal\", mean =, std =}"):format(i, tostring(e.name)), 0)
+    end
+    -- an entry on a parameter this form does not have (a candidate's unknown) is not this form's
+    if known[e.param] and not have[e.param] then
+      list[#list + 1] = { param = e.param, dist = e.dist or "normal", mean = e.mean, std = e.std }
+      have[e.param] = true
+    end
+  end
+  return list
+end
+
+--- Seconds of one batch of n points through the model and through the Krigings' fit and
+-- predict (X: the design the Krigings were fitted on, Y its outputs). Returns model_s, kriging_s.
+function M.costs(model, X, Y, responses, box, n, seed, trend)
+  local P = smi.doe.lhs(n, box, { seed = seed, criterion = "none" })
+  local t0 = smi.now()
+  model:evaluate(P)
+  local model_s = smi.now() - t0
+  t0 = smi.now()
+  for _, m in ipairs(responses) do
+    smi.kriging.fit(X, Y[m], { trend = trend, corr = "gauss", seed = seed }):predict(P)
+  end
+  return model_s, smi.now() - t0
+end
+
+--- t: {unknowns, specs, responses (all measured), data ({response = vec}), kriging ({response =
+-- kriging}), direct (the factory's in-process smi.model, else nil), cost (the trial's
+-- {model_s, kriging_s} or nil), priors (M.priors' list), n, samples, seed}.
+-- Returns the plain record: {log_evidence, log_evidence_error, loglik_error, mean, std,
+-- interval, map, diagnostics, on ("surrogate"|"model"), cost, priors, evaluations, model_runs}.
+function M.calibrate(t)
+  local inputs = {}
+  for i, n in ipairs(t.unknowns) do
+    local u = t.specs[n]
+    inputs[i] = { name = n, dist = u.dist, mean = { u.mean[1], u.mean[2], u.mean[3] },
+                  std = { u.std[1], u.std[2], u.std[3] } }
+  end
+  local on_model = t.direct ~= nil and t.cost ~= nil and t.cost.model_s < t.cost.kriging_s
+  local model
+  if on_model then
+    model = t.direct
+  else
+    model = {}
+    for _, m in ipairs(t.responses) do model[m] = t.kriging[m] end
+  end
+  local data = {}
+  for _, m in ipairs(t.responses) do data[m] = t.data[m] end
+  local r = smi.calibrate_bayes{ model = model, inputs = inputs, data = data, prior = #t.priors > 0 and t.priors or nil,
+                                 n = t.n, samples = t.samples, seed = t.seed }
+  -- the error of a log-evidence difference adds the likelihood estimate's own (docs/bayesian-calibration.md)
+  local err = math.sqrt(r.log_evidence_error ^ 2 + (r.loglik_error or 0) ^ 2)
+  local out = { log_evidence = r.log_evidence, log_evidence_error = err, sampler_error = r.log_evidence_error,
+                loglik_error = r.loglik_error,
+                mean = r.mean, std = r.std, interval = r.interval, map = r.map, names = r.names, converged = r.converged,
+                diagnostics = r.diagnostics, on = on_model and "model" or "surrogate", cost = t.cost,
+                priors = t.priors, evaluations = r.evaluations, model_runs = r.model_runs, n = t.n, samples = t.samples }
+  return out
+end
+
+return M

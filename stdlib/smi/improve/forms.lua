@@ -1,0 +1,99 @@
+--- smi.improve.forms: the study's verdict over the model forms it tried. Each tried form (a
+-- trial: the candidates applied) carries its trial verdict and its log evidence under the declared
+-- priors (evidence.lua). The study concludes
+--   valid         when the chosen form is valid on every response, no calibrated mean of it sits
+--                 on its range's bound, and its Bayes factor over every other tried form that the
+--                 data do not reject is at least the declared margin (default 3, "positive" in
+--                 Kass & Raftery's sense); a form invalid on a response is rejected by the
+--                 u-pooling of its own calibration, whatever its evidence;
+--   invalid       when every tried form is invalid;
+--   undetermined  otherwise: the data do not single out one form (the forms within the margin
+--                 of the best are named), or a response is left undetermined, or the chosen form
+--                 needs a mean at its range's bound (the range is the prior: the data ask for
+--                 more than the analyst allowed).
+-- A Bayes factor counts as beating the margin only when it does so by two Monte Carlo standard
+-- errors of the log-evidence difference: the sampler's error decides nothing.
+-- Pure functions of saved results, so the summary and a harness judge the same way.
+local M = {}
+
+--- One form's record from its trial: t {applied, verdict (the trial's), undetermined (response
+-- names), at_bounds (calibrated means on a bound: names), log_evidence, log_evidence_error}.
+local function valid_everywhere(f)
+  return f.verdict == "valid" and #(f.undetermined or {}) == 0 and #(f.at_bounds or {}) == 0
+end
+M.valid_everywhere = valid_everywhere
+
+-- The log Bayes factor of a over b and its standard error (nil when either has no evidence).
+local function log_factor(a, b)
+  if type(a.log_evidence) ~= "number" or type(b.log_evidence) ~= "number" then return nil end
+  local d = a.log_evidence - b.log_evidence
+  local e = math.sqrt((a.log_evidence_error or 0) ^ 2 + (b.log_evidence_error or 0) ^ 2)
+  return d, e
+end
+
+--- Whether form a beats form b by the margin (a Bayes factor >= margin, by two standard errors).
+function M.beats(a, b, margin)
+  local d, e = log_factor(a, b)
+  return d ~= nil and d - 2 * e >= math.log(margin)
+end
+
+--- forms: the tried forms' records, in the order tried; margin: the Bayes factor (>= 1).
+-- Returns {verdict, chosen (index), supported = {index = true}, best (index of the largest
+-- evidence among the forms not rejected), reasons = {words}} and marks each form's `supported` and `chosen`.
+function M.compare(forms, margin)
+  -- the best: the largest evidence among the forms the data do not reject (all, if they all are)
+  local best
+  local any_kept = false
+  for _, f in ipairs(forms) do any_kept = any_kept or f.verdict ~= "invalid" end
+  for i, f in ipairs(forms) do
+    if (f.verdict ~= "invalid" or not any_kept) and type(f.log_evidence) == "number"
+       and (not best or f.log_evidence > forms[best].log_evidence) then best = i end
+  end
+  local out = { supported = {}, reasons = {}, best = best }
+  for i, f in ipairs(forms) do
+    -- within the margin of the best: the best does not beat it
+    f.supported = f.verdict ~= "invalid" and (best == nil or i == best or not M.beats(forms[best], f, margin))
+    if f.supported then out.supported[i] = true end
+  end
+  -- the chosen form: of the forms valid everywhere the one with the largest evidence (the first
+  -- tried of equals); else, of the forms not invalid, the largest evidence; else the best
+  local function pick(ok)
+    local c
+    for i, f in ipairs(forms) do
+      if ok(f) and (not c or (f.log_evidence or -math.huge) > (forms[c].log_evidence or -math.huge)) then c = i end
+    end
+    return c
+  end
+  local chosen = pick(valid_everywhere)
+  if chosen then
+    local others = {}
+    for i, f in ipairs(forms) do
+      if i ~= chosen and f.verdict ~= "invalid" and not M.beats(forms[chosen], f, margin) then others[#others + 1] = i end
+    end
+    if #others == 0 then
+      out.verdict = "valid"
+    else
+      out.verdict = "undetermined"
+      out.reasons[#out.reasons + 1] = { kind = "inseparable", forms = others }
+    end
+  else
+    chosen = pick(function(f) return f.verdict ~= "invalid" end)
+    if chosen then
+      out.verdict = "undetermined"
+      local f = forms[chosen]
+      if #(f.undetermined or {}) > 0 then out.reasons[#out.reasons + 1] = { kind = "response", responses = f.undetermined } end
+      if #(f.at_bounds or {}) > 0 then out.reasons[#out.reasons + 1] = { kind = "bounds", params = f.at_bounds } end
+      if f.verdict ~= "valid" and #(f.undetermined or {}) == 0 then
+        out.reasons[#out.reasons + 1] = { kind = "trial", why = f.why }
+      end
+    else
+      out.verdict = "invalid"
+      chosen = best or #forms
+    end
+  end
+  out.chosen = chosen
+  for i, f in ipairs(forms) do f.chosen = i == chosen end
+  return out
+end
+
+return M

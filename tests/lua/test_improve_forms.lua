@@ -1,0 +1,62 @@
+-- smi.improve's verdict over the tried model forms (stdlib/smi/improve/forms.lua), on records
+-- whose log evidences are given: the margin is a Bayes factor (Kass & Raftery's "positive"
+-- evidence starts at 3, ln 3 = 1.0986), beaten only by two Monte Carlo standard errors of the
+-- difference; a form invalid on a response is rejected whatever its evidence; an undetermined
+-- response or a calibrated mean on its bound keeps a form from being called valid.
+local T = require "smi.testing"
+local forms = require "smi.improve.forms"
+
+local function form(applied, verdict, logz, err, extra)
+  local f = { applied = applied, verdict = verdict, log_evidence = logz, log_evidence_error = err,
+              undetermined = {}, at_bounds = {} }
+  for k, v in pairs(extra or {}) do f[k] = v end
+  return f
+end
+
+T.case("the margin: a Bayes factor of 3 by two standard errors", function()
+  -- log BF 1.5 - 2 * sqrt(2) * 0.1 = 1.217 >= ln 3: beaten
+  T.eq(forms.beats(form({}, "valid", -10, 0.1), form({ "a" }, "valid", -11.5, 0.1), 3), true)
+  -- log BF 1.2 - 0.283 = 0.917 < ln 3: not beaten, although 1.2 > ln 3 alone
+  T.eq(forms.beats(form({}, "valid", -10, 0.1), form({ "a" }, "valid", -11.2, 0.1), 3), false)
+  -- no evidence: never beaten
+  T.eq(forms.beats(form({}, "valid", -10, 0.1), form({ "a" }, "valid", nil, nil), 3), false)
+end)
+
+T.case("valid: the chosen form valid everywhere and ahead of every form not rejected", function()
+  local f = { form({}, "invalid", -3, 0.1), form({ "joint" }, "valid", -10, 0.1), form({ "joint", "mass" }, "valid", -12, 0.1) }
+  local c = forms.compare(f, 3)
+  T.eq(c.verdict, "valid")
+  T.eq(c.chosen, 2, "the valid form, not the invalid one with the larger evidence")
+  T.eq(f[1].supported, false, "an invalid form is not supported")
+  T.eq(f[3].supported, false, "log BF 2 - 0.28 >= ln 3")
+  T.eq(f[2].chosen and not f[1].chosen and not f[3].chosen, true, "one chosen form")
+end)
+
+T.case("undetermined: two valid forms within the margin, named", function()
+  local f = { form({}, "valid", -10, 0.1), form({ "joint" }, "valid", -10.5, 0.1) }
+  local c = forms.compare(f, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(c.chosen, 1)
+  T.eq(c.reasons[1].kind, "inseparable")
+  T.eq(c.reasons[1].forms[1], 2)
+  T.eq(f[1].supported and f[2].supported, true)
+  -- a larger margin never turns an undetermined verdict valid; a smaller one can
+  T.eq(forms.compare({ form({}, "valid", -10, 0.1), form({ "joint" }, "valid", -10.5, 0.1) }, 1.2).verdict, "valid")
+end)
+
+T.case("undetermined: a response left open, or a mean on its bound; invalid when all are", function()
+  local c = forms.compare({ form({}, "valid", -10, 0.1, { undetermined = { "f3" } }) }, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(c.reasons[1].kind, "response")
+  c = forms.compare({ form({}, "valid", -10, 0.1, { at_bounds = { "a.mean" } }) }, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(c.reasons[1].kind, "bounds")
+  T.eq(c.reasons[1].params[1], "a.mean")
+  c = forms.compare({ form({}, "invalid", -10, 0.1), form({ "joint" }, "invalid", -9, 0.1) }, 3)
+  T.eq(c.verdict, "invalid")
+  T.eq(c.chosen, 2, "the best evidence among the invalid forms")
+  -- one form, valid everywhere, nothing else tried: valid (no evidence needed to beat nothing)
+  T.eq(forms.compare({ form({}, "valid", nil, nil) }, 3).verdict, "valid")
+end)
+
+T.finish()
