@@ -6,15 +6,15 @@
 #   data       one data value changed (the steps from the first that read the data run again)
 #   --force    every step recomputed (solver runs come from the evaluation store)
 # Studies: the small Lua-model product of the tests (tests/lua/small_product.lua) in its --quick
-# and full modes, and the steering column --quick on column-fe.
+# and full modes, and the steering column --quick on smi-column-fe.
 # usage: bash bench/run_rerun.sh [BUILD_DIR] [all | small | column]   (default all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 which=${2:-all}
-cmake --build "$build" --target smi-lua column-fe > /dev/null
+cmake --build "$build" --target smi-lua smi-column-fe > /dev/null
 smi=$(realpath "$build/smi-lua")
-fe=$(realpath "$build/column-fe")
+fe=$(realpath "$build/smi-column-fe")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p bench/results
@@ -72,7 +72,7 @@ fi
 if [ "$which" != small ]; then
   mkdir -p "$work/column"
   cp scripts/steering_column/data/tests.csv "$work/column/tests.csv"
-  series column "steering column --quick (column-fe)" "$PWD" "$work/column/tests.csv" 4 \
+  series column "steering column --quick (smi-column-fe)" "$PWD" "$work/column/tests.csv" 4 \
     --allow-exec "$fe" --allow-read "$work/column" --out "$work/column/out" scripts/steering_column.lua --solver "$fe" \
     --quick --data "$work/column/tests.csv"
 fi
