@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate_bayes timings for bench/run_bayes.sh: a 10-parameter population problem (five
 -- unknown inputs, mean and std each) on Kriging surrogates and on a cheap Lua model, and a
 -- 10-parameter Gaussian objective with a known evidence (the peer NumPy TMCMC runs the same).

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """A NumPy TMCMC (Ching and Chen 2007, with the adaptive COV rule and scaled weighted-covariance
 proposals of Betz et al. 2016) on bench/bayes.lua's 10-D Gaussian problem, and the results page.
 usage: bayes_peer.py SAMPLES OURS.txt OUT.md"""

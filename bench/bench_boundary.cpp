@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bench_boundary: what crossing the C++/Lua boundary costs.
 //   1. the sum of 1e7 numbers: smi.vec:sum() (one call, Eigen inside) against a plain Lua loop
 //      over a table, a Lua loop indexing the vec element by element (one boundary crossing per

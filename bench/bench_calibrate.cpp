@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed and accuracy of calibration, run by run_calibrate.sh beside SciPy's SLSQP
 // with finite differences on the same objective (the CRN matrix, data and grids are written to
 // a folder the peer reads). Prints "key value" lines: wall and CPU seconds, the optimiser's

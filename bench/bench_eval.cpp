@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Overhead of one solver evaluation (spawn, deck, parse, store) with a trivial solver.
 // usage: bench_eval SOLVER WORKDIR [N]
 // Prints markdown table rows (ms per evaluation; 9 interleaved repeats: least wall time, median CPU):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed of the PR / intersection paths, run by run_overlap.sh beside SciPy's
 // quad on the same pairs. Prints "key value" lines (seconds per call, best of several runs).
 //   - calib_loop_pr: what the calibration objective does per response and evaluation (KDE of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Speed of the stats kernels, run by run_stats.sh beside SciPy/OpenTURNS/numpy on the
 // same data (written here to a folder the peers read). Prints "key value" lines.
 //   bench_stats <dir>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Kriging and propagation benchmark. Writes the designs and test points it uses to
 // DIR (CSV) so that bench/surrogate_peers.py feeds OpenTURNS and scikit-learn the very same
 // data, and its own figures to DIR/ours.json. Run through bench/run_surrogate.sh.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bench_upool_fit: where the large-n form of the u-pooling threshold comes from, and its error.
 //
 //   bench_upool_fit fit     Monte Carlo quantiles of sqrt(n)·U at n = 48 ... 768, averaged per

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The kernel bootstrap through smi.calibrate (bootstrap = {...}) on a three-unknown calibration
 -- of Kriging surrogates: wall time of the calibration alone and with 50 and 200 replicates, the
 -- replicates one after another (threads = 1) and side by side (threads = 2), whether both give the

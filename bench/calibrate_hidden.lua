@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The hidden-style calibration, timed (run by bench/run_calibrate_hidden.sh beside SciPy):
 -- ten parameters, a Lua function model without a gradient, PR, n = 2000 (tests/lua/hidden_problem.lua).
 -- Writes <out>/x0.csv (the CRN inputs at the start: the peer recovers the CRN sample from them),

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Peer for bench/calibrate_hidden.lua: SciPy's SLSQP with its default 2-point
 differences (k + 1 = 11 model passes a gradient for the 10 parameters) on the same PR objective
 as smi's -- the same CRN sample (recovered from the start's inputs x0.txt), data, grids, bounds,

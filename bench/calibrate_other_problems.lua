@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Two calibrations unlike the hidden-style problem (other families, sizes and metrics), for checking
 -- that a change to the optimiser's work does not make other problems worse: prints per problem and
 -- gradient choice the evaluations, model calls and passes, status and objective.

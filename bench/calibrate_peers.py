@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Peer for bench_calibrate: SciPy's SLSQP with finite differences (its default
 2-point jacobian) on the same PR calibration objective as smi's -- the same CRN matrix, data,
 grids, bounds, start and scaling of the parameters to [0, 1] -- timed in the same run; merges

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The steering-column study's trial-2 PR calibration, timed (the target: "converges in at
 -- most 10 s on 2 cores, with the same optimum from 4 starts"). From a study output folder (its
 -- results.json and trial2_mode{1,4}.kriging) and the data file the study ran on, it rebuilds the

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Coverage of smi.calibrate's 90 % profile intervals on synthetic problems with known truth
 -- (the target: identifiable parameters covered in at least 85 of 100 seeds). Run on demand
 -- by bench/run_coverage.sh (prints markdown). Each seed is calibrated twice: the plain

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Do two builds give the same outputs? For a change meant to leave behaviour alone (a refactoring):
 # runs, with each build, the quick steering-column study, `smi-lua doc --html` and the no-gradient
 # calibration bench, then compares them with what legitimately differs removed (timings, dates, pids,

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Exact coverage of the 90 % profile-likelihood intervals of bench/calibration_coverage.lua's
 problems (normal linear models): the profile likelihood ratio of a coefficient is
 n ln(1 + T²/(n − p)) with T ~ t(n − p), of the error sd n(u − 1 − ln u) with u = RSS/(nσ²),

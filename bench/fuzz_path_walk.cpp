@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target over the sandbox's path resolver (host/platform/core/path_walk.cpp), with the
 // kernel as oracle. Built and run by bench/run_fuzz_path_walk.sh (clang, -fsanitize=fuzzer,
 // address, undefined); not part of the CMake build.

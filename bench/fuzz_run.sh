@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds one libFuzzer target, fuzzes it for a stated time from its committed corpus, merges what
 # was found back into a minimal corpus and writes bench/results/fuzz_<NAME>.md. The run_fuzz_*.sh
 # scripts call it with their target. Needs Debian's clang and libclang-rt-14-dev (run on demand).

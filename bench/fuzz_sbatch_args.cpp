@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target over the sbatch argument parser (host/platform/eval/sbatch_args.cpp), with
 // glibc's getopt_long as oracle (sbatch_getopt_reference in host/platform/eval/sbatch_args.cpp). Built and run by
 // bench/run_fuzz_sbatch_args.sh (clang, -fsanitize=fuzzer,address,undefined); not part of the

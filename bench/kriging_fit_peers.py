@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Kriging fit speed against the fastest peer configuration that is accurate: on the
 designs and test points bench_surrogate wrote to DIR (borehole, 8 inputs; Ishigami, 3 inputs; LHS
 of N = 200 and 1,000 points; 10,000 uniform test points), each peer configuration is fitted and

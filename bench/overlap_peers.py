@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Peer timings for bench_overlap: SciPy's quad of |f - g| split at the crossings (the reference
 method of tests/reference/metrics_overlap.py) on the same analytic pairs, and the trapezoid in
 numpy. usage: overlap_peers.py ours.txt results.md"""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Gaussian KDE the SciPy peers of the calibration benchmarks use (normal-reference bandwidth,
 dense sums in NumPy): one copy for calibrate_peers.py and calibrate_hidden_peers.py."""
 import numpy as np

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Times smi.calibrate_bayes (bench/bayes.lua) and a NumPy TMCMC peer (bench/bayes_peer.py) on the
 # same 10-parameter Gaussian problem, and writes bench/results/bayes.md.
 # usage: bench/run_bayes.sh [build dir] [samples] [n]   (defaults: build, 1000, 2000)

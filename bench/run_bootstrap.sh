@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The kernel bootstrap through smi.calibrate: its cost against the calibration alone, one thread
 # against two, and the intervals' Monte Carlo errors (bench/bootstrap.lua). Writes
 # bench/results/bootstrap.md.

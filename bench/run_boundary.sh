@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Measures the C++/Lua boundary and writes bench/results/boundary.md:
 #   bench_boundary (sum over 1e7 numbers: smi.vec vs plain Lua; start-up of smi-lua -e '')
 #   and the same sums in Python (NumPy and a plain loop) as peers, in the same run.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Runs bench_calibrate beside SciPy's SLSQP (finite differences) and writes bench/results/calibrate.md.
 # usage: bench/run_calibrate.sh [build dir] [quick]   (default: build; quick: the analytic problems only)
 # Run it with `nice -n 5` on a shared machine; the results file records the load average.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Runs bench/calibrate_hidden.lua (smi-lua, the Lua function model) beside SciPy's SLSQP on the same
 # objective and writes bench/results/calibrate_hidden.md.
 # usage: bench/run_calibrate_hidden.sh [build dir]   (run it with `nice -n 5` on a shared machine)

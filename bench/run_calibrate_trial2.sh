@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The steering-column study's REAL trial-2 PR calibration, timed (the target: at most 10 s on
 # 2 cores, the same optimum from 4 starts), on two data sets: the committed measurements and one
 # experiment of the harness's hold-out set (fresh.csv: row FRESH_ROW, default 104, the first

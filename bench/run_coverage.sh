@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Coverage of the 90 % profile intervals (plain and small-sample delta) over many seeds, with the
 # exact coverage of both deltas beside it; writes bench/results/calibration_coverage.md.
 # usage: bench/run_coverage.sh [build dir] [seeds]   (default 1000 seeds, about a minute)

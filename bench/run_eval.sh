@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Overhead per solver evaluation (spawn, deck, parse, store) with a trivial solver, at
 # concurrency 1 and 2; writes bench/results/eval.md. Peer, in the same run: the same steps in
 # Python (work dir, deck file, subprocess.run, re, sqlite3 commit; a 2-thread pool for

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Fuzzes the sandbox's path resolver for a stated time and writes bench/results/fuzz_path_walk.md
 # (bench/fuzz_run.sh does the work). Needs Debian's clang and libclang-rt-14-dev (not part of the
 # CI build: run on demand).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Fuzzes the Slurm executor's sbatch argument parser (glibc's getopt_long as the oracle) for a
 # stated time and writes bench/results/fuzz_sbatch_args.md (bench/fuzz_run.sh does the work).
 # Needs Debian's clang and libclang-rt-14-dev (not part of the CI build: run on demand).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Kriging fit speed against the fastest peer configuration reaching test Q2 >= 0.99 (OpenTURNS with
 # scaled inputs and multistart, scikit-learn with restarts) at N = 200 and 1,000; writes
 # bench/results/kriging_fit.md. Needs python3-openturns and python3-sklearn (/usr/bin/python3).

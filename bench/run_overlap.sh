@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Runs bench_overlap beside SciPy's quad and writes bench/results/overlap.md.
 # usage: bench/run_overlap.sh [build dir]   (default: build)
 set -eu

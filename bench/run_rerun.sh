@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What a rerun costs: each study run three times in one fresh output folder, the wall time of each
 # written to bench/results/rerun.md:
 #   first      nothing saved

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Screening of the 46 steering-column inputs at the real solver's cost: the full
 # eq.-3 screening ((46 + 1) x N_FULL smi-column-fe runs) against the surrogate screening (RUNS
 # runs), in one run with a fresh output folder and so a fresh evaluation store (no run reused); writes

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The Slurm executor against the local one on the quick steering-column study: wall time and
 # overhead per solver run, the scheduler load (sbatch/squeue/sacct/scancel calls per minute,
 # counted by logging shims put in front of the real tools with --slurm-opt bin_dir=), and whether

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Runs bench_stats beside SciPy / numpy / OpenTURNS and writes bench/results/stats.md.
 # usage: bench/run_stats.sh [build dir]   (default: build)
 set -eu

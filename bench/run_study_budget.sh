@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The steering-column study at the real solver's cost: the whole study run both ways in
 # one run, each in a fresh output folder (a fresh evaluation store: no run reused):
 #   economical  the default (surrogate screening of 300 runs, 20 Kriging test points, a 40-point

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Kriging / propagation benchmark beside OpenTURNS and scikit-learn; writes bench/results/surrogate.md.
 # usage: bench/run_surrogate.sh [build-dir] [max peer N]
 set -e

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- Screening at the real solver's cost: the 46 steering-column inputs screened by the
 -- full eq.-3 PDF-area method ((46 + 1) x n smi-column-fe solutions) and by the surrogate method
 -- (`runs` solutions, a ridge quadratic per mode, eq.-3 on it; Borgonovo delta from the same

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Compares two results.json of the same study run in two output folders: every number and text,
 except timings, run counts and the output folder itself in paths. Prints "identical" or the count
 and the first differences. usage: soak_compare.py REF_OUT_DIR OTHER_OUT_DIR"""

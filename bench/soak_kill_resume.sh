@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Soak test of "nothing lost": runs the quick steering-column study once to the end
 # (the reference), then again in a fresh folder killed with SIGKILL at KILLS random moments,
 # resuming each time, and finally to the end. Reports per kill the moment, the solver processes

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Peers for bench_stats: SciPy gaussian_kde, numpy, OpenTURNS KernelSmoothing on the
 same data, timed in the same run; merges bench_stats' output and writes bench/results/stats.md.
 usage: stats_peers.py <data dir> <bench_stats output> <results.md>"""

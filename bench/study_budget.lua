@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The study's two paths side by side: reads the results.json of the economical and
 -- the full run (bench/run_study_budget.sh) and writes study_budget.md under --out: solver runs
 -- per step, wall time and the conclusions the issue names (screening's top four per mode, each

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Peers of bench_surrogate: OpenTURNS KrigingAlgorithm and scikit-learn
 GaussianProcessRegressor on the very designs and test points bench_surrogate wrote to DIR,
 then bench/results/surrogate.md with our figures (DIR/ours.json) side by side.

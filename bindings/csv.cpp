@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.csv: comma-separated tables with a header row, columns by name.
 //   local d, header, notes = smi.csv.read(path [, {sep = ",", decimal = ".", strings = {"name", ...}}])
 //       d.<column> is a smi.vec when every cell of the column is a number, a table of strings

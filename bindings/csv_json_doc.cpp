@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.csv and smi.json (registered in csv.cpp and json.cpp).
 #include "bindings/csv_json_options.hpp"
 #include "bindings/doc.hpp"

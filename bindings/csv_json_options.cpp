@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the CSV and JSON functions (csv_json_options.hpp). Defaults: the structs'.
 #include "bindings/csv_json_options.hpp"
 

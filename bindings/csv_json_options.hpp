@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.csv.read/write and smi.json.encode/decode/write/read
 // (luax/option_schema.hpp); csv_json_doc.cpp lists their options from them.

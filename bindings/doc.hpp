@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reference texts of the C++ bindings. Each binding folder keeps its texts in a *_doc.cpp file
 // beside the registration (format: stdlib/smi/doc.lua's header) and exposes them through one

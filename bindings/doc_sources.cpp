@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The list of binding doc texts (see doc.hpp).
 #include "bindings/doc.hpp"
 

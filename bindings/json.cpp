@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.json: the Lua face of the one JSON codec (core/json.hpp: text, numbers, the non-finite rule).
 //   smi.json.encode(value [, opts]) -> string [, skipped]  smi.json.decode(text [, {null = v}]) -> value
 //   smi.json.write(path, value [, opts])                   smi.json.read(path [, {null = v}]) -> value

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.mat: a 2-D float64 array (rows are points, columns are variables), 1-based.
 #include <cmath>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.mat (registered in mat.cpp; format: stdlib/smi/doc.lua).
 #include "bindings/doc.hpp"
 

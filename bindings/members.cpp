@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Misspelt members of the smi module tables: smi.dist.Normal raises "no smi.dist.Normal; did you
 // mean smi.dist.normal?" where Lua would say "attempt to call a nil value". Every module table
 // (smi.dist, smi.kde, smi.model, ...) gets an __index that names the closest members; the smi

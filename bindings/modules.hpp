@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Entry points of the binding areas. Each is called by luaopen_smi with the `smi` table on
 // top of the stack (stack: [smi] -> [smi]) and adds its fields to it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.rng(seed [, stream]): explicit, seeded generators. The same seed gives the same numbers
 // on every run and build (core/rng.hpp).
 #include <cmath>

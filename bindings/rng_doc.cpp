@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.rng (registered in rng.cpp; format: stdlib/smi/doc.lua).
 #include "bindings/doc.hpp"
 

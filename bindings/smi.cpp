@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // luaopen_smi: the `smi` module table, assembled from every binding area.
 #include "bindings/modules.hpp"
 

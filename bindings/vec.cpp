@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.vec: a 1-D float64 array owned by Lua, 1-based, with whole-vector arithmetic and
 // reductions done in C++ (one Lua call per vector, never per element).
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.vec (registered in vec.cpp; format: stdlib/smi/doc.lua).
 #include "bindings/doc.hpp"
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Fails on an implementation file that is not named after the header it implements
 # (cmake -DROOT=<source dir> -P this). Run by the test layout.file_names (tests/layout/).
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Fails on an include that crosses the layering (cmake -DROOT=<source dir> [-DSTAMP=<file>] -P this).
 #
 # Run by the target check_includes, which every library of the tree depends on (so a forbidden

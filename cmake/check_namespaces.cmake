@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Fails on a file that opens a namespace outside its folder's (cmake -DROOT=<source dir> -P this).
 #
 # The rule (docs/design.md, Layout): every folder of host/ lives in the namespace named after it,

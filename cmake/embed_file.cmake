@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cmake -DIN=<file> -DOUT=<file.inc> -P embed_file.cmake
 # Writes IN's bytes as a comma-separated list of hex literals, to be included inside a
 # `static const unsigned char x[] = { #include "..." };` (no terminating NUL: sizeof is the size).

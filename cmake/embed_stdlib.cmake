@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cmake -DROOT=<repo> -DOUT=<file.cpp> -P embed_stdlib.cmake
 # Turns stdlib/**/*.lua into byte arrays with their module name and their path in the repo,
 # so that tracebacks name the real file (chunk name "@stdlib/smi/x.lua").

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Installing smi-lua (`cmake --install build --prefix P`) and packaging it (`cpack -G DEB` in the
 # build folder). Installed:
 #   bin/smi-lua, bin/smi-column-fe, bin/smi-beam-solver   the program and the example solvers

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Writes the manual page smi-lua.1 from what the built program says about itself, so the page
 # cannot drift from the options: `smi-lua --help` (every option and the command list), the
 # usage line of `smi-lua doc --help`, and the version line of `smi-lua -v`.

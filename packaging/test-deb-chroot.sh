@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian package in a fresh Debian 12 (bookworm) and uses it as a new user would:
 # debootstrap --variant=minbase into a temporary folder, lintian on the package there (no error
 # allowed; the warnings it keeps are explained in docs/packaging.md), `apt-get install

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The bolted bracket plate (docs/spec/bracket-plate.md): statistical model improvement of a
 -- CalculiX shell model on smi.improve. Only the product is here: its responses, unknowns, model
 -- factory (the deck writer in bracket_plate/deck.lua, run as a deck function), its two

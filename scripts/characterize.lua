@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Uncertainty characterization and validation of a 9-point data set (Son et al. 2020, steps 1
 -- and 5; spec §1, §5, §8.1): KDE and KDE-ebd of the measurements, a parametric fit for
 -- comparison, then u-pooling verdicts of two candidate model predictions.

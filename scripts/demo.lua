@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A first study in ten lines: characterize nine measurements (placeholder until the
 -- steering-column study lands).
 local x = smi.vec{30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20}

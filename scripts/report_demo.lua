@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- A demonstration of smi.study and smi.report on synthetic numbers: every kind of chart and
 -- block the real studies use (PDFs, screening bars, leave-one-out scatter, calibration history,
 -- CDFs with a threshold, a decision matrix, verdicts, provenance), no solver needed.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The steering-column study of Son et al. (2020), end to end, on the open FE model smi-column-fe
 -- (docs/spec/steering-column.md), as a declaration run by smi.improve (docs/new-product.md):
 -- trials of statistical model improvement until the model is valid, the data cannot decide, or

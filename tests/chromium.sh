@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Headless Chromium for the render tests (tests/report/render_report.sh, tests/doc/render_reference.sh),
 # sourced by them with `.`: the skip when Chromium is missing, a throw-away profile per run with
 # no network services and no first-run UI, and the console-message detector with its canary.

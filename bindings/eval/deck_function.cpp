@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A command model's deck made by a Lua function of the point (template = function(p) ... end):
 // a deck can compute (per-node stiffnesses, log-scaled inputs) while the study's evaluation
 // depends on nothing but the point. The function runs in a Lua state of its own

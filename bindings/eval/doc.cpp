@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.model.* and the model methods (this folder). The option lists come from
 // the schemas (solver_options.cpp, lua_model_options.cpp), whose defaults are the structs'. The
 // examples run /bin/sh as their "solver" (smi-lua doc allows it for them), so they run anywhere.

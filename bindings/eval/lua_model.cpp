@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.model.lua{inputs = ..., outputs = ..., fn = function(X) ... end}: a model computed by a
 // Lua function that receives the whole design matrix (one call per evaluation, never one per
 // point) and returns {output = vec, ...}. No store: such models are cheap by assumption.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.model.lua (lua_model_options.hpp): inputs, outputs and fn are read by
 // lua_model.cpp (the function stays on the stack).
 #include "bindings/eval/lua_model_options.hpp"

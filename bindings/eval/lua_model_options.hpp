@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.model.lua (luax/option_schema.hpp); doc.cpp lists it.
 #include <string>

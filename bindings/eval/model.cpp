@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The smi.model type: m:evaluate(X), m:plan(X), m.inputs, m.outputs, m.name, m.kind, and the
 // conversions shared by every kind of model (design matrix in, Y and info out).
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi.model: the one object type behind smi.model.command, smi.model.batch and smi.model.lua
 // (see the interface comment in open.cpp). The Lua function a model calls (an output parser or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entry point of the eval binding area (see modules.hpp): the smi.model table.
 //
 // THE MODEL INTERFACE (shared by solver models, Lua-function models and surrogates)

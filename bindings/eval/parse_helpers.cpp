@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Helpers for output parsers: h.read, h.exists, h.regex, h.regex_all, h.csv, h.f06, h.ccx_dat. A parser
 // receives them bound to its run's work directory (h.f06("column.f06")); smi.model.parse holds
 // the same functions for any allowed path. Every read goes through the sandbox.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.model.command{...} and smi.model.batch{...}: models backed by an external solver run
 // through the evaluator (host/platform/eval/evaluator.hpp). This file turns the option table
 // into a CommandConfig (through the sandbox), calls the Lua output parser for each finished

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the solver models (solver_options.hpp). Defaults: the structs'.
 #include "bindings/eval/solver_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.model.command and smi.model.batch (luax/option_schema.hpp):
 // solver_model.cpp reads the scalars with them, doc.cpp lists them. The nested tables (inputs,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.calibrate{...}: optimisation-based calibration, general (any objective or any model).
 //
 // Objective form:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi.calibrate{...}: running a calibration described by a CalibrateSpec and pushing its result.
 #include <lua.hpp>

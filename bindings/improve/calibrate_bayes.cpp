@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.calibrate_bayes{...}:
 //   objective form: parameters = {{name =, lower =, upper =} | {name =, prior = {...}}, ...},
 //                   loglik = function(Theta) -> vec (Theta: smi.mat, rows = points)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi.calibrate_bayes{...}: the posterior of calibrated parameters and the log evidence by
 // TMCMC (kernels/improve/tmcmc.hpp), on a Lua log-likelihood (objective form) or on the

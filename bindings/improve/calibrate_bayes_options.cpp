@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of smi.calibrate_bayes (calibrate_bayes_options.hpp), in the reference's order.
 #include "bindings/improve/calibrate_bayes_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.calibrate_bayes (luax/option_schema.hpp): the scalar options go into
 // BayesSpec (the kernels' TmcmcOptions and PopulationOptions hold their defaults); the forms'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bindings/improve/calibrate_bayes_spec.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading the table given to smi.calibrate_bayes{...}: the priors, the sampler's and the
 // population likelihood's options, and either the objective form (parameters, loglik) or the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.calibrate (calibrate_options.hpp), in the reference's order.
 #include "bindings/improve/calibrate_options.hpp"
 

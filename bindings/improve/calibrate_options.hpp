@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.calibrate (luax/option_schema.hpp): the scalar options are read into
 // CalibrateSpec (whose bases hold every default: improve::CalibrationOptions, OptimizerOptions,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading the table given to smi.calibrate{...} into kernel structures. Runs before any
 // optimisation, inside protect(): errors name the field ("inputs.k.mean: ...") and the fix.

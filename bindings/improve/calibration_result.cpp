@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The result table of smi.calibrate: everything a report needs, keyed by parameter and response
 // name. Stack effects are noted per helper.
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.refine.decision_matrix{candidates = {...}, criteria = {{name =, weight =, magnitude = ...}}}
 // The weighted decision matrix of spec §6 with criteria written by the analyst: a magnitude is a
 // Lua function(candidate, j) or a list of values (or a table keyed by candidate name).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi.refine.decision_matrix (bindings/improve/decision_matrix.cpp).
 #include <lua.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.refine.decision_matrix (decision_matrix_options.hpp).
 #include "bindings/improve/decision_matrix_options.hpp"
 

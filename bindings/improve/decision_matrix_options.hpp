@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.refine.decision_matrix (luax/option_schema.hpp); the candidates and
 // criteria lists are read by hand (decision_matrix.cpp).

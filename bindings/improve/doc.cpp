@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.calibrate, smi.calibrate_bayes and smi.refine.decision_matrix (this folder). Defaults are
 // read from the kernels' option structs (improve/bounded_optimizer.hpp, statistical_objective.hpp,
 // bootstrap.hpp, identifiability.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // C++ callables that call back into Lua during a calibration: the objective function, the model
 // (a function or an object with :evaluate) and a custom metric. Each keeps its Lua values at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bindings/improve/lua_values.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading Lua values from inside C++/NLopt frames. Unlike luax's to_vector, these never raise a
 // Lua error (which would unwind through NLopt's callback); they throw smi::InvalidArgument with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bindings/improve/model_gradient.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The model's Jacobian for smi.calibrate's analytic gradient: per response,
 // dY/dX at the CRN inputs. A part that is an smi.kriging gives it in closed form (no Lua call);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entry point of the improve binding area (see modules.hpp): smi.calibrate, smi.calibrate_bayes and smi.refine.
 #include "bindings/improve/calibrate.hpp"
 #include "bindings/improve/calibrate_bayes.hpp"

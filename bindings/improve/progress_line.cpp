@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bindings/improve/progress_line.hpp"
 
 #include <fmt/format.h>

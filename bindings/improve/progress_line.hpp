@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The terminal line of a calibration's long stages, drawn by the same
 // show_progress/format_duration as the solver runs' line (platform/eval/progress_line.hpp):

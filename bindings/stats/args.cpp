@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bindings/stats/args.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Small argument helpers shared by the stats bindings.
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.dist: the common Lua object of every distribution and density estimate.
 #include "bindings/stats/dist_box.hpp"
 

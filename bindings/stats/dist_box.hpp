@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The Lua face shared by every distribution-like object (families, KDEs): one userdata type
 // "smi.dist" holding a DistributionPtr, with pdf/cdf/quantile/sample/mean/std methods.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.dist (constructors in dist_lua.cpp, methods in dist_box.cpp); the
 // constructors' option lists come from their schemas (dist_options.cpp).
 #include "bindings/doc.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.dist.<family>{...} constructors and smi.dist.fit(data, {families}).
 #include <fmt/format.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the distribution constructors (dist_options.hpp), in the reference's order.
 #include "bindings/stats/dist_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of the distribution constructors smi.dist.<family>{...}
 // (luax/option_schema.hpp): dist_lua.cpp reads each family's table with its schema, dist_doc.cpp

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.kde, smi.kde_bd, smi.kde_ebd, smi.ecdf, smi.bandwidth (kde_lua.cpp).
 // The option lists come from the functions' schemas (kde_options.cpp), defaults from their structs.
 #include "bindings/doc.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.kde(data, opts), smi.kde_bd(data, opts), smi.kde_ebd(data, opts), smi.ecdf(data).
 #include <fmt/format.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the KDE functions (kde_options.hpp). Defaults: the structs'.
 #include "bindings/stats/kde_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.kde, smi.kde_bd and smi.kde_ebd (luax/option_schema.hpp): the
 // binding reads its options through them and kde_doc.cpp lists them from them.

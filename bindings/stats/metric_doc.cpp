@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.metric.* and the u-pooling verdict (metric_lua.cpp). The option lists
 // come from the schemas (metric_options.cpp), whose defaults are the kernels' structs'.
 #include "bindings/doc.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.metric: area, pr, intersection, loglik, upool, upool_threshold, upool_pvalue, and the
 // verdict object.
 #include <unistd.h>

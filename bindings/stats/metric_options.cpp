@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the metrics (metric_options.hpp). Defaults: the kernels' structs.
 #include "bindings/stats/metric_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.metric.pr, intersection (and their grid table), loglik, upool,
 // upool_threshold and upool_pvalue (luax/option_schema.hpp); metric_doc.cpp lists their options

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entry point of the stats binding area (see modules.hpp).
 #include "bindings/modules.hpp"
 #include "bindings/stats/dist_box.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The pieces open_stats() assembles (stack: [smi] -> [smi]).
 #include <lua.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reference texts of smi.doe, smi.kriging, smi.propagate and smi.screen (this folder). Defaults
 // are read from the kernels' option structs (surrogate/doe.hpp, kriging.hpp, screen.hpp,
 // screen_surrogate.hpp, sequential_design.hpp) and core/defaults.hpp.

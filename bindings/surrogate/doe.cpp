@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.doe: designs of experiments.
 //   smi.doe.lhs(n, space [, {seed, criterion = "maximin"|"phip"|"none", p, iterations, centered}])
 //   smi.doe.sobol(n, space [, {skip}])

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the designs of experiments (doe_options.hpp). Defaults: the structs'.
 #include "bindings/surrogate/doe_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.doe.lhs and smi.doe.sobol (luax/option_schema.hpp); doc.cpp lists
 // their options from them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.kriging.fit(X, y, opts) -> smi.kriging;  smi.kriging.load(path) -> smi.kriging
 //   m:predict(X [, {mse = false}]) -> mean vec, mse vec   (whole matrix, both cores)
 //   m:loo() -> {residuals = vec, variance = vec, q2, rmse}

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The Lua type smi.kriging: a fitted model plus the names of its inputs and output, shared by
 // the kriging, propagation and screening bindings.

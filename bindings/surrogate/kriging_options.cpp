@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schemas of the Kriging functions (kriging_options.hpp). Defaults: the structs'.
 #include "bindings/surrogate/kriging_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schemas of smi.kriging.fit and m:predict (luax/option_schema.hpp); doc.cpp lists
 // their options from them.

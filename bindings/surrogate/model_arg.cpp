@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Adapters from Lua model values to propagate::MatrixModel.
 #include "bindings/surrogate/model_arg.hpp"
 

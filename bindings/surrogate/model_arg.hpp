@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What smi.propagate and smi.screen accept as `model`, turned into one C++ callable on whole
 // matrices: an smi.kriging (mean prediction), a table of them by output name, a Lua function

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entry point of the surrogate binding area (see modules.hpp): smi.doe, smi.kriging,
 // smi.propagate, smi.screen, smi.kriging.sequential.
 #include "bindings/modules.hpp"

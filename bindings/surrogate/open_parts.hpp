@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The pieces open_surrogate() assembles (stack: [smi] -> [smi]).
 #include <lua.hpp>

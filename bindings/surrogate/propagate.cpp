@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.propagate{model =, inputs =, n =, seed = [, order =]} -> {output = vec, ...}, X
 // Common random numbers: each input's column is its quantile of a fixed uniform column
 // (surrogate/propagate.hpp), and the model gets the whole sample in one call.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.propagate (propagate_options.hpp).
 #include "bindings/surrogate/propagate_options.hpp"
 

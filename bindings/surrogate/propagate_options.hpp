@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.propagate (luax/option_schema.hpp): n and seed; model, inputs and
 // order are read by model_arg.cpp. doc.cpp lists them.

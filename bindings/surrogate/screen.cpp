@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.screen{model =, inputs =, n = 10000, seed =, fix = "mean"|"median", sobol = true,
 //            bootstrap = 200, level = 0.95, output =, order =,
 //            method = "full"|"surrogate", runs = 300, basis = "quadratic"|"linear", q2_min = 0.9,

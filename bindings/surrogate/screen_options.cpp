@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.screen (screen_options.hpp). Defaults: the kernel's structs'.
 #include "bindings/surrogate/screen_options.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.screen (luax/option_schema.hpp): the full screening's options and the
 // surrogate method's; model, inputs and order are read by model_arg.cpp. doc.cpp lists them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi.kriging.sequential{model, design, candidates, weights, batch, max, q2, rmse, trend, corr,
 //                        seed, inputs}
 //   -> {X = mat, Y = {<output> = vec}, kriging = {<output> = smi.kriging},

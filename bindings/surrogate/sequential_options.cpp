@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema of smi.kriging.sequential (sequential_options.hpp). Defaults: the kernel's.
 #include "bindings/surrogate/sequential_options.hpp"
 

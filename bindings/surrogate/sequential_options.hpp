@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The option schema of smi.kriging.sequential (luax/option_schema.hpp): the loop's and the
 // Krigings' options into kriging::SequentialOptions; model, design, candidates, weights, rmse and

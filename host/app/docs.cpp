@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi._docs(): hands the compiled-in reference texts of the C++ side to stdlib/smi/doc.lua,
 // with the methods table of every smi userdata type (found in the registry), so that the doc
 // module can walk the public API at run time. The texts of the host functions registered in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi._docs (see docs.cpp): the compiled-in reference texts for stdlib/smi/doc.lua.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/runtime.hpp"
 #include "app/docs.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The Lua VM of one smi-lua run: a state with limited memory, the standard libraries behind the
 // sandbox, the smi module, the module searchers, and the protected calls every chunk goes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The command line of smi-lua, parsed the way lua.c reads its own (options, then the script
 // and its arguments), plus the sandbox and run options. Parsing never runs anything.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "cli/bindings_root.hpp"
 
 #include "bindings/doc.hpp"

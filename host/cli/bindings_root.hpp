@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The program's composition root: the one place that knows both the runtime (app) and the Lua
 // face of the kernels (bindings). Everything that makes a Runtime takes its bindings from here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Subcommands for sharing libraries (the word in the script position selects one; a script
 // file literally named like a command is run as ./libs):

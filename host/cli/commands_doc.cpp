@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua doc [NAME | WORD]      the reference text of NAME, the entries mentioning WORD, or the
 //                                list of modules (the same text help() prints in the REPL)
 // smi-lua doc --html DIR         a browsable, self-contained reference in DIR (index.html, one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua libs: what a study run with the same --lib / SMI_PATH (and in the same folder, with
 // its smi-libs/ and smi-lock.json) would see, and what is wrong; `libs tree` shows what requires
 // what. The other subcommands (add, update, sync, remove, outdated, pack, registry, publish,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua libs add / update / sync / remove / outdated, and the requirements of `smi-lua test`:
 // the project's library tree (./smi-libs/<name>/<version>/, or --into DIR, reached through
 // vm/library_tree.hpp only), its smi-project.json (what the project asks for) and its

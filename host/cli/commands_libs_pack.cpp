@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua libs pack DIR [FILE]: a release of the library in DIR as <name>-<version>.tar.gz (or
 // FILE): every file under one folder <name>-<version>/, plus smi-pack.sha256 (sha256sum's
 // format, so `sha256sum -c` checks it too), which `libs add` verifies member by member. The

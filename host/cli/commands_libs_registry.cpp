@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua libs registry / publish / search: team registries (vm/registry.hpp), git repositories
 // holding an index of published library versions. `registry NAME URL` records one in the
 // project's smi-project.json; `publish REGISTRY SOURCE@REF` adds a version (REGISTRY is a name

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua new-lib NAME [DIR]: a library folder that works at once: manifest, a module, a test
 // that passes under `smi-lua test`, and a README saying how to share it.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua report --pdf HTML: a study's report.html printed to report.pdf beside it, A4, through
 // headless Chromium (--print-to-pdf), which lays the page out with the report's print styles
 // (smi.report.style: tables in the page width, figures never cut). A study run with --pdf does

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua test DIR: runs each DIR/tests/test_*.lua as its own sandboxed smi-lua process (so one
 // test cannot disturb another), with DIR on the library path and, when the --lib folders do not
 // meet its `requires`, the libraries its `sources` name (resolved and locked under the output

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua verify RESULTS.json [--json]: re-checks everything a study's results depend on, as its
 // results file recorded it under "provenance": the study script, every file the run
 // read (Lua modules, data, priors, templates; the stdlib embedded in the binary), every program

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-lua [options] [script [args]]: parses the command line, builds the runtime, runs -e/-l,
 // the script and the REPL in lua.c's order. Exit status: 0 ok, 1 script error, 2 usage error,
 // 128 + signal when SIGINT, SIGTERM or SIGHUP stopped the run (130, 143, 129), or the code given

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The placeholder filler of the reference texts (see doc_text.hpp).
 #include "luax/doc_text.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reference texts compiled into the binary (format: stdlib/smi/doc.lua's header). The bindings
 // keep theirs in *_doc.cpp files; the app adds the host functions'. Defaults come from the option

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/gmatch_guard.hpp"
 
 namespace smi::lua {

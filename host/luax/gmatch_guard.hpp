@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Lua 5.4.4's gmatch iterator keeps its recursion budget (matchdepth) across calls and resets it
 // only when a match ends normally: after "pattern too complex" it stays at -1, so the next call

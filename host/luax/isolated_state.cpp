@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/isolated_state.hpp"
 
 #include <cstdio>

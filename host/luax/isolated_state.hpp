@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A Lua state of its own for code that must share no object with the study (a command model's
 // deck function). Sharing one state, even with a fresh _ENV, leaked the study's objects: the

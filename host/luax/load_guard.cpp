@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/load_guard.hpp"
 
 #include <cctype>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Source text the Lua in use (Debian 12's 5.4.4) would compile into wrong code, refused at load.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/luax.hpp"
 #include <map>
 #include <mutex>

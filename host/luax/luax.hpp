@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The helper layer between the Lua-free kernels and Lua (docs/design.md).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Conversions between Lua values and Eigen vectors/matrices. The Lua face of smi.vec and
 // smi.mat (constructors, methods, arithmetic) is in bindings/vec.cpp and bindings/mat.cpp.
 #include <cmath>

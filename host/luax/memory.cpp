@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/memory.hpp"
 
 #include <algorithm>

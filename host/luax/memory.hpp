@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // C++ heap held by Lua objects (vec, mat, Kriging) counted against --max-memory and reported to
 // Lua's collector. Lua's allocator sees only the small userdata of a box; without this a script

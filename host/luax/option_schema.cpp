@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The type-independent half of the option schema (option_schema.hpp): the unknown-key check, the
 // reference's option lines, the typed conversions and their messages, the registry of schemas.
 #include "luax/option_schema.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One option schema per bound function: a static table of entries {key, member,
 // type, range, doc line} from which come

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a script may touch: the sandbox's allow-list, shared by the runtime (which fills it
 // from the command line) and the bindings (which check it before opening files or launching

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/run_context.hpp"
 
 namespace smi::lua {

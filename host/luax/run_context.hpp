@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The run's RunContext (core/run_context.hpp) as the bindings reach it: stored in the Lua
 // registry next to the Policy by the runtime, read through run_context(L). Also the two ways a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "luax/user_error.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Errors in the user's data, options or declaration ("failures"), as opposed to errors in code.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "repl/completion.hpp"
 
 #include <algorithm>

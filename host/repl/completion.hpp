@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Tab completion for the REPL: globals, and fields of tables and methods of userdata along a
 // dotted path ("smi.k" -> smi.kde, "v:su" -> v:sum). Reads the state without running any Lua

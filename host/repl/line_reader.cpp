@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "repl/line_reader.hpp"
 
 #include <cerrno>

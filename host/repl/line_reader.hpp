@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where the REPL's lines come from: GNU readline on a terminal (editing, persistent history,
 // tab completion, Ctrl-C clears the line), plain stdin otherwise (pipes, files: no prompts).

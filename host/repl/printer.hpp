@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The REPL's value printer: tables, vecs and mats shown in full when small and cut short when
 // large (entry, depth and character budgets), so printing a million numbers costs one line.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "repl/repl.hpp"
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The read-eval-print loop (lua.c's doREPL over the runtime's sandboxed state): try the line
 // as an expression first ("return <line>"), keep reading while the chunk is incomplete (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The sandbox: the globals a script sees, built by allow-list (as Redis, LuaSandbox and LÖVE do).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The script's global environment, built from an allow-list (Redis and LuaSandbox do the same):
 // only what is named below is reachable from a script. The standard libraries are opened and
 // wrapped first (sandbox.cpp, files.cpp); this copies the listed entries into fresh tables and

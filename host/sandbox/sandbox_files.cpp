@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The file functions of the sandbox. Each opens its file through the policy (luax/policy.hpp:
 // walked component by component, checked, opened relative to the checked folder) and hands
 // Lua a file made from that descriptor; nothing is re-opened by name, so the checked path and

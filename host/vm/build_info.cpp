@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/build_info.hpp"
 
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What this smi-lua binary is: its version and the versions of what it was built with
 // (compiler, Lua, Eigen, NLopt, SQLite, RE2, nettle, fmt). `smi-lua --version` prints it and

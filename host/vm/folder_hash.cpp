@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/folder_hash.hpp"
 
 #include <cerrno>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The content hash of a library folder: SHA-256 of every file (sorted by relative path), and
 // one digest over the (path, file digest) pairs. Every file counts, smi-out/ included: a library

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The git commit a folder is checked out at, read from the .git files directly (HEAD, loose
 // refs, packed-refs, "gitdir:" files of worktrees and submodules): no git program is run, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/git_process.hpp"
 
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Every git command smi-lua runs (fetching libraries, reading and writing a team registry) goes
 // through run_git, which fixes how git may behave whatever the repository or the user's setup:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/internal_functions.hpp"
 
 namespace smi::vm {

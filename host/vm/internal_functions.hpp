@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Host functions meant for the stdlib only (the run's record of files read, re-hashing a
 // recorded file, marking the results file as an output). A field of smi would be reachable by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/libraries.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The libraries a study sees: folders with a smi-lib.lua manifest, found in the --lib folders
 // and SMI_PATH entries. An entry is a library itself (it holds smi-lib.lua) or a folder of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/library_lua.hpp"
 
 #include <string>

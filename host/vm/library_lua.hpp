@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The Lua face of the library set:
 //   require "name.module"   a searcher (before the plain path searcher) that maps the first

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Choosing and fetching library versions for `libs add`, `libs update`, `libs sync` (a
 // requirement of smi-project.json the lockfile does not meet) and `smi-lua test` (a library's

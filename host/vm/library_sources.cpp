@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/library_sources.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where `smi-lua libs add` and `libs sync` get a library: a git repository (any URL the git
 // program clones, file:// included, or a local checkout given with @REF), a local folder, or a

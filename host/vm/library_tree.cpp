@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/library_tree.hpp"
 
 #include <cerrno>

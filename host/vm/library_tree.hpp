@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A library tree on disk (a project's smi-libs/, or the folder given with --into): one folder
 // per library version, <tree>/<name>/<version>/. A library's name and version are data read

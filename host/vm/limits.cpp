@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/limits.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Limits a run cannot escape: --timeout, --max-memory, Ctrl-C and os.exit.
 //

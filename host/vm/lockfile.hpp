@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi-lock.json: exactly which libraries a project uses, where they came from and what their
 // files hold, so that `smi-lua libs sync` restores them byte for byte and a study run in the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/manifest.hpp"
 
 #include <fmt/format.h>

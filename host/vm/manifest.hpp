@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi-lib.lua, the manifest that makes a folder a library:
 //

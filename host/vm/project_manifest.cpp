@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/project_manifest.hpp"
 
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi-project.json: what a study project asks for, as its team wrote it: each library it uses
 // directly, with a version range and where it comes from (a source or a registry), and the team

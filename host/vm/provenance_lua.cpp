@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/provenance_lua.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // smi.provenance(): everything a run's numbers depend on, as results.json records it
 // under "provenance" and `smi-lua verify` re-checks it:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/registry.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A team registry: a git repository (file://, ssh:// or https://; no server of its own) holding
 // an index of published library versions, in the manner of Cargo's registry index: one file per

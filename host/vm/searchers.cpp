@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/searchers.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where `require` looks, in order (package.searchers is replaced wholesale):
 //   1. package.preload

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Library versions (Semantic Versioning 2.0.0: MAJOR.MINOR.PATCH[-prerelease][+build]) and the
 // requirements manifests state on each other ("stats_extra >= 1.2, < 2").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/tar_gz.hpp"
 
 #include <zlib.h>

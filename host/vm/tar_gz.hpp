@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The .tar.gz of `smi-lua libs pack` and `libs add ARCHIVE`: a small ustar reader and writer
 // over zlib's gzip (zlib1g: no tar program is run, so nothing depends on which tar is installed

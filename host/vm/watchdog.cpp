@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "vm/watchdog.hpp"
 
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The last resort behind --timeout and Ctrl-C. The instruction hook stops Lua code and kernels
 // poll the run's cancellation token, but some code can do neither: one string.find with a pathological pattern

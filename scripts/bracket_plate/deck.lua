@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The bracket plate's CalculiX deck (docs/spec/bracket-plate.md §2-3): an aluminium plate
 -- 200 x 50 mm of S8R shells of size h, clamped at x = 0 or resting on the compliant joint (a
 -- Winkler strip x in [-10, 0] of SPRING1 elements in z, each node's stiffness k_w times its

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The steering-column model's inputs (docs/spec/steering-column.md §2) and the unknowns of
 -- the two trials of Son et al. (2020), Tables 4 and 8: distribution type, bounds of the mean and
 -- standard deviation, and start values. Pure data plus small helpers; no solver, no I/O.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi-column-fe as the study drives it: decks written from the spec's inputs, per-point runs
 -- through smi.model.command (one deck and one .f06 per point, as with Nastran) and many points
 -- per process through smi.model.batch (`smi-column-fe --batch`). Every run goes through the

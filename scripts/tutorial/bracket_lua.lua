@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Tutorial, step 1 (docs/tutorial.md): calibrate a model written in Lua against nine tests.
 -- A steel bracket is a cantilever; its first bending frequency follows from beam theory. Its
 -- thickness h is known from the drawing (2.0 mm +- 0.03); its modulus E is not: we calibrate

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Tutorial, steps 2 and 3 (docs/tutorial.md): the same calibration through a command-line
 -- solver (smi-beam-solver, built in the tree) with a deck template and an output parser, a Kriging
 -- surrogate of the solver, and a report.

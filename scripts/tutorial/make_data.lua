@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- How bracket_tests.csv was made: nine brackets whose modulus E and thickness h vary as the
 -- truth below says, each "tested" for its first bending frequency (beam theory, no noise).
 -- The calibration in the tutorial does not know E's mean and std; it should find them.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.doc: the reference texts of every public function, method and options table, and what
 -- reads them: help() in the REPL, `smi-lua doc [NAME]`, `smi-lua doc --html DIR` and the test
 -- that runs every example and fails on a public function without a text.

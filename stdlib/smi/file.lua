@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.file: writing a results file so that it is never torn or shortened.
 --
 --   require("smi.file").write(path, text, "study 'beam'")

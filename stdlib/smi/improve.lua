@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve: the method of statistical model improvement (Son et al. 2020) as a library. A
 -- study declares its responses, unknowns, model factory, refinement candidates, criteria and
 -- limits (docs/new-product.md; the fields: declare.lua); smi.improve.run(declaration, arg) runs

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.options: a study declares its command-line options (name, default, meaning, check), as
 -- sysbench scripts do; `smi-lua study.lua --help` lists them and a wrong value is refused with
 -- the option's name and what it accepts.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.sanity: warnings about data that a study would otherwise use without a word.
 --
 --   local sanity = require "smi.sanity"

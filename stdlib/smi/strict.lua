@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.strict: an opt-in strict mode for a study. After require("smi.strict").on(), reading a
 -- global that does not exist is an error naming it (and the closest global that does), instead
 -- of a silent nil: a misspelt `smi.sed` is a field and stays nil, but a misspelt `improv.run` or

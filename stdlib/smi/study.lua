@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.study: a study as named steps that run in order, are timed, report progress, and save
 -- their results to results.json, so that any step can be re-run alone later.
 --

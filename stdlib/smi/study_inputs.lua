@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- What each step of a smi.study used, so that a partial run (--only, --from) never
 -- mixes old and new inputs without saying so. A step's inputs, saved beside its result in
 -- results.json:

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.study_reuse: a whole run of a study reuses the saved steps whose inputs are all as they were,
 -- so that a rerun with nothing changed costs the script's top level and the report's rewrite.
 --

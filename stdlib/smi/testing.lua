@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.testing: a small test harness for Lua test files run by smi-lua itself.
 --
 --   local T = require "smi.testing"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Errors across the C++/Lua boundary, on a real sandboxed
 // runtime: a kernel exception becomes a Lua error with its message and the script's file:line;
 // an error raised in a Lua callback called from C++ keeps its message; no C++ destructor is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The calibration's progress line: the rows the kernel's tracker makes (stage,
 // units done, evaluations, best, ETA from the rate so far) and the text the terminal shows, the
 // solver runs' show_progress/format_duration reused. Whether it shows (a terminal, not --quiet,

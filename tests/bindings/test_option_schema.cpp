@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The option schema (host/luax/option_schema.hpp) on a real lua_State: an unknown key
 // names the key, the function and the closest key; a wrong type names the key, the expected and
 // the given type; a value out of range names the range; every schema of the bindings reads an

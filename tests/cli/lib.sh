@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Helpers for the CLI tests: run smi-lua, check its exit status and output, count results.
 # Usage in a test file:  source lib.sh; run NAME RC [cmd...]; has_out TEXT; has_err TEXT; finish
 set -u

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The smi-lua command line: options as lua's, exit statuses, messages, arg, stdin, -i.
 source "$(dirname "$0")/lib.sh"
 

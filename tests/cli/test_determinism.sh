@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Same seed, same outputs: the same small studies run in separate smi-lua processes write
 # byte-identical results.json, report, Kriging files and console output, and the same error
 # messages. Lua seeds its string hashes per state, so any output built in pairs() order (or in a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // --max-memory is checked before the allocation: each binding that allocates
 // a size the script chose asks the budget first, inside protect(). The old bindings allocated
 // the whole result and counted it when pushing it, so a study under --max-memory 64 reached

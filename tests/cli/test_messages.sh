@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What a user sees when something is wrong: an error in the data, options or declaration is one
 # line naming the culprit (no Lua traceback, no stdlib path in front; --traceback adds the
 # traceback), an error in the user's own code keeps its traceback (inside a study step too), a

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Options in any order: smi-lua's own options go before the script. After it, one the
 # study did not declare is refused with the command line that works; one the study declares
 # (--dry-run, --quiet) is the study's. smi.options' list of smi-lua's options matches --help.

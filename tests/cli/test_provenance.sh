@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Provenance end to end, on a small study of three steps with a helper module next to
 # it, a data file, a prior file read with dofile and a "solver" program (a copy of a shell script):
 #   - results.json has "schema" and records every file read, the program, the options, the build;

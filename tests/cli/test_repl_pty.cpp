@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The REPL as a person uses it, through a pseudo-terminal (readline active): tab completion of
 // globals, nested fields and methods, multi-line input, printing without '=', Ctrl-C stopping a
 // running chunk and clearing the prompt line while the session goes on, persistent history,

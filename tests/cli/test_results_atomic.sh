@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Results never shrink or tear: results.json and report.html are replaced
 # whole (temporary file, checked writes, fsync, rename). A full disk while results.json is
 # written is an error naming the file, exit 1, and the previous results.json stays valid; a

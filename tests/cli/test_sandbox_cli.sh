@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Sandbox rules that need flags, files or a fresh process: symlinks out of the study folder,
 # --allow-read/--allow-write, the output folder, module search, --timeout and --max-memory
 # (neither can be swallowed by pcall), and the stdlib from disk.

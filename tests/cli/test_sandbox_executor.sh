@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The executor is the user's choice: a study's executor = {...} may only
 # narrow what --executor/--slurm-opt allow. Slurm runs only with --executor slurm; partition,
 # account, qos, time, mem, cpus and sbatch arguments only from --slurm-opt; sbatch arguments are

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Limits that reach C++: --timeout and Ctrl-C stop long
 # kernels through smi::cancel; a pattern match or a finalizer that the Lua hook cannot reach is
 # ended by the watchdog with a message; vec/mat data count against --max-memory; os.getenv

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The sandbox's path checks against hostile paths: one test per denial,
 # for every function that opens, writes, removes or renames a file a script names. Each attack
 # here got through the resolver of before (it canonicalised the existing part of a path, then

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Links planted before the run, as a study bundle unpacked in the working
 # folder brings them: at smi-out, smi-out/<script>, --out, .smi-lock, the store and its -wal and
 # -shm. Roots are opened, never resolved: a link where smi-lua will make a folder or write a

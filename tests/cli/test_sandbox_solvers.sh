@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Solvers: the environment is a list (tested in test_sandbox_executor.sh);
 # a failing solver's log is read without following a link it left in its place; an allowed
 # program that lies under a folder the script may write is refused (write or execute, not both).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # `smi-lua verify` reads only regular files, at most the size they had when opened, and within a
 # time limit: a results file is data from whoever made it, and one that names /dev/zero, a FIFO
 # or a folder as an input must get an answer (a difference, exit 1), never a read that lasts for

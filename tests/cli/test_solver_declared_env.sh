@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Variables a model declares for its solver (smi.model.command{env = {NAME = "value"}}): a model
 # sets only names the command line allows (--allow-env NAME); they reach the solver with the
 # model's values, they are part of the store key (another value runs again, the same value

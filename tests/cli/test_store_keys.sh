@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The evaluation store against forged records: a record's key includes the
 # SHA-256 of the program file, so a record made by another program of the same file name and
 # a version string the script chose is not reused; a store of the old key scheme is refused

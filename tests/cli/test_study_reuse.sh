@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # A whole run of a study reuses the saved steps whose inputs are unchanged, and never a stale one:
 # every kind of input is changed in turn (a data value, a study option, the script, a module it
 # requires, a module a step requires, a library file, the seed, the smi-lua binary) and the steps

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The u-pooling H0 Monte Carlo (seconds at 10^6 sets for n near 50) shows a progress line with
 # an ETA on a terminal, and nothing when stderr is piped or with --quiet. The terminal is a
 # pseudo-terminal from script(1) (util-linux, on every Debian system).

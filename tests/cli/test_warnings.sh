@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # One warning channel: a binding's warning goes to the run's sink, which collects it
 # for the study (smi.warnings(), beside the functions that return theirs in a `warnings` field)
 # and prints it only when the run prints. With --quiet nothing reaches stderr: smi.metric.pr's

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Generates the reference (smi-lua doc --html) and opens it in headless Chromium: no console
 # message, nothing fetched from the network, the search (plain JavaScript over the index embedded
 # in the page) finds entries, and pages look like pages. Screenshots are kept in WORKDIR

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # smi-lua doc on the command line: the same texts as help(), defaults from the kernels' option
 # structs, search, the module list; the coverage check fails on a public function without a
 # text and on an example that fails; a study's declared options (--help, a wrong value).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Regenerate the steering-column data and compare byte for byte with the committed file.
 execute_process(COMMAND ${GEN} ${OUT} RESULT_VARIABLE rc ERROR_QUIET)
 if(NOT rc EQUAL 0)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv: many points in one process. Checked
 // against the spec's §11 reference values and against the single-deck solution of each point.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The input deck of spec §9: every error names file, line, key and value; the writer round-trips.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Structural properties of K and M (spec §11 "further checks") and element matrices against
 // closed forms.
 #include <catch2/catch.hpp>

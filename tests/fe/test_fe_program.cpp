@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The real smi-column-fe executable, run as outside checks run it: `smi-column-fe DECK -o RESULTS`.
 #include <catch2/catch.hpp>
 

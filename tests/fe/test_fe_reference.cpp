@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-column-fe against the reference values of docs/spec/steering-column.md §11 (and §6).
 #include <catch2/catch.hpp>
 

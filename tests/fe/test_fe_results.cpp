@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The .f06-like results file of spec §10: exact C formats and a read-back round trip.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # cmake/check_file_names.cmake on a copy of host/: passes as it is, then fails on an implementation
 # file named after no header and on a header whose functions lost their same-named file.
 set -euo pipefail

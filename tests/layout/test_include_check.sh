@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # cmake/check_includes.cmake on a copy of the tree: passes as it is, then fails on planted
 # forbidden includes with one line per violation naming file, line and the rule broken.
 set -euo pipefail

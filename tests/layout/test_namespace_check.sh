@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # cmake/check_namespaces.cmake on a copy of host/ and bindings/: passes as they are, then fails on
 # planted namespaces outside their folder's with one line per violation naming file, line and rule.
 set -euo pipefail

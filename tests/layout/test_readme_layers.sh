@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The README's layer table matches the tree and the include check: every folder it names exists,
 # every folder of host/ (and bindings/) is in it, and its layers appear in the order of
 # SMI_LAYERS in cmake/check_includes.cmake (bottom up).

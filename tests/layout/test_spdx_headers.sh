@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # packaging/spdx_headers.sh on a planted tree: --check names a file without the licence tag and
 # fails; the fix adds the tag on line 1 (line 2 after "#!"), keeps the rest and the execute bit,
 # leaves fixtures alone, and a second run changes nothing.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Helpers of the library tests that make libraries as git repositories with tagged releases.
 gitc() { git -C "$1" -c user.name=t -c user.email=t@example.org -c init.defaultBranch=main "${@:2}" > /dev/null 2>&1; }
 # release DIR NAME VERSION REQUIRES_LUA [SOURCES_LUA] [TAG]: commit a release and tag it (TAG,

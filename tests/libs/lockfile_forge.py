@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Rewrites the checksums of a smi-lock.json as smi-lua computes them (vm/lockfile.cpp), so a
 test can hand smi-lua a lockfile forged with valid checksums: the checksums catch accidents,
 not attacks, and every field must still be checked as data.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A folder under /tmp for one test case, removed with everything in it when the case ends
 // (the library tests build manifests, git repositories and archives in it).

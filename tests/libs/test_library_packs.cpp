@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Lua-free parts of `smi-lua libs`: the ustar+gzip reader/writer (checked against
 // the system's tar, a peer implementation), the lockfile's checksums, SOURCE@REF splitting,
 // version tags, and the manifest's `sources` field.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Lua-free parts of library sharing: semver precedence (checked against the ordering
 // example of semver.org §11), requirements, manifests read safely, the git commit read from
 // .git files (checked against `git rev-parse HEAD`), and folder hashes (FIPS 180-2 vectors).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A library's name and version are data: the grammars (Semantic Versioning 2.0.0 §9 and §10 for
 // prerelease and build metadata; Lua identifiers for names) refuse every path-like text, and
 // library_dir / LibraryTree, the one place a library path is made and changed, refuse

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Library sharing end to end, on real library folders made as git repositories: new-lib + test,
 # libs, a version conflict, a missing requirement, require "name.module", provenance in the
 # results file and verify catching a tampered library, and a library held to the sandbox.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # A library's name and version are data, never paths; a library is exactly its files; git runs
 # with a protocol allow-list and a time limit. Each case is an attempt to make smi-lua install,
 # remove or read outside the project's library tree, or to run a study on changed library code:

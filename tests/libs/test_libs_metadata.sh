@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Library metadata held to the library: the git commit is read only from
 # inside the checkout, and provenance never hashes what a symlink out of the library points to.
 # One test per denial; each passed the data through (or hung) before the fix.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Library sharing between two teams on one machine, through a team registry that is a local git
 # repository (no server): team A publishes; team B finds a library by name, adds it with a range,
 # updates within the range after A publishes a new version, and tampers with an installed file:

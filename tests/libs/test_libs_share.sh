@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sharing libraries between teams, end to end and without network: team A's
 # libraries are git repositories made here with tags, reached through file:// URLs.
 # libs add (with a dependency chain), smi-lock.json, sync after deleting the tree (same

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A second small product for smi.improve's model-form tests (tests/lua/test_improve_evidence.lua):
 -- two masses on a chain of springs, ground - k1 - m1 - k2 - m2. Responses: the two natural frequencies f1, f2 (Hz, calibrate) and
 -- d1, the static deflection of m1 under a unit force at m2, read by a gauge across k1 alone

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The hidden-style calibration (shared by tests/lua/test_calibrate_model_differences.lua
 -- and bench/calibrate_hidden.lua): ten parameters (the means and standard deviations of five
 -- inputs: normal, lognormal, uniform, normal, lognormal), three responses of a smooth nonlinear

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The small product the smi.improve tests run on (tests/lua/test_improve.lua, and
 -- tests/cli/test_determinism.sh, which copies this file beside its study): two calibrated
 -- responses f1 = 10a - k, f2 = 20a - 6k and a validation-only one f3 = 10a + 2k of a

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate: whether several starts reached the same optimum where the data can tell
 -- (r.agreement), and basin hopping (hops, hop_step).
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate_bayes: a non-linear posterior (banana) and a model-form population case against
 -- the quadrature references of tests/reference/bayes_nonlinear.py; same seed, same numbers; the
 -- errors that name the culprit.

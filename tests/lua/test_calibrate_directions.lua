@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate: identifiability as directions, near-optimal sets, priors, distinct optima
 -- (the contract in `smi-lua doc smi.calibrate`).
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- All nine smi.dist families as smi.calibrate inputs: each of the six new
 -- families is calibrated (mean and std, or the parent's for truncnormal) on an identity model
 -- against the family's own pdf, and must recover the true values; bad families name the choices.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate is general: a Lua objective, and a 2-input analytic model (not the steering
 -- column) whose true input means and standard deviations are recovered from synthetic data.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate with the analytic gradient: through Kriging surrogates in
 -- closed form and through a model's own gradient method; the same optimum as finite
 -- differences, on tolerances, in fewer evaluations.

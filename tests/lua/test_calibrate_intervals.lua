@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate intervals: profile intervals that equal the closed-form
 -- likelihood-ratio intervals, "not determined" for a flat parameter, and bootstrap replicates
 -- that are whole calibrations.

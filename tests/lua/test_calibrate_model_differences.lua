@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate on a model without a gradient: the model itself is differentiated at
 -- the CRN sample (one batch of k + 1 model passes a gradient), the hidden-style 10-parameter
 -- problem ends on its tolerances within 300 evaluations, and predictions that cannot overlap the

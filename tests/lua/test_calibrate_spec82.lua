@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate on the CRN calibration of spec §8.2: y = x, x = mu + sigma z with
 -- z_i = Phi^-1((i - 1/2)/2000), f_exp = KDE of the §8.1 data, PR on [27, 33.5] with 6501 nodes.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate: a start where PR saturates at 2 (no overlap, no gradient) is moved to a
 -- moment-matching start inside the kernel.
 local T = require "smi.testing"

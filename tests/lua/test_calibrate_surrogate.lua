@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.calibrate on Kriging surrogates, one per response (model = {y1 = k1, y2 = k2}), as a
 -- study would use it: the inputs' true means and stds are recovered through the surrogates, the
 -- surrogates' input order is honoured, and leaving the design box is reported.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.csv and smi.json: round trips that must be exact, the documented formats, errors that
 -- name file/line/column, and the sandbox checks of both.
 local T = require "smi.testing"

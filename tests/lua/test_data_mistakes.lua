@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Data mistakes caught before the solver runs. A ';' or tab separated file, or one with
 -- decimal commas, says what it uses and what to pass; decimal = ',' reads it. A missing input
 -- file names the option that gave it. A solver path that does not exist is refused when the

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.doc: the parser of the reference texts, lookup by value and by name, search, and the
 -- coverage walk (a function added at run time without a text is reported).
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The reference cannot drift from the code. Documented option lists are compared with
 -- the names the bindings check (smi.kde's here, after a call); misspelt module members and doc
 -- names get the closest names.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.doe from Lua: Latin property and bounds, distributions through quantiles, Sobol'
 -- against SciPy's first points (tests/reference/sobol_points.csv), full factorial.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.improve: a declaration's mistakes are errors naming the field and the response or
 -- candidate, the data step's units check stops before any solver budget
 --, and the whole loop runs on a small product whose truth needs one revision.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.improve's model-form evidence end to end on a product of its own (tests/lua/chain_product.lua):
 -- nine specimens generated from the "tip mass" form (a known 0.1 kg on m2). The frequencies alone
 -- let the initial form absorb part of the tip mass in its stiffnesses; the gauge d1 = 1/k1 and

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.improve's verdict over the tried model forms (stdlib/smi/improve/forms.lua), on records
 -- whose log evidences are given: the margin is a Bayes factor (Kass & Raftery's "positive"
 -- evidence starts at 3, ln 3 = 1.0986), beaten only by two Monte Carlo standard errors of the

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.kriging from Lua: DACE reference values (spec §8.4) through the outside-check call
 -- forms, LOO, save/load through the sandbox, errors that name the culprit.
 local T = require "smi.testing"

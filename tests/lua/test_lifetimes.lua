@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Object lifetimes in bindings: a bound function holds every object it uses
 -- until it returns, whatever Lua code runs in between. Each case passes a Kriging inside a table
 -- and an options table whose __index, when a later option is read, empties that table, drops

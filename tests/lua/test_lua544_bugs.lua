@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Lua 5.4.4's known bugs (Debian 12 ships it), each met by a host guard:
 --  * string.gmatch's iterator called again after "pattern too complex" recursed without limit
 --    (upstream fix: lua/lua efddc230): the wrapped iterator refuses to run after an error;

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.mat's linear algebra (A:solve, :inverse, :det, :chol, smi.mat.eigh) against closed forms
 -- and against SciPy (tests/reference/linalg_scipy.py -> linalg_scipy.json), and its errors.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Messages for inputs a new user gets wrong: each names the culprit and the fix
 -- instead of a wrong result, a silent acceptance or a number as an error.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.model.lua: the model interface on a Lua function (no solver, no store).
 local T = require "smi.testing"
 

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- An error raised deep in recursive smi calls names its cause first: a model that
 -- calls smi.propagate again ended, 60 levels down, with a 2 KB message of nested prefixes and
 -- the cause cut off. Now: the outermost prefix, the cause, and how deep it was raised.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.options: declared study options, their checks and the --help text.
 local T = require "smi.testing"
 local options = require "smi.options"

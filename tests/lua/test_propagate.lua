@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.propagate: CRN sample pushed through a Lua model on the whole matrix, a Kriging model
 -- and an object with :evaluate; moments against closed forms.
 local T = require "smi.testing"

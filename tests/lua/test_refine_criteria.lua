@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.refine.criteria: the paper's four criteria as Lua builders, used on a model that is not
 -- the steering column (a 2-DOF spring-mass system with three candidate revisions).
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.refine.decision_matrix: spec §8.5 values, and a refinement of a different model with its
 -- own criteria written in Lua.
 local T = require "smi.testing"

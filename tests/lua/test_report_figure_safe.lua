@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Report figures are held to an allow-list of static SVG: the report
 -- promises no scripts and no network, and a figure is embedded in the page as it is. The old
 -- check only asked for well-formed XML, so each hostile figure below went into report.html.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.report: the page is well-formed, self-contained, escapes what callers give it, numbers and
 -- links its parts, formats table numbers, and its JSON holds the numbers.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.report.json (results.json's rule over smi.json): numbers read back bit for bit,
 -- non-finite numbers survive as valid JSON, and what JSON cannot hold is named by its path.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.report.svg and smi.report.axis: the charts parse as XML, draw every finite point where
 -- the axes say it belongs, skip non-finite values with a note, and escape text.
 local T = require "smi.testing"

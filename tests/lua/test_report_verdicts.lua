@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.report: one verdict list (every check once, one status), "not run" and
 -- "inconclusive" statuses, the header's counts, a verdict contradicting its solver check says
 -- which governs, numbers in text without binary noise, units beside numbers, tables that wrap.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The sandbox, from inside: every rule a hostile script could try, and what stays allowed.
 -- Run by ctest as `smi-lua --quiet --allow-read tests/reference --out <build>/test-out/... file`
 -- from the build directory (tests/cli/ covers the rules that need other flags or files).

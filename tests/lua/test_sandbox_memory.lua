@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A script cannot free what C++ is still using, and options it sets are capped by the machine
 --. Each case crashed or corrupted memory on the build before the fix
 -- (double free, use-after-free, segfault, SIGFPE) or gave a meaningless message.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.screen: the linear model of spec §8.5 (PDF-area indices) and the Ishigami function's
 -- analytic Sobol' indices (a = 7, b = 0.1).
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.screen{method = "surrogate"}: the model runs `runs` times in one call, the
 -- eq.-3 indices on the surrogate match spec §8.5's analytic N_e for a model the surrogate
 -- reproduces, a poor surrogate is reported, and misplaced options are errors.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The public stats API, asserted against spec §8 values and closed forms.
 local T = require "smi.testing"
 local X = {30.12, 30.45, 29.88, 30.61, 30.02, 29.75, 30.33, 30.90, 30.20}

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.strict: a study's opt-in strict mode. Reading an undefined global is an error naming it and
 -- the closest defined global; assigned globals (even nil) and the library's globals read as usual.
 -- Run last in this file: strict mode stays on for the rest of the chunk.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.study: steps run in order and see earlier results; results.json keeps them so that a
 -- step can run alone later; failures keep what was done and name the step.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- One naming scheme for the metatables users see: all lowercase, the name of the smi
 -- function or module that makes the value. The name shows in type errors ("smi.kriging
 -- expected"), in the doc names of methods ("smi.kriging:predict") and in getmetatable(v).__name.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.vec, smi.mat and smi.rng from Lua: construction, indexing, arithmetic, reductions.
 local T = require "smi.testing"
 

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # Prints the README's first study: the first ```lua block after the heading "## A first study";
 # with --output, the output the README shows for it (the next ``` block of that section).
 # Used by test_install.sh and packaging/test-deb-chroot.sh, so both run what the README shows.

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # `cmake --install` into a fresh prefix, then, from a folder outside the source tree and with only
 # the prefix's bin/ added to PATH: the README's first study, `smi-lua doc smi.kde`, the installed
 # steering-column study's cost plan (--dry-run: its modules, data and the solver smi-column-fe found

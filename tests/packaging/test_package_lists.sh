@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # One package list: the `apt-get install` lines of README.md and docs/tutorial.md name exactly the
 # packages .ci/setup installs for building (its `packages=(...)` array), so a reader who copies
 # them gets a machine that configures. Fails naming the file and the packages that differ.

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # What the code, the tests, the scripts (the report's text) and the documents cite is in the
 # repository, and they carry no development history:
 #  - every specification cited by path (docs/spec/<name>.md, or shared/spec/<name>.md outside the

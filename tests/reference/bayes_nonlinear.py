@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference posteriors and evidences for tests/lua/test_calibrate_bayes.lua, by quadrature
 (NumPy 1.24), independent of the sampler.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference percentile bootstrap intervals of a mean from SciPy (scipy.stats.bootstrap,
 method="percentile"), for tests/kernels/improve/test_bootstrap_reference.cpp:
   * the 95 % interval from 200000 resamples (its endpoints' Monte Carlo error is negligible);

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference values of the nine smi.dist families from SciPy 1.10 (Debian python3-scipy) for
 tests/kernels/stats/test_families_tails.cpp: pdf, logpdf, cdf, logcdf, sf at body and tail
 points (the quantiles of p = 1e-12 ... 1 - 1e-12, both sides), quantile(p) and isf(q).

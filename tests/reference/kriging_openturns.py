@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference for smi::kriging at fixed hyperparameters: OpenTURNS 1.20 KrigingAlgorithm on
 DACE-normalised data (spec §4 mapping: SquaredExponential scale s = 1/sqrt(2 theta), amplitude 1,
 parameters not optimised), for a 3-input design with constant, linear and quadratic bases.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference values for smi.mat's linear algebra (tests/lua/test_mat_linalg.lua): solve, inverse,
 det and Cholesky by scipy.linalg, and the symmetric and generalised symmetric eigenproblems by
 scipy.linalg.eigh (LAPACK syevr/sygvd), on a 5x5 system and a spring-mass chain.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """PR = integral |f - g| and the intersection area = integral min(f, g) of pairs of analytic pdfs
 that are infinite at a support bound, narrow or skewed, by scipy.integrate.quad (QUADPACK qags,
 which extrapolates over endpoint singularities) on the pieces between the pdf crossings

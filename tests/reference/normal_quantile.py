@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference values of the standard normal quantile and CDF from SciPy (scipy.special.ndtri,
 scipy.special.ndtr). Output: normal_quantile.csv (p, ndtri(p), x, ndtr(x)). Run with Debian's
 /usr/bin/python3 (python3-scipy)."""

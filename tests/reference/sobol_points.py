@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference for smi::doe::sobol: SciPy 1.10's unscrambled Sobol' sequence (Joe & Kuo
 direction numbers), points 1..511 (point 0, all zeros, is skipped as smi.doe.sobol does),
 37 dimensions. These points are multiples of 2^-9; the CSV stores x * 512 as integers."""

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Maximum-likelihood fits by SciPy 1.10 for tests/kernels/stats/test_fit.cpp.
 Data: spec §8.1 (9 points) and 30 gamma-distributed measurements (seeded).
 Output: stats_fit.csv with rows  dataset,family,param1,param2,loglik

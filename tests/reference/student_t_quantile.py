@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference values for tests/kernels/improve/test_profile_intervals.cpp:
 SciPy's Student t quantiles and the small-sample profile delta n/2 ln(1 + t²/(n − k)).
 The output below is stored in the test as literals.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The full path's conclusions on the committed data, for tests/study/check_budget.lua:
 -- reads the results.json of `scripts/steering_column.lua --screening full --design fixed
 -- --test-points 50 --solver-check 300` (the study before the surrogate screening: eq.-3 screening on smi-column-fe

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Regenerates tests/reference/study_full_path.json: runs the steering-column study's full path on
 # the committed data (scripts/steering_column.lua --screening full --design fixed --test-points 50
 # --solver-check 300; 9,400 screening runs, about 5 minutes on 2 cores) in a fresh folder, then

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Exact tail values for tests/kernels/stats/test_tails_exact.cpp, by mpmath at
 60 significant digits from the closed forms (every argument is the exact double the test uses):
   - triangular with its mode at a bound: cdf, logcdf, sf, quantile, isf near that bound

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # A report an engineer can print. Renders tests/report/wide_report.lua's report in
 # headless Chromium on screen (1280 px) and with the print styles at the printable width of an A4
 # page (688 px: 210 mm less 2 x 14 mm margins), and prints it to PDF. Checks that no element is

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Renders the demo report in headless Chromium and checks that it loads with no console
 # message, fetches nothing from the network, lays out its charts, and looks like a page (the
 # screenshot is kept as WORKDIR/report.png for people to look at).

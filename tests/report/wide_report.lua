@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- A report with what once made a report overflow and read wrong: a ten-column table of
 -- calibrated parameters with long names and intervals, numbers with binary noise in the text
 -- and the provenance, a chart with a long title, a verdict contradicting its solver check, and

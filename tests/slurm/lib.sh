@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared by the slurm tests: sourced with SMI, SOLVER and W (a fresh work folder) set.
 # Polling is made fast here (poll 0.3 s backing off to 1 s, exit files waited for 2 s) so the
 # tests take seconds; the defaults (5 s -> 60 s, 30 s) are for real clusters.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # start-slurm.sh — a throw-away single-node Slurm on this machine for the slurm tests (label
 # "slurm"): Debian 12's slurmctld + slurmd + munge, started in the foreground of background
 # shells (no systemd), state under $SMI_SLURM_DIR. Installs the packages when missing (root).

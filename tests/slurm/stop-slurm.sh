@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # stop-slurm.sh — stops the cluster start-slurm.sh started: cancels every job, then stops exactly
 # the recorded PIDs (newest first), each after checking it still runs the expected program.
 # WIPE=1 also deletes the state folder and the generated slurm.conf.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # (1) Ctrl-C while runs are queued and running on Slurm: smi-lua stops promptly, one scancel takes
 # every job of the study out of the queue (running ones get TERM), and no solver finishes.
 # (2) on_failure = "stop": the first run times out while the others wait in the queue (throttle

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # (1) slurmctld restarted while a study runs: the study rides it out (scheduler commands retry)
 # and gives the local executor's numbers. (2) slurmctld stopped for good: the study stops with a
 # message naming Slurm, finished runs stay in the store; once the controller is back a rerun

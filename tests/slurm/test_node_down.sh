@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The node of a running job is set DOWN: Slurm requeues the job (sbatch --requeue), the run
 # starts again in a clean folder, and it does not count as a failed attempt of the run (one
 # launch for the evaluator, one submission, two solver starts, the right number).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Jobs outlive smi-lua: (1) --detach and Ctrl-C leave them queued and running; (2) a rerun
 # reattaches and is killed with kill -9; (3) a third run reattaches again, finishes, and the
 # numbers equal the local executor's, with every run submitted once and solved once.

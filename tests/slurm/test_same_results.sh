@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The same study on the local executor and on Slurm prints the same numbers and the same failure
 # records (a timeout, an exit status); 11 runs under MaxArraySize 8 become two throttled arrays;
 # a second run reuses every stored success and submits only the two failures again.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-test-solver DECK [-o RESULTS]: a stand-in for a CAE solver, built in the tree so the
 // evaluation tests run real child processes.
 //

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.model.parse.ccx_dat (h.ccx_dat in a parser) on real CalculiX 2.20 output
 -- (tests/solver/fixtures/README.md). arg[2] = the fixtures folder.
 local T = require "smi.testing"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # --dry-run plans a study whose later steps depend on solver outputs: with an
 # empty store it stops cleanly (exit 0) at the first evaluation that needs runs, prints the plan
 # so far, launches nothing and writes no results (before: exit 1, "model output 1 is not

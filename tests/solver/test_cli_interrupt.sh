@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Ctrl-C during solver runs: smi-lua stops promptly with "interrupted", kills the running
 # solvers' process groups, and keeps the records of runs that had finished. Then --timeout
 # during solver runs: no Lua runs while smi-lua waits on solvers, yet the run stops by itself

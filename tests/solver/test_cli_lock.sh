@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # One study per output folder: while one smi-lua runs solvers in --out X, a
 # second smi-lua on X stops at once with a message naming the holder (pid, host, start time)
 # and the fix, and launches nothing (before the lock both ran, shared work folders and one

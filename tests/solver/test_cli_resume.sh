@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # End to end through smi-lua: a study killed with SIGKILL mid-run resumes without re-running
 # what had finished; --dry-run counts what is left and launches nothing; --store shares a
 # store read-only with another output folder.

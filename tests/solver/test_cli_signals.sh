@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # SIGTERM and SIGHUP (what `timeout`, Slurm and systemd send; a closed terminal) stop a study
 # like Ctrl-C: exit status 128 + signal, a message naming what was kept and how to resume, every
 # solver process group killed, and a solver's setsid escape (reparented to smi-lua, the child

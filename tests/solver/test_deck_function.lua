@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A command model whose template is a Lua function of the point: the deck computes,
 -- I/O is refused inside it, and a writable store's missing folder is made. Drives the in-tree
 -- test solver (f = x1^2 + x2^2, g = x1 + 2 x2). arg[1] = its path, arg[2] = the fixtures folder.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The evaluator driving a real child process (smi-test-solver): results in input order, reuse
 // from the store, overlap at concurrency 2, failures as records, timeout killing the process
 // group, retry, hostile values, batch form, and a study killed with SIGKILL that resumes.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- smi.model.command and smi.model.batch from a study, driving the in-tree test solver.
 -- arg[1] = path of smi-test-solver, arg[2] = fixtures folder.
 local T = require "smi.testing"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The economical study path against the full one on the committed data: the study's
 -- default run (surrogate screening of 300 runs, 20 test points, a 40-point solver check; here in
 -- its --quick form, whose verdict steps are those of the full run) reaches the full path's

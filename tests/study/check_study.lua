@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Checks of the reduced steering-column study (scripts/steering_column.lua --quick) on the
 -- committed data. arg[1] = its results.json, arg[2] = its report.html.
 --

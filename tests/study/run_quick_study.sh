@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the steering-column study with --quick in a fresh output folder, then the checks.
 # usage: run_quick_study.sh SMI_LUA COLUMN_FE SOURCE_DIR WORK_DIR
 set -euo pipefail

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Numeric literals in binding code: a default belongs in its option struct (a kernel's
 # *Options, platform/core/defaults.hpp), never beside a read in bindings/. Prints
 #   <file>:<line>: <literal>   <the line>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # No literal default in the bindings: lists the numeric literals of bindings/**/*.cpp
 # outside the allow-list of literal_defaults.awk; exits 1 when there is one. A default belongs
 # in its option struct (a kernel's *Options, platform/core/defaults.hpp), read through the

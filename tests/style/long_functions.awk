@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Lists every C++ and Lua function longer than `limit` lines (default 80) and says which ones
 # carry no comment explaining why they must be long. Run through long_functions.sh, which picks
 # the files; POSIX awk only (Debian's default mawk), so CI needs nothing beyond the base system.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Fails when a C++ or Lua function runs over 80 lines without a comment saying why it must be
 # long (`// long: <reason>` or `-- long: <reason>`, in the comment block above the function or
 # in its first lines). Functions in long_functions.allow (files other work owns, split there)

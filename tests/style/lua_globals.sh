@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # No undefined globals in the Lua the project ships (stdlib/ and scripts/): every global a chunk
 # reads or writes (luac's GETTABUP/SETTABUP on _ENV) must be one the sandbox gives a script (the
 # Lua base library and `smi`). A misspelt local or a forgotten `local` reads or makes a global,

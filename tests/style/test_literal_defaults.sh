@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The literal-default check catches planted defaults (fixtures/literal_default.cpp: alpha's 0.1
 # and loglik's 1e-300 beside their reads) and lets through stack indices, counts, strings, raw strings, comments and
 # marked lines (fixtures/literal_allowed.cpp).

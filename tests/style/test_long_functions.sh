@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The long-function check catches what it must and accepts what it must (fixtures/):
 #   - an 81-line C++ function and an 81-line Lua function without a reason fail the check;
 #   - the same functions with a `long: <reason>` comment (above, or in the first lines) pass;

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # Runs every command of docs/tutorial.md (the "$ build/smi-lua ..." lines of its ```console
 # blocks), in order, in a fresh folder that sees the build and the scripts as the tutorial's
 # reader does (build/, scripts/), and compares each output with the one the page shows, exactly:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/bayes_prior.hpp"
 
 #include <fmt/format.h>

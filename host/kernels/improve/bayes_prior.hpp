@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Prior densities of the Bayesian calibration (docs/spec/algorithms.md §9.2): one independent
 // density per parameter, uniform on a range by default, or normal / lognormal, optionally

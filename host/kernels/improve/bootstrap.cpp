@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/bootstrap.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bootstrap confidence intervals on calibrated parameters (beyond the paper).
 // Each replicate resamples the experimental data with replacement, rebuilds the objective on the

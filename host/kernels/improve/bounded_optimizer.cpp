@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/bounded_optimizer.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bound-constrained minimisation for calibration (docs/spec/algorithms.md §7).
 // Parameters are scaled to [0, 1] by their bounds; NLopt's LD_SLSQP gets a central

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/calibration.hpp"
 
 #include <fmt/format.h>

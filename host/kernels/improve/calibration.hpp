@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The whole calibration pipeline behind one entry point: the objective (a
 // caller's objective, or the statistical objective of Son et al. eq. 9 on a model), the prior

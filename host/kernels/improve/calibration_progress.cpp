@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/calibration_progress.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Turns a calibration's evaluations into progress rows: which stage, how many
 // of its units are done, the evaluations, the best objective and an ETA from the rate so far.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/crn_mapping.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Common random numbers (CRN) for calibration objectives (docs/spec/algorithms.md §7).
 // A fixed matrix Z of standard normals is drawn once and reused for every parameter vector;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/decision_matrix.hpp"
 
 #include <fmt/format.h>

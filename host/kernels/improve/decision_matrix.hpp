@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Weighted decision matrix for model refinement (Oh et al. 2016; Son et al. 2020 eq. 13-14;
 // docs/spec/algorithms.md §6). Magnitudes are "smaller is better"; each criterion is

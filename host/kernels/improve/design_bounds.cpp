@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/design_bounds.hpp"
 
 #include <fmt/format.h>

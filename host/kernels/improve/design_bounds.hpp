@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Warns when a calibrated input walks outside the region its surrogate was fitted on: a Kriging model
 // extrapolates badly, so an optimum there is not to be trusted.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Identifiability as directions. A one-parameter-at-a-time sweep misses a
 // combination the data cannot determine (y = x1 + 2 x2: only mu1 + 2 mu2 is seen). Directions

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Identifiability check (beyond the paper): a parameter is flagged when the
 // objective barely changes as that parameter sweeps its whole range with the others held at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/input_derivatives.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Derivatives of the CRN-mapped inputs x_i = Q(Φ(z_i); mean, std) with respect to the mean and
 // std (the chain rule through each family's quantile function):

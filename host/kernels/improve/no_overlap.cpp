@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/no_overlap.hpp"
 
 #include <fmt/format.h>

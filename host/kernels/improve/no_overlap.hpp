@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "No overlap" at a calibration's optimum: a response whose predicted and
 // measured distributions do not overlap at all (PR within 1e-3 of its maximum 2, or the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/overlap_start.hpp"
 
 #include <Eigen/Cholesky>

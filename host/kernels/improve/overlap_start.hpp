@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Starts that work. PR is ∫|f_exp − f_pre|: when the predicted and the
 // experimental PDFs do not overlap it sits at 2 and is flat, so a gradient method started there

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/population_likelihood.hpp"
 
 #include <fmt/format.h>

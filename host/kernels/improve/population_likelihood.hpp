@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The likelihood of the population parameters θ (docs/spec/algorithms.md §9.1): the unknown
 // inputs vary from specimen to specimen with distributions whose means and stds θ holds; each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/profile_intervals.hpp"
 
 #include <fmt/format.h>

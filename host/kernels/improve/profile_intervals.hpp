@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Profile intervals. For each parameter the objective is minimised over the
 // others with that parameter held at a value, walking out from the optimum on each side until

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/start_agreement.hpp"
 
 #include <fmt/format.h>

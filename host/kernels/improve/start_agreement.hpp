@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Whether the starts of a multistart calibration reached the same optimum where the data can
 // tell. Two starts that end at different points need not disagree: along a

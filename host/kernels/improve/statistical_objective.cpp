@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/statistical_objective.hpp"
 
 #include <fmt/format.h>

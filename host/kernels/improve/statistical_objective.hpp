@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The statistical calibration objective of Son et al. eq. (9) (docs/spec/algorithms.md §2, §7):
 // θ holds the means and standard deviations of the unknown inputs; every input is mapped from

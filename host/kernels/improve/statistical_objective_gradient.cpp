@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The statistical objective's gradient in θ. On common random numbers the
 // objective is a smooth function of the distribution parameters:
 //   θ -> X = Q(Φ(Z); θ) -> Y = model(X) -> KDE of each response (bandwidth c·sd(y)) -> metric.

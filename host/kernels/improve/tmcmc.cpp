@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/improve/tmcmc.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Transitional Markov chain Monte Carlo (Ching & Chen 2007; docs/spec/algorithms.md §9.2): the
 // posterior p(θ|Y) ∝ L(θ) π(θ) and the log evidence log Z = log ∫ L π dθ.

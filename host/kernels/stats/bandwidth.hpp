@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bandwidth rules for the 1-D Gaussian kernel, named by formula (spec §1.1). Every rule throws
 // InvalidArgument for fewer than 2 points or zero spread (a KDE of ties is a point mass: pass a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The interface every 1-D probability model implements: parametric families, KDEs, empirical
 // distributions. Vectorised evaluation is the rule (one virtual call per vector, not per

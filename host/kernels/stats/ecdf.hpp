@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The empirical distribution of a sample: CDF steps i/n (right-continuous), quantile the
 // smallest x with S_n(x) >= p (type 1), sampling = bootstrap. It has no density: pdf() throws

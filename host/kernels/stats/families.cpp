@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Normal, lognormal, uniform, truncated normal, triangular; shared Parametric code.
 #include <cmath>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Parametric 1-D families. Constructors validate their parameters and throw InvalidArgument
 // naming the parameter and the fix. Parameters follow the paper's tables where it gives them

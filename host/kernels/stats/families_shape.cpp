@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Weibull, Gumbel, gamma and beta (the shape families).
 #include <cmath>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Φ(z) for bulk evaluation (KDE CDFs): a table of Φ and φ at nodes 1/64 apart on [−9, 9] and a
 // 6-term Taylor expansion about the nearest node (|d| <= 1/128): Φ(x0 + d) = Φ(x0) +

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Maximum-likelihood fits of the parametric families, ranked by AIC (then BIC), each with its
 // Kolmogorov–Smirnov statistic, so an analyst can ask which family fits a set of measurements.

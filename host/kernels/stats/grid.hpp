@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The common integration grid of spec §0: uniform nodes on [lo, hi], trapezoid rule. Every
 // integral of a PDF difference (PR, screening e_k, intersection area) is taken on one of these,

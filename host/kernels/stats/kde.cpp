@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Kde distribution object (sums in kde_sums.cpp).
 #include "kernels/stats/kde.hpp"
 

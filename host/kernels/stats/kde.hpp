@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Gaussian kernel density estimate (spec §0):
 //   f(y) = 1/(N h) Σ φ((y − t_i)/h),   F(y) = 1/N Σ Φ((y − t_i)/h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // KDE with bounded data (spec §1.2; Kang, Noh, Lim 2018): artificial points drawn uniformly in
 // [l, u] are appended until adding more no longer changes the KDE's shape (intersection area

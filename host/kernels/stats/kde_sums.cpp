@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Gaussian KDE sums of kde.hpp: exact (windowed over sorted data) and binned.
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/stats/kde_uniform_grid.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Nearly exp-free Gaussian KDE sums on uniformly spaced evaluation points (the §0 grids, plot
 // curves, linspaces). Along a uniform grid z_j = z_0 + jδ (δ = spacing/h), so

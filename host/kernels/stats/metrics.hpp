@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Distances between 1-D distributions (spec §2, §3, §5): the L1 area between PDFs (probability
 // residual PR, screening e_k), the intersection area, the area metric between CDFs and the

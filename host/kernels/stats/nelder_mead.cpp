@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/stats/nelder_mead.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A small Nelder–Mead minimiser for the maximum-likelihood fits of shape families (2–3
 // parameters, smooth objectives); restarts once from the best point to avoid early collapse.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/stats/pair_sums.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Σ_{i<j} g(|x_i − x_j|) for the cross-validation and plug-in bandwidth rules. Exact (all
 // distances stored) up to kExactPairs points; beyond, linear binning on 2048 bins and sums over

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // ∫|f_a − f_b| (the probability residual) and ∫min(f_a, f_b) (the intersection area) of two
 // distributions without a fixed grid. Between consecutive crossings of f_a and f_b (and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Adaptive Gauss–Kronrod (7/15) quadrature on a finite interval: the "adaptive quadrature" of
 // the area metric for smooth CDFs, and of exact null moments.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/stats/special.hpp"
 
 #include <algorithm>

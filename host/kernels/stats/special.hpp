@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Special functions for the parametric families: regularised incomplete gamma and beta, each
 // with its complement computed directly (not as 1 − the other) so that upper tails keep their

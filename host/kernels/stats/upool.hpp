@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // u-pooling validation (spec §5; Ferson et al. 2008, Liu et al. 2011): u_i = F_pre,i(y_i),
 // U = ∫_0^1 |G_n(u) − u| du against the uniform CDF, its H0 distribution by seeded Monte Carlo

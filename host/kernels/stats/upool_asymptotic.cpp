@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kernels/stats/upool_asymptotic.hpp"
 
 #include <algorithm>

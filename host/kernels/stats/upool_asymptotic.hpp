@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // u-pooling for many u-values without minutes of Monte Carlo. Under H0, sqrt(n)·U tends to
 // A = ∫_0^1 |B(t)| dt, the L1 norm of a Brownian bridge (G_n(u) − u is an empirical process:

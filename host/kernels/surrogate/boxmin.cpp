@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // boxmin: start, then kmax rounds of explore + move (spec §4 lists the comparisons).
 #include "kernels/surrogate/boxmin.hpp"
 

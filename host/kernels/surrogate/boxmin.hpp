@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // DACE's `boxmin` (Lophaven et al. 2002, dacefit.m): a coarse pattern search on theta inside
 // [lo, up], reproduced step for step (spec §4) so that theta and the evaluation count match

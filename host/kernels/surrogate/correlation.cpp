@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Correlation families and their slopes; cross correlations on whole blocks of points.
 #include "kernels/surrogate/correlation.hpp"
 

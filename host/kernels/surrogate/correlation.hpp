@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Stationary correlation families in DACE's parametrisation (spec §4), on normalised inputs:
 //   gauss     r = exp(-sum theta_j d_j^2)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Given-data Borgonovo delta (see delta.hpp).
 #include "kernels/surrogate/delta.hpp"
 

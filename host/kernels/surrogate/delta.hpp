@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Borgonovo's moment-independent index delta_i = 1/2 E_{X_i} integral |f_Y - f_{Y|X_i}| dy
 // (Borgonovo 2007) estimated from one given sample (Plischke, Borgonovo & Smith 2013, the

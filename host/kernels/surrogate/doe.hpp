@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Designs of experiments on the unit cube [0, 1]^d: optimized Latin hypercubes, Sobol'
 // low-discrepancy points and full factorial grids. Mapping to bounds or to distributions'

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Optimized Latin hypercubes: a random LHS improved by the enhanced stochastic evolutionary
 // search (ESE) of Jin, Chen & Sudjianto (2005) on the phi_p criterion. Every move swaps two
 // entries of one column, so the Latin property holds throughout; only the two touched rows'

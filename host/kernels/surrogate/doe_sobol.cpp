@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Sobol' sequence (Bratley & Fox 1988, Gray-code order of Antonov & Saleev 1979) with
 // the direction numbers of Joe & Kuo (2008), table "new-joe-kuo-6.21201", written out below
 // for the dimensions we support. Checked point by point against SciPy's unscrambled Sobol

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vectorized exp(-x): 2^k * exp(r), k = round(-x / ln 2), |r| <= ln2 / 2, Taylor to r^13
 // (truncation < 5e-18 relative). An AVX2 version written with intrinsics (selected at run
 // time by CPU detection) and a scalar version with the same arithmetic for other CPUs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // exp(-x) for x >= 0 over whole arrays, the inner cost of every correlation matrix. Eigen's
 // exp is built for SSE2 here (no -march), and Kriging prediction is mostly exponentials, so we

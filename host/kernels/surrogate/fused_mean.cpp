@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // AVX2 + FMA kernel of fused_mean.hpp: 8 points per step (two vectors share each design
 // point's broadcasts), exp(-s) by the same reduction and degree-13 polynomial as fast_exp.cpp.
 #include "kernels/surrogate/fused_mean.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The Kriging mean's correlation sum for the Gaussian family, fused: for each point x,
 //   sum_k gamma_k exp(-sum_j (xw_j - sw_kj)^2),   xw = x sqrt(theta), sw = s sqrt(theta),

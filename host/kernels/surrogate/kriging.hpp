@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Universal Kriging as in DACE (Lophaven, Nielsen & Sondergaard 2002; spec §4): normalised
 // inputs and response, polynomial trend by generalised least squares, correlation parameters

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi::kriging::fit: checks and normalisation, the theta search (given / boxmin / ML), and the
 // final factorisation with a diagnosis when R is numerically singular.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed-form leave-one-out for universal Kriging at fixed theta (Dubrule 1983): with
 // Qt = R^-1 - R^-1 F (F^T R^-1 F)^-1 F^T R^-1 = C^-T (I - Q Q^T) C^-1, the residual of point i
 // is gamma_i / Qt_ii and its variance sigma2 / Qt_ii (normalised units).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Kriging model files: a small self-describing text format. We store what defines the model
 // (data, scalings, trend, correlation, theta, nugget) and refactorise on load, which gives
 // the same numbers bit for bit (same operations in the same order).

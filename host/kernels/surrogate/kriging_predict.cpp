@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Prediction on whole blocks of points (spec §4 predictor and MSE):
 //   yhat = mY + sY (F_x beta + R_x gamma)                       (GEMM)
 //   Rt = C^-1 R_x^T, U = G^-T (Ft^T Rt - F_x^T)                  (TRSM + GEMM)

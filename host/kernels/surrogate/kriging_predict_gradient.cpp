@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Gradient of the Kriging predictor with respect to its inputs, in closed form (for the
 // gradients of a calibration objective through the surrogate). With x~ = (x − mS)/sS,
 //   yhat = mY + sY (f(x~)' beta + Σ_l gamma_l g(s_l)),  s_l = Σ_d theta_d D_d(x~_d − S_ld)

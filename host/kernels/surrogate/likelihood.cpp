@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DACE's objective psi(theta) = sigma2 |R|^(1/m) and d ln psi / d ln theta.
 // With W = R^-1 - gamma gamma^T / sigma2 (normalised units), the envelope theorem for the GLS
 // beta gives d(m ln sigma2 + ln|R|)/d theta_k = sum_ij W_ij dR_ij/dtheta_k, and every family

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The concentrated likelihood of DACE (spec §4, steps 1-6) and its analytic gradient, shared
 // by the searches and the final assembly. Internal to the Kriging kernel.

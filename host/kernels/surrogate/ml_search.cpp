@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Multistart L-BFGS on ln psi in log-parameters.
 #include "kernels/surrogate/ml_search.hpp"
 #include "platform/core/cancel.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Maximum-likelihood search for theta (and optionally the nugget): candidate starts on a
 // space-filling design in log space, then L-BFGS (NLopt) on the analytic gradient of ln psi

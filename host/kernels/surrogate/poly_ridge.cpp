@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ridge polynomial with closed-form leave-one-out selection (see poly_ridge.hpp).
 #include "kernels/surrogate/poly_ridge.hpp"
 

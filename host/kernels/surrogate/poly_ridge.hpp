@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A cheap global surrogate for screening: a polynomial in the standardised inputs (main
 // effects, or main effects + squares) fitted by ridge regression, the ridge weight chosen by

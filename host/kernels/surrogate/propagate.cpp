@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Common-random-number samples for propagation, screening and calibration.
 #include "kernels/surrogate/propagate.hpp"
 

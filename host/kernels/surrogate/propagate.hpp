@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Uncertainty propagation with common random numbers (spec §7): every input's column of the
 // sample is its distribution's quantile of a fixed uniform column drawn from the stream

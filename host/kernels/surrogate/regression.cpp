@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Polynomial trend bases in DACE's column order.
 #include "kernels/surrogate/regression.hpp"
 

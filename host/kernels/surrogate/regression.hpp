@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // DACE's polynomial trends regpoly0/1/2 (spec §4): rows f(x) of the regression matrix F.
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The PDF-area screening of spec §3 on one CRN base sample, plus Sobol' indices.
 #include "kernels/surrogate/screen.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Variable screening (spec §3): the PDF-area index of Son et al. (2020), eq. (3) and (7),
 // e_k = integral |f_k - g| with input k fixed, N_ek = e_k / sum e_i, on one CRN base sample;

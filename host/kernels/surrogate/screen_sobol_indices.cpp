@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sobol' indices from the A, B, A_B^(k) scheme (Saltelli et al. 2010):
 //   S_k  = mean(fB (fAB_k - fA)) / V            (Saltelli 2010, first order)
 //   ST_k = mean((fA - fAB_k)^2) / (2 V)         (Jansen 1999, total)

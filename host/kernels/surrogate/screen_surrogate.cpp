@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surrogate screening (see screen_surrogate.hpp).
 #include "kernels/surrogate/screen_surrogate.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Economical screening: the eq.-3 PDF-area screening of screen.hpp computed on a
 // cheap surrogate of all inputs instead of the model. The model runs once, on a Latin hypercube

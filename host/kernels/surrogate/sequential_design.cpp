@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sequential Kriging designs: the greedy batch choice by weighted Kriging variance, and the loop
 // that fits, checks the leave-one-out targets and asks the model for the next batch.
 #include "kernels/surrogate/sequential_design.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Sequential Kriging designs: instead of one fixed Latin hypercube sized for the worst
 // case, start from a small design, fit, and add batches of points where the Kriging is least sure

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/core/atomic_file.hpp"
 
 #include <cerrno>

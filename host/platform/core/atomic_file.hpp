@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Writing a file so that readers see the old content or the new, never a torn or shortened
 // mix: the text goes to a temporary file beside the target, every write is checked, the data

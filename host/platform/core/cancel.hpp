@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The run's one cancellation token: Lua-free, set by whatever must stop the run and read by
 // everything that runs long. Setters: the signal handler (Ctrl-C, SIGTERM, SIGHUP), the

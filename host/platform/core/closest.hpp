@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Closest names to a misspelt one ("smi.kdee" -> "smi.kde", "Normal" -> "normal"): the one
 // suggestion logic of smi-lua's messages (member names of the smi tables, `smi-lua doc NAME`,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The one CSV codec of the tree (RFC 4180), Lua-free: smi.csv.read/write (bindings/csv.cpp) and
 // the solver-output column reader (eval/text_parsers.hpp, csv_column) both go through it.

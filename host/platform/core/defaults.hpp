@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Defaults shared by several layers, each in one place: the kernels' option structs, the
 // bindings (which read their defaults from those structs), the CLI's help and the docs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Descriptive statistics over Eigen vectors, with the conventions pinned in
 // docs/spec/algorithms.md §0: sd divides by n-1; quantiles are type 7 (linear interpolation).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The kernel error family. Kernels throw these with the offending values in the text
 // ("need at least 2 points, got 1"); the binding layer prefixes the Lua-visible function name

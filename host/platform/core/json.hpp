@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The one JSON codec of the tree (RFC 8259), Lua-free: smi.json (bindings/json.cpp), the
 // results/report writer (stdlib smi.report.json, over smi.json) and `smi-lua verify` all read

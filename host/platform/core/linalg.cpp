@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/core/linalg.hpp"
 
 #include <Eigen/Cholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Dense linear algebra for models written in Lua (smi.mat:solve, :inverse, :det, :chol,
 // smi.mat.eigh): Eigen's factorisations behind checks that turn its silent failures (Eigen

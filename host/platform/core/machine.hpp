@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Caps that options set by a script cannot pass: what the machine can actually do at once.
 // A script asking for 100,000 threads or 200 concurrent solver processes gets the machine's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The standard normal distribution: phi, Phi and Phi^-1 to full double precision.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The shortest decimal text of a double that reads back to the same bits ("0.1", "1e+300"): how
 // the JSON and CSV writers put numbers in files that must read back exactly.

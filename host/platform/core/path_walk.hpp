@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Path resolution as the kernel does it, but one component at a time through descriptors, so
 // that what is checked is what is opened.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Text from data (a results file, a solver's log, an error message carrying either) made safe
 // for a terminal: control characters become visible escapes, so data cannot move the cursor,

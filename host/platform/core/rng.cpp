@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/core/rng.hpp"
 
 #include "platform/core/errors.hpp"

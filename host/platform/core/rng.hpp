@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Seeded random numbers that are the same on every run, build and standard library.
 // xoshiro256** (Blackman & Vigna 2018) seeded through splitmix64; normals by inversion of the

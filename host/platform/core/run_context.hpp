@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The settings of one run, apart from the sandbox's Policy (luax/policy.hpp: what a script may
 // touch). The runtime builds one RunContext from the command line (app::Config) and hands it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a run's numbers depend on, recorded while it runs: every file the script read
 // (data, priors, templates, Lua modules), every program it ran, its arguments and the options of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // SHA-256 (FIPS 180-4) by nettle (Debian's nettle-dev): a maintained implementation behind the
 // small interface the tree uses (incremental update, length-framed fields, hex). The evaluation store

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The one thread pool of the kernels: parallel loops whose results never depend on the thread
 // count (each task writes only its own outputs, with the same arithmetic whatever the split).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/ccx_dat.hpp"
 
 #include <cctype>

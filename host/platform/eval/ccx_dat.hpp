@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading CalculiX's .dat results file (ccx 2.20): the "E I G E N V A L U E   O U T P U T" table
 // of a *FREQUENCY step, and the result blocks that *NODE PRINT and *EL PRINT write, such as

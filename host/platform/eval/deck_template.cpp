@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/deck_template.hpp"
 
 #include <algorithm>

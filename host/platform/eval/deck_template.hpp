@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Input-deck templates: text with named placeholders {{name}} or {{name:%.6E}} that are filled
 // with a point's inputs (numbers) and a model's constants (numbers or strings). Rendering is

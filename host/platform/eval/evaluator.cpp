@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/evaluator.hpp"
 
 #include "platform/core/csv.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Evaluating a design matrix with an external solver: render one deck per point (or one input
 // file per batch of points), look every point up in the evaluation store, run the missing ones

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where solver runs execute, below the evaluator: `local` (child processes in their own process
 // groups, the Scheduler) or `slurm` (job arrays through sbatch/squeue/sacct/scancel). The

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/f06.hpp"
 
 #include <fmt/format.h>

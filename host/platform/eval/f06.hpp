@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading the results of a normal-modes run in Nastran's .f06 layout, as written by the
 // steering-column solver (docs/spec/steering-column.md §10): the REAL EIGENVALUES table, the

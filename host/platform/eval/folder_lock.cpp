@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/folder_lock.hpp"
 
 #include <cerrno>

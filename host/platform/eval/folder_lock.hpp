@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One study per output folder at a time. Two smi-lua processes writing one --out would share
 // work folders (one clears the other's run), results.json and report.html. The first to

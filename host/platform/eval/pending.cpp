@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/pending.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The store's pending table: solver runs handed to a scheduler that outlives smi-lua (Slurm),
 // key -> job, so that a rerun after a crash, kill -9 or --detach reattaches to jobs still queued

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Starting a process, the one way smi-lua does it (solvers, their version line, the Slurm
 // commands): fork + exec of an argv vector (never a shell), in its own process group so that a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/progress_line.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The one-line progress display of a running evaluation, and the dry-run summary. Formatting
 // lives here (testable); the binding decides whether to show it (stderr is a terminal and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/sbatch_args.hpp"
 
 #include <algorithm>

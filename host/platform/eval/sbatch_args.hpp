@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The extra sbatch arguments a user may give (--slurm-opt sbatch="..."), read the way sbatch
 // itself reads them and then checked against an allow-list. A deny-list of option spellings

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/scheduler.hpp"
 
 #include "platform/core/machine.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Runs solver processes, at most `concurrency` at a time, on the calling thread. Completion is
 // reported through a callback on that same thread, so the caller (the Lua binding) can parse

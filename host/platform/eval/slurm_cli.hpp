@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Talking to Slurm through its command-line tools (sbatch --parsable, squeue, sacct, scancel,
 // scontrol): never libslurm, whose ABI changes every release. Each call is a child process with

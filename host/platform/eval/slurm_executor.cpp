@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/slurm_executor.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Solver runs as Slurm job arrays. Each batch of queued runs becomes one array per chunk of at
 // most MaxArraySize tasks, throttled with %N; a manifest maps the array index to the run's work

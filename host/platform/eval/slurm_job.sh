@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: MIT
 # smi-lua job wrapper: array task i runs the solver of line i+1 of the manifest ($1) in that
 # folder, under smi-lua's own per-run timeout, and writes .smi/exit ("status timed_out seconds")
 # atomically (rename) when the solver ends. That file, not the job's state, decides the outcome.

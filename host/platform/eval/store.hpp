@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The evaluation store: one SQLite database (write-ahead log) holding every finished solver
 // evaluation, keyed by a content hash of what determines its result (rendered deck, program,

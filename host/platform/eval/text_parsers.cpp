@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/text_parsers.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Reading numbers out of solver output files: the first (or every) match of a regular
 // expression, and named columns of a CSV file. Errors name the file, the line and what was

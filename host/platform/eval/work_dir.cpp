@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "platform/eval/work_dir.hpp"
 
 #include <cerrno>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One folder per solver run: created fresh (a leftover from a killed or failed attempt is
 // removed first), holding the rendered deck, copies of the model's extra files, and the

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The bracket plate's experimental data (docs/spec/bracket-plate.md §4): nine specimens whose
 -- E, rho, t (and log10_kw for a truth with the compliant joint) are drawn from normal
 -- distributions at the TRUE means and stds given here, each solved by CalculiX on a finer mesh

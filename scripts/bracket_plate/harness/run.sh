@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Robustness harness of the bracket-plate study: makes each experiment of experiments.csv with the
 # data generator (truth form, true means:stds, noise, seed; the study never sees them), runs the
 # study on it with --quick and prints the confusion table, the calibrated means against the truth

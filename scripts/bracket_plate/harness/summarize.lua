@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- Summary of a harness run (run.sh): per experiment the truth, the trials (what each applied and
 -- its verdicts), the calibrated means against the truth and the ccx runs; then the confusion
 -- table (truth form x what the last trial applied). With --check: exit 1 unless every experiment

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Global assembly of K and M (spec §4) over the free DOF. Every node is free (the clamped points
 // of §3 are not nodes), so a node index n maps to DOF 6n..6n+5; kClamped stands for a clamped end.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Batch mode: many solutions in one process (`smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv`),
 // so that screening 46 inputs over hundreds of samples costs solves, not process launches.

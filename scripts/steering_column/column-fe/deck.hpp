@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The input deck of spec §9: `key = value` lines, `#` comments. Every error names the file, the
 // line, the key and the value, and says what would fix it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "eigen_solve.hpp"
 
 #include <Eigen/Cholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The generalized eigenproblem K phi = lambda M phi (spec §7) for the lowest modes.
 #include <Eigen/Core>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "elements.hpp"
 
 #include <Eigen/Geometry>

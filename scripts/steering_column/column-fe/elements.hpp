@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Element matrices (spec §4): Euler-Bernoulli beam stiffness and consistent mass
 // (Przemieniecki 1968), cross-sections, spring vectors and the rigid-mass transform.

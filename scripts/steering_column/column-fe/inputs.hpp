@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The model's inputs (spec §2): the 46 named inputs, airbag_stiffness, the airbag variant and the
 // mesh refinement. Kept as a name -> value map because decks, tests and the data generator all

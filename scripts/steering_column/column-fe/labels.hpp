@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Mode labels by wheel-set participation (spec §8).
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-column-fe DECK -o RESULTS: the open steering-column model (docs/spec/steering-column.md).
 // smi-column-fe --batch POINTS.csv --base DECK -o OUT.csv [--threads N]: many points in one process
 // (batch.hpp), for screening and other large samples.

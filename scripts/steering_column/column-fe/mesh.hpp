@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Geometry and mesh (spec §1, §3): axes, stations, and the nodes of jacket, shaft and wheel.
 #include <Eigen/Core>

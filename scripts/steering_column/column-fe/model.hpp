@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The steering-column model of spec §5-§6: parts, sections, supports and the airbag variants,
 // assembled into K and M.

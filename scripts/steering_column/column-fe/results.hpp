@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The .f06-like results file of spec §10, and a reader for it (tests, tools).
 #include <array>

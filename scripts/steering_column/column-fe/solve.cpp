@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "solve.hpp"
 
 #include "eigen_solve.hpp"

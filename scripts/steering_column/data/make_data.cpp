@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // make-steering-data: the "experimental" natural frequencies of the steering-column study
 //, as Son et al. (2020) had them: 3 steering wheels x 3 column assemblies = 9
 // combinations, each the mean of 5 impact tests.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Robustness harness of the steering-column study: makes each experiment of experiments.csv with
 # the data generator (its truth model, true means, noise level and seed), runs the study on it
 # (--quick: the verdict steps are those of the full run) and prints the confusion table, the

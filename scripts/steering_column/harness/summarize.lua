@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- Summary of a robustness-harness run (run.sh): the study's conclusion against the truth of
 -- each generated experiment, the calibrated means of the last trial against the true means, the
 -- solver runs. arg: experiments.csv, the harness output folder, the ids run ("1,2,..."), and

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- An example of the analyst's prior knowledge for `--prior` (not used by default): the wheel
 -- cover's mass relative to nominal, as weighing the wheels would give it (1 ± 0.05), on the
 -- calibrated means of the cover's density and thickness. Entries follow smi.calibrate's `prior`

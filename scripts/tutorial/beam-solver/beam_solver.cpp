@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // smi-beam-solver DECK: the tutorial's stand-in for a CAE solver (docs/tutorial.md). It reads a
 // deck of "key = value" lines ('#' starts a comment) holding E (MPa), h (mm), b (mm), L (mm)
 // and rho (t/mm^3) of a cantilever, and writes beam.out in the current folder:

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.doc.cli: `smi-lua doc` (host/cli/commands_doc.cpp calls main with the words after "doc").
 local doc = require "smi.doc"
 

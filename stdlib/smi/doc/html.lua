@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.doc.html: the reference as self-contained HTML pages (smi-lua doc --html DIR).
 -- index.html lists the modules and searches every entry (plain JavaScript over an index
 -- embedded in the page: no network, no file fetch); one page per module holds its entries

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.doc.markdown: the guides (docs/*.md) as HTML for `smi-lua doc --html`. The subset they
 -- use: headings, paragraphs, fenced code blocks, lists (- and 1.), tables, block quotes,
 -- `code`, **bold**, *emphasis*, [links](target). Every character of the text is escaped: no

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.calibration: the calibration of one trial (Son et al. 2020 §4.1.3 and §4.2): the
 -- means and stds of the unknowns that minimize the sum of PR over the calibrated responses (or
 -- minus the log-likelihood) over the KDEs of a common-random-number sample through the Krigings,

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The points of the validation's solver check: n points of the calibrated
 -- distributions, stratified: a maximin Latin hypercube in probability space mapped through each
 -- input's quantile function. Every input's marginal is covered evenly, tails included, so 40

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.cost: what a study costs in solver runs: the solutions each step makes (counted
 -- by the wrapper every factory model gets, M.wrap) and, before anything runs (--dry-run), the
 -- plan: runs per step × minutes per run ÷ concurrency. A "run" is one solution (one point), as

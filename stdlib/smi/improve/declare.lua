@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.declare: the declaration schema of a study and its check. One table (FIELDS) holds
 -- every field of every part of a declaration: its type, its default and the line that documents
 -- it. The check, the defaults, the "did you mean" of a misspelt field (smi._closest, the one

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The sequential Kriging design of a trial (--design sequential; the default is the
 -- fixed maximin hypercube of n_design points). Sequential: a maximin hypercube of 4 points per unknown, then
 -- batches of 8 (a multiple of the solver concurrency) chosen by smi.kriging.sequential where the

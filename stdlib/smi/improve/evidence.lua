@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.evidence: a trial's Bayesian calibration and log evidence (smi.calibrate_bayes):
 -- the posterior of the unknowns' means and stds given every measured response of every specimen
 -- (a specimen's responses are jointly distributed through its shared inputs; the kernel

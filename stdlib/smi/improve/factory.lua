@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.factory: the declaration's model factory called for one trial model (revise.lua's
 -- record): the factory's error names the candidate, the model's outputs are checked against the
 -- responses and its inputs against the trial's unknowns, and its runs are counted (cost.lua).

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.figures: the report's figures of a study (inline SVG through smi.report.svg),
 -- labelled from the declaration: `resp` below is the checked declaration's response record
 -- (its title and unit).

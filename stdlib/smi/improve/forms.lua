@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.forms: the study's verdict over the model forms it tried. Each tried form (a
 -- trial: the candidates applied) carries its trial verdict and its log evidence under the declared
 -- priors (evidence.lua). The study concludes

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.near_optimal: the study's pushes beside smi.calibrate's r.near_optimal (`smi-lua doc smi.calibrate`):
 -- calibrations that fit the calibration responses as well as the optimum, within a tolerance,
 -- chosen to show how far a validation response's prediction can move among them. calibration.lua

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The analyst's prior knowledge (--prior FILE.lua): a Lua file returning prior entries
 -- {param = "input.mean", mean =, std = [, dist = "normal"|"lognormal"]}, checked here so that a
 -- mistake names the file and the entry. Each is a density on that parameter in the trials'

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.revise: the model of a trial as plain data (saved in results.json, so a step
 -- running alone rebuilds it) and how revisions combine:
 --   {candidate = "initial"|<name>, applied = {names, in order}, dropped = {{name, why}},

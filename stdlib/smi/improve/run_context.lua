@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.run_context: the one record a study's steps share, passed to each explicitly:
 -- the checked declaration D, the parsed options opt, the sample sizes cfg, the seed, the study,
 -- the analyst's prior file, the trial limit, and the helpers every step uses (the factory's

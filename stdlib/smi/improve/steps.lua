@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.steps: the steps of the trial loop on one smi.study. Each step computes plain data
 -- with the kernels (trial.lua, calibration.lua, evidence.lua, verdict.lua) and then hands it to its
 -- view (smi/improve/view/<section>.lua), which writes the report section; the words are text.lua's.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.stream(seed, label [, k]) -> seed: the integer seed of the study's random stream
 -- named `label` (of trial k, for a trial's streams; of response k for "experimental pdf"). Every
 -- random step of a study takes its seed here, by name, so no two steps share a sequence by a

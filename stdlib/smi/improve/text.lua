@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.text: a study's words: the report's paragraphs and the console's closing lines,
 -- each a function of the run's results and the declaration (response names and units, candidate
 -- names; thresholds, sample sizes and ranges are the numbers the run computed, never retyped).

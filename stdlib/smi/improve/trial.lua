@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.trial: one trial of statistical model improvement (Son et al. 2020 §4.1 and §4.2)
 -- on any declared product: Kriging surrogates of every response on a Latin hypercube of the
 -- unknowns (solver runs through the declaration's model factory and the evaluation store),

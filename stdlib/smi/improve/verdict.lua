@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.improve.verdict: the verdicts above the single response: a trial's verdict from its
 -- responses' verdicts and its calibration, and the study's conclusion (results.json's top-level
 -- `conclusion`) from the trials as they ran. Pure functions of saved results, so a step running

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.refine.criteria: the four refinement criteria of Oh et al. (2016) as used by Son et al.
 -- (2020, eq. 13), written as builders of criterion tables for smi.refine.decision_matrix.
 -- A candidate is a table describing one model revision; each builder reads what it needs from

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.axis: "nice" axis ranges and ticks, linear and log10 scales, tick labels.
 -- Ticks are multiples of 1, 2 or 5 x 10^k (Heckbert's "nice numbers"), and the axis range is
 -- widened to whole ticks so that every data point lies inside it.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.bars: horizontal bar charts (screening indices, decision-matrix scores) as SVG
 -- strings. Used through smi.report.svg.bars{...}.
 local xml = require "smi.report.xml"

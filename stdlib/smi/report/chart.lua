@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.chart: x/y charts (lines, steps, ECDF, scatter, rug, bands, reference lines)
 -- as SVG strings. Used through smi.report.svg.chart{...}; see smi.report.svg for an example.
 local xml = require "smi.report.xml"

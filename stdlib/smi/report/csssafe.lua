@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.csssafe: the CSS of a report figure, held to an allow-list. A figure's SVG goes
 -- into the page as it is, and the page promises no network: CSS can fetch through many
 -- functions (url, image-set, image, cross-fade, element, paint, ...), at-rules (@import,

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.draw: the drawing primitives shared by the chart kinds of smi.report.svg:
 -- colours, dashes, markers, text, number formatting of coordinates, the <svg> opening tag.
 local xml = require "smi.report.xml"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.format: numbers as people read them in tables and on charts.
 local doc = require "smi.doc"
 doc.add[==[

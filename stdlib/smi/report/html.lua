@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.html: turns a report's content (built by smi.report) into one self-contained
 -- HTML page: inline CSS and SVG, no script, no network. The markup is also well-formed XML
 -- (every element closed, every attribute quoted), so tests can check it with a plain parser.

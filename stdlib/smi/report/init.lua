@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report: a study's report as one self-contained report.html, plus its numbers as JSON.
 --
 --   local report = require "smi.report"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.json: results.json for reports and studies, a thin layer over smi.json (the one
 -- JSON codec, host/platform/core/json.hpp). What it adds is the results-file rule:
 --   * non-finite numbers are kept, in the codec's documented encoding: +/-inf as 1e999/-1e999

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's last section: what produced these numbers. The script, the data
 -- and other files read, the solver programs, the libraries, the versions of smi-lua and what it
 -- was built with, and the command line that reproduces the run, from smi.provenance().

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.style: the report's CSS, inlined in the page so the file stands alone (no network).
 return [[
 :root { --ink: #1f2933; --muted: #52606d; --line: #d9dee4; --accent: #0b4f8a; --bg: #f5f7fa;

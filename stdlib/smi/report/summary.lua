@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.summary: the opening of a report (smi.report:summary): the conclusion, the chosen
 -- form, each response's verdict, the calibrated parameters and what is open. Checks what a study
 -- hands in and turns the parameters into a table for the page (html.lua renders it).

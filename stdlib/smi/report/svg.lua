@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.svg: small, dependable SVG charts as strings (inline them in HTML or write .svg).
 --
 --   local svg = require "smi.report.svg"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.svgsafe: the figure sanitiser. A report promises no scripts and no network, and
 -- a figure's SVG is embedded in the page as it is, so it is held to an allow-list:
 -- elements and attributes of static vector graphics only; no script, foreignObject, iframe,

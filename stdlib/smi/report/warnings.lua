@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.warnings: a report's warnings grouped and counted. The same warning raised per
 -- trial or per parameter reads once, with how often it came and the sections it concerns; two
 -- warnings that differ only in their numbers or quoted names ("input 'E': ... [1.2, 3.4]" and

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.xml: text escaping and attribute formatting shared by the SVG and HTML writers.
 -- Everything a caller gives us (titles, labels, table cells) goes through escape(), so a
 -- label like "a<b & c" can never break the document.

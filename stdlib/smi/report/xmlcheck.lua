@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- smi.report.xmlcheck: a strict little XML parser, to prove that generated SVG/HTML is
 -- well-formed (balanced tags, quoted unique attributes, valid entities, no raw '<' or '&')
 -- and to let tests look inside it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bootstrap's percentile interval and the Monte Carlo error it reports, against SciPy's
 // scipy.stats.bootstrap (tests/reference/bootstrap_scipy.py -> bootstrap_scipy.json) on the mean
 // of 20 skewed data, whose calibration θ̂ = argmin Σ(x_i − θ)² is the mean exactly:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bound-constrained calibration optimiser: closed-form minima, bounds, multistart, errors.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Beyond the paper: bootstrap intervals, identifiability warnings, design-range warnings.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The calibration pipeline behind smi::improve::calibrate: the gradient it chooses,
 // the tolerance and prior it reports, and "no overlap" instead of a false "converged".
 #include <catch2/catch.hpp>

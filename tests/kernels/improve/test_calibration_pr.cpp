@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CRN calibration by probability residual, against spec §8.2: y = x, x = μ + σz with
 // z_i = Φ⁻¹((i − ½)/2000), f_exp = KDE of the §8.1 data (normal-reference h), grid [27, 33.5]
 // with 6501 nodes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // All nine smi.dist families as calibration inputs: the (mean, std) mapping of
 // each family is checked against the family's own closed-form mean and std, the CRN mapping
 // against the family's quantile, and the errors name the parameterisation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CRN parameter mapping (spec §7) against the parameterisation values of spec §8.5.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Weighted decision matrix (spec §6) against spec §8.5.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Identifiability as directions on closed-form objectives.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The calibration objective's analytic gradient against central differences
 // of the objective itself, on CRN: quantile functions of normal, lognormal and uniform inputs,
 // a model Jacobian, the KDE with its bandwidth (sd-based, IQR-based robust, MAD), PR (with outside mass)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The population likelihood (spec §9.1) against its closed form for a linear model with normal
 // inputs: y ~ N(A μ, A Σ_x Aᵀ + Σ_ε), the responses of a specimen correlated through the shared
 // inputs. The kernel estimate must converge to the joint density, not to a product of marginals.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Profile intervals against the closed-form likelihood-ratio intervals of a
 // normal sample's mean and standard deviation.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Multistart: whether the starts reached the same optimum where the data can tell
 // (start_agreement.hpp), and basin hopping (OptimizerOptions::hops). References are closed forms:
 // a valley where the objective is exactly 0 on a line, a double well whose ridge height is 1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TMCMC (spec §9.2) against the closed-form posterior and evidence of linear-Gaussian models
 // (spec §9.3): dimension 2 to 10, prior 0.1x to 100x as wide as the likelihood, the likelihood's
 // peak 2.5 prior sds from the prior mean. Tolerances come from the sampler's own error estimate.

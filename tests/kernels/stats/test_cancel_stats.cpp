@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Long stats kernels stop when the run is cancelled: a KDE sum over large
 // data and the u-pooling Monte Carlo throw smi::Interrupted with the token's reason, also from
 // worker threads, instead of running on (49 s past --timeout 3 before).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The nine families' pdf, logpdf, cdf, logcdf, sf, quantile and isf against SciPy 1.10
 // (tests/reference/families_tails.py -> families_tails.csv) at body and tail points, p from
 // 1e-12 to 1 − 1e-12 on both sides, to 1e-9 relative; and the issue-11 tail cases.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Maximum-likelihood fits against SciPy 1.10 (tests/reference/stats_fit.py -> stats_fit.csv),
 // plus family closed forms.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KDE sums and bandwidth rules against spec §8.1 (independent re-implementation values) and
 // closed forms.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KDE-bd / KDE-ebd (spec §1.2, §8.1): bounds, the stopping loop and its options.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PR, intersection area, area metric and log-likelihood against closed forms and spec §8.
 #include <catch2/catch.hpp>
 #include <cmath>

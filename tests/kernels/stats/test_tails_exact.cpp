@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tails against exact values: mpmath at 60 digits from the closed forms
 // (tests/reference/tails_exact.py -> tails_exact.csv), down to 1e-300 where representable:
 // triangular with its mode at a bound (cdf, logcdf, sf, quantile, isf), logcdf far in the lower

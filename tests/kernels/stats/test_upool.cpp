@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // u-pooling statistic, thresholds, p-values and exact null means against spec §5/§8.3.
 #include <catch2/catch.hpp>
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Long surrogate kernels stop when the run is cancelled: LHS optimisation,
 // the Kriging likelihood search and block prediction throw smi::Interrupted with the reason.
 #include <catch2/catch.hpp>

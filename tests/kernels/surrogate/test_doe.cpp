@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Designs: Sobol' points against SciPy (tests/reference/sobol_points.py), Latin property and
 // space filling of the optimized LHS, full factorial layout.
 #include <catch2/catch.hpp>

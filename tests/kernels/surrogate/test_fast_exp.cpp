@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The vectorized exp(-x) of the correlation kernels against std::exp.
 #include <catch2/catch.hpp>
 #include <cmath>

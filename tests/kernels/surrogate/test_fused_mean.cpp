@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The fused Gaussian-mean kernel against a direct long-double sum, its independence of how
 // rows are blocked, and the thread-count independence of the CRN sample.
 #include <catch2/catch.hpp>

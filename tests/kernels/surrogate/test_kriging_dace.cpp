@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Kriging against the DACE reference values of spec §8.4 (1-D and 2-D, corrgauss/correxp,
 // regpoly0/1, fixed theta and boxmin with its evaluation counts).
 #include <catch2/catch.hpp>

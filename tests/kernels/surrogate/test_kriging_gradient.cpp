@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The analytic gradient of ln psi (surrogate/likelihood.cpp) against central differences,
 // for every correlation family, with and without the nugget.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed-form LOO against brute-force refits; save/load round trip; ill-conditioning
 // diagnoses (duplicates, near-singular R) and their ways out; nugget estimation on noise.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // At fixed hyperparameters our predictor and MSE equal OpenTURNS' KrigingAlgorithm
 // (tests/reference/kriging_openturns.py, spec §4 mapping theta = 1/(2 s^2), amplitude 1 on
 // DACE-normalised data), for constant, linear and quadratic trends.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Kriging predictor's input gradient in closed form against central differences of the
 // predicted mean, for every correlation family and trend.
 #include <catch2/catch.hpp>

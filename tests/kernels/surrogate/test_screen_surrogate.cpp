@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surrogate screening: the ridge polynomial's closed-form leave-one-out error, the
 // eq.-3 PDF areas of a linear model with normal inputs against their closed form, a quadratic
 // model the surrogate reproduces against the full screening on the same CRN sample, a poor

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sequential Kriging designs: the batch choice against the Kriging variance written
 // out by hand, and on a closed-form function the sequential design reaching its leave-one-out
 // target with fewer points than fixed maximin hypercubes need for the same accuracy where the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The cancellation token: a deadline or an interrupt makes poll() throw smi::Interrupted with
 // the reason, from any thread, and reset() lets the next run go on.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The run's one cancellation token: it carries the reason and its detail, the first
 // reason wins, a passed deadline becomes the reason only if nothing came first, and the readers
 // (a kernel's loop through the thread pool, a Poller given the token) stop with the reason's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one suggestion logic (platform/core/closest.hpp) of member names, doc names and options.
 #include <catch2/catch.hpp>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one CSV codec (core/csv.hpp) against RFC 4180's grammar: quoted fields holding the
 // separator, quotes and line breaks; CRLF; a BOM; and the writer's quoting reading back.
 #include <catch2/catch.hpp>

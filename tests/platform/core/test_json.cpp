@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one JSON codec (core/json.hpp): RFC 8259 examples, exact number round trips, the
 // non-finite rule and errors that name line and column.
 #include <catch2/catch.hpp>

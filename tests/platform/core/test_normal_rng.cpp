@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Standard normal functions against SciPy (tests/reference/normal_quantile.py), and the
 // generator's distributional properties and reproducibility.
 #include <catch2/catch.hpp>

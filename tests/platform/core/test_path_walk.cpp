@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The sandbox's path resolver (platform/core/path_walk.hpp), one case per branch of walk()'s
 // state machine, from a table. Each case walks a path in a fixed tree made in a fresh temporary
 // folder and checks the error, the canonical folder and leaf, and whether the leaf exists; where

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The run's warning sink (platform/core/run_context.hpp): warnings are kept in order with their
 // source, and past WarningSink::kKept only counted, so a warning raised in a long loop bounds
 // the memory it takes and still says how many there were.

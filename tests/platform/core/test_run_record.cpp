@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The run record (provenance): files hashed from the descriptor read (FIPS 180-2 "abc"
 // vector), a Lua record upgrading a data one, a file read twice with other contents marked,
 // outputs excluded, files over 1 GB identified by size and mtime (a sparse file: no gigabyte

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SHA-256 against the FIPS 180-2 appendix examples (the published test vectors).
 #include <catch2/catch.hpp>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one thread pool (core/thread_pool.hpp): a worker's exception reaches the caller (never
 // std::terminate), a failure or a cancel stops the handing out of tasks, and every element is
 // computed exactly once whatever the thread count.

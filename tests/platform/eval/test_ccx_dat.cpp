@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The CalculiX .dat parser on real ccx 2.20 output (tests/solver/fixtures/README.md).
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Deck templates: formats, literal rendering of hostile values, errors that name file and line.
 #include <catch2/catch.hpp>
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The .f06 parser on the results-file example of docs/spec/steering-column.md §10.
 #include <catch2/catch.hpp>
 #include <cmath>

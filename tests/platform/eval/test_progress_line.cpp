@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Progress and dry-run lines: the numbers they print are the ones computed.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The extra sbatch arguments: read as sbatch 22.05 reads them (glibc's getopt_long over sbatch's
 // option table is the oracle), then held to an allow-list. The family of redirecting forms the
 // old deny-list let through: glued short options, abbreviations, values in the next

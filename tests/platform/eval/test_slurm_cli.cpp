@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Slurm executor's pure parts on recorded output of Slurm 22.05 (Debian 12): squeue/sacct/
 // scontrol parsing, state classes, --time arithmetic, the sbatch line, option checking, and the
 // command runner's time limit. The executor against a real cluster: tests/slurm (label slurm).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The SQLite evaluation store: exact round trip, success never overwritten by a failure,
 // read-only sharing, timings.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Regular-expression and CSV readers of solver output.
 #include <catch2/catch.hpp>
 

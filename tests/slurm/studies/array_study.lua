@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- The study of the slurm tests: n runs of the test solver, the last of which sleeps past the
 -- model's 3 s timeout, and a second model whose one run exits with status 3 (failures are
 -- results too), printed so that a run on the local executor and one on Slurm compare line by line.

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A study whose second step picks its points from the first step's solver outputs (as a
 -- calibration or a refinement does), for the --dry-run test (test_cli_dry_run.sh).
 -- arg[1] = solver, arg[2] = launch log.

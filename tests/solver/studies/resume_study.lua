@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 -- A small study for the end-to-end CLI tests (test_cli_resume.sh): eight runs of the test
 -- solver, one at a time, each logging its launch to a shared file.
 -- arg[1] = solver, arg[2] = launch log, arg[3] = seconds per run, arg[4] = the solver's mode

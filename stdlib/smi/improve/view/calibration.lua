@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's calibration section of trial k: the objective's history, the calibrated
 -- parameters, the kernel's warnings, the sensitivities and what the data leave open (the
 -- calibration step's result `res`; T: the trial's model).

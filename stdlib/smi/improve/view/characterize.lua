@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's characterization section: KDE against KDE-ebd per response (the step's result
 -- `out`, the curves it drew and the number of data).
 local text = require "smi.improve.text"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's "Experimental data" section: the measurements, the data file's warnings and the
 -- units check (the data step's result `out`; words: the nominal run, per response).
 local text = require "smi.improve.text"

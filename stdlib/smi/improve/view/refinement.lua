@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's refinement section after trial k: the weighted decision matrix, the revised
 -- models at their start means and the choice (the refinement step's result `out`).
 local text = require "smi.improve.text"

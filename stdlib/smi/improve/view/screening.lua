@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's screening section: the normalized area metrics per response and the unknowns
 -- the declared rule chose (the screening step's result `out`).
 local text = require "smi.improve.text"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's summary section: the loop as it ran, the conclusion's badge, solver use and wall
 -- time per step (the summary step's result `out`; R: the steps' results; walls and per: the
 -- rows of wall time and of solver runs per step).

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's surrogate section of trial k: Kriging accuracy per response and the design box
 -- (the surrogate step's result `res`; units: {response = likely-units words or nil}).
 local text = require "smi.improve.text"

@@ -1,3 +1,4 @@
+-- SPDX-License-Identifier: MIT
 --- The report's validity-check section of trial k: per response the calibrated PDF over the data,
 -- the u-pooling, the verdict with its solver check beside it and, when the two disagree, which
 -- governs and why (the validation step's result `res`; cal: the trial's calibration; data: the
