@@ -44,6 +44,9 @@ if [ ${#need[@]} -gt 0 ]; then
   [ $own = 1 ] && rm -f /usr/sbin/policy-rc.d
 fi
 
+# A fresh cluster starts from an empty state: a run that was killed (a stopped CI, Ctrl-C) leaves
+# its jobs in the saved state, and slurmctld would recover them and keep the node busy.
+rm -rf "$DIR"/{state,spool,jobcomp}
 mkdir -p "$DIR"/{state,spool,log,run,jobcomp} /etc/slurm
 : > "$DIR/pids"
 if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
@@ -104,5 +107,5 @@ for _ in $(seq 1 300); do
   [ "$(sinfo -h -n "$NODE" -o %T 2>/dev/null)" = idle ] && { log "ready: $(sinfo -h -o '%P %D %T %N')"; exit 0; }
   sleep 0.2
 done
-tail -20 "$DIR/log/slurmctld.log" "$DIR/log/slurmd.log" >&2 || true
+tail -n 20 "$DIR/log/slurmctld.log" "$DIR/log/slurmd.log" >&2 || true
 die "node $NODE did not become idle within 60 s"
