@@ -384,6 +384,9 @@ int libs_update(const Args& a, const std::vector<std::string>& args) {
   return 0;
 }
 
+// long: one pass in the order a user reads its report: what the manifest asks and the lock lacks is
+// resolved first, then each locked library is checked and repaired against the same lock, and the
+// errors of all of them are listed together.
 int libs_sync(const Args& a, const std::vector<std::string>& args) {
   if (!args.empty()) {
     std::fprintf(stderr, "usage: smi-lua libs sync [--check] [--into DIR]\n");

@@ -69,7 +69,7 @@ T.case("I/O inside a deck function is refused, naming what was tried", function(
   T.raises(function() model(function(p) return string.dump(p) end):evaluate(X) end, "attempt to call a nil value (field 'dump')")
   T.raises(function() model(print) end, "must be a Lua function")
   -- after the refusals, the study's own I/O works
-  T.eq(read_helper(), "-- A command model whose template is a Lua function of the point: the deck computes,")
+  T.eq(read_helper(), "-- SPDX-License-Identifier: MIT")
   local f = assert(io.open(out, "w")); f:write("ok"); f:close()
 end)
 

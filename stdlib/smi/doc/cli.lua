@@ -7,7 +7,7 @@ local M = {}
 function M.main(words)
   if words[1] == "--html" then
     local dir = words[2]
-    local guides = {}  -- --guide FILE.md, one per guide (commands_doc.cpp lists the folder)
+    local guides = {}  -- --guide <file>, one Markdown guide each (commands_doc.cpp lists the folder)
     for i = 3, #words - 1 do if words[i] == "--guide" then guides[#guides + 1] = words[i + 1] end end
     local pages, examples = require("smi.doc.html").write(dir, guides)
     print(("%s/index.html: %d pages, %d entries, %d examples run"):format(dir, pages, #doc.list(), examples))
