@@ -19,6 +19,7 @@
 #include "platform/core/printable.hpp"
 #include "platform/eval/folder_lock.hpp"
 #include "sandbox/sandbox.hpp"
+#include "vm/internal_functions.hpp"
 #include "vm/library_lua.hpp"
 
 namespace smi::app {
@@ -218,8 +219,8 @@ int init_state(lua_State* L) {
   lua_setfield(L, -2, "fail");
   lua_pushcfunction(L, lua::l_failure);
   lua_setfield(L, -2, "failure");
-  lua_pushcfunction(L, lua::l_as_failure);
-  lua_setfield(L, -2, "_as_failure");
+  // marks the stdlib's own error(message, 0) as a failure: for smi.study's step handler only
+  vm::set_internal_function(L, "as_failure", lua::l_as_failure);
   lua_pushboolean(L, cfg.pdf);  // --pdf: a study prints its report to PDF too
   lua_setfield(L, -2, "pdf");
   lua_pushboolean(L, ctx.dry_run);  // a study neither saves results nor writes a report then

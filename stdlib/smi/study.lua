@@ -400,8 +400,8 @@ local function call_step(st, ctx)
   local ok, ret = xpcall(st.fn, function(e)
     -- a failure (bad data, options, declaration) is said in one line; an error in code keeps
     -- where it happened
-    -- (the stdlib's own error(message, 0) is a failure too: smi._as_failure looks at who raised it)
-    if type(smi) == "table" and type(smi._as_failure) == "function" then e = smi._as_failure(e) end
+    -- (the stdlib's own error(message, 0) is a failure too: internal.as_failure looks at who raised it)
+    if internal ~= nil then e = internal.as_failure(e) end
     if not failure(e) then trace = debug and debug.traceback and debug.traceback(tostring(e), 2) or tostring(e) end
     return e
   end, ctx)

@@ -28,6 +28,7 @@ end)
 
 T.case("the script's folder, --allow-read folders and the output folder are readable", function()
   local f = assert(io.open(here .. "/test_sandbox.lua"))
+  T.eq(f:read("l"), "-- SPDX-License-Identifier: MIT")
   T.eq(f:read("l"), "-- The sandbox, from inside: every rule a hostile script could try, and what stays allowed.")
   f:close()
   T.truthy(reference, "SMI_TEST_REFERENCE_DIR is set by ctest")

@@ -3,13 +3,16 @@
 -- each generated experiment, the calibrated means of the last trial against the true means, the
 -- solver runs. arg: experiments.csv, the harness output folder, the ids run ("1,2,..."), and
 -- --check to exit 1 unless every experiment meets the issue's criteria:
---   rigid truth:  one trial, no refinement, conclusion "valid" (modes 1 and 4 valid, mode 2 not
---                 invalid, the calibration converged; an undetermined mode 2 is listed in the
---                 conclusion's `undetermined`);
+--   rigid truth:  trial 1 (the initial model, the true form) valid on modes 1 and 4 and not
+--                 invalid on mode 2, its calibration converged; the verdict never "invalid", and
+--                 never "valid" in a form the truth lacks: "valid" in the initial form, or
+--                 "undetermined" with the initial form among the supported forms (mode 2 left
+--                 undetermined by nine specimens triggers refinement, as an invalid one does, and
+--                 the forms tried then fit equally well);
 --   spring truth: trial 1 invalid, the first refinement "airbag modelling type", the last trial
 --                 spring airbag, valid on modes 1 and 4, mode 2 valid or inconclusive, its
---                 calibration converged (so the conclusion is "valid"), airbag stiffness mean
---                 within 15 % of the truth.
+--                 calibration converged, airbag stiffness mean within 15 % of the truth, and
+--                 "valid" only in a form with the spring airbag.
 local json = require "smi.report.json"
 
 local csv_path, out, ids, check = arg[1], arg[2], arg[3] or "", arg[4] == "--check"
@@ -48,12 +51,26 @@ local function outcome(c)
   return ("%s, %s airbag, %s%s"):format(path, last.airbag, c.verdict, und or "")
 end
 
--- The issue's criteria for a rigid truth: one trial, no refinement, valid.
+-- The criteria for a rigid truth (see the header): the initial form is the truth, so it must
+-- fit, and no other form may be called valid.
 local function judge_rigid(c)
-  if #c.trials ~= 1 or #c.refinements ~= 0 then return false, "refined a valid model form" end
-  if c.verdict == "valid" then return true, "valid" end
-  local conv = c.trials[1].calibration.converged and "" or " (calibration not converged)"
-  return false, "conclusion " .. tostring(c.verdict) .. conv
+  local first, why = c.trials[1], {}
+  local function need(ok, what) if not ok then why[#why + 1] = what end end
+  need(first.modes.mode1 == "valid" and first.modes.mode4 == "valid", "trial 1 invalid on a calibrated mode")
+  need(first.modes.mode2 ~= "invalid", "trial 1 invalid on mode 2")
+  need(first.calibration.converged, "trial 1's calibration not converged")
+  local initial
+  for _, f in ipairs(c.forms or {}) do
+    if #f.applied == 0 then initial = f end
+    if f.chosen and c.verdict == "valid" and #f.applied > 0 then
+      why[#why + 1] = "called a form the truth lacks valid: " .. table.concat(f.applied, " + ")
+    end
+  end
+  need(c.verdict ~= "invalid", "verdict invalid")
+  need(c.verdict ~= "undetermined" or (initial and initial.supported),
+       "undetermined without the initial (true) form among the supported forms")
+  if #why > 0 then return false, table.concat(why, "; ") end
+  return true, c.verdict
 end
 
 -- ... and for a spring truth: see the header.
@@ -67,6 +84,12 @@ local function judge_spring(r, c)
   need(last.modes.mode1 == "valid" and last.modes.mode4 == "valid", "last trial invalid on a calibrated mode")
   need(last.modes.mode2 ~= "invalid", "mode 2 invalid")
   need(last.calibration.converged, "last calibration not converged")
+  for _, f in ipairs(c.forms or {}) do
+    local spring = false
+    for _, a in ipairs(f.applied) do spring = spring or a == "airbag modelling type" end
+    need(not (f.chosen and c.verdict == "valid" and not spring),
+         "called a form the truth lacks valid: " .. (#f.applied > 0 and table.concat(f.applied, " + ") or "the initial model"))
+  end
   local k = last.calibration.means.airbag_stiffness
   need(k and math.abs(k / tonumber(r.airbag_stiffness) - 1) <= 0.15,
        ("airbag stiffness %s vs %s"):format(tostring(k), r.airbag_stiffness))

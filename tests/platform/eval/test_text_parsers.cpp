@@ -62,5 +62,5 @@ TEST_CASE("csv_column reads RFC 4180 quoting as smi.csv.read does (one codec)") 
   const std::string csv = "\xEF\xBB\xBF\"load, N\",freq\r\n1200,29.6\r\n\"1500\",\"33.6\"\r\n";
   CHECK(csv_column(csv, "load, N", "r.csv") == Eigen::Vector2d(1200, 1500));
   CHECK(csv_column(csv, "freq", "r.csv") == Eigen::Vector2d(29.6, 33.6));
-  CHECK_THROWS_WITH(csv_column("a,b\n1,\"2\n", "b", "r.csv"), Catch::Contains("r.csv:2: a quoted field never ends"));
+  CHECK_THROWS_WITH(csv_column("a,b\n1,\"2\n", "b", "r.csv"), Catch::Contains("line 2 of r.csv: a quoted field never ends"));
 }
