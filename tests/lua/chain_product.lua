@@ -11,8 +11,12 @@
 local M = {}
 
 M.m1, M.m2, M.tip = 1.0, 0.5, 0.1
--- the true values per form (tests and harnesses generate data from them)
-M.truth = { k1 = { 1000, 20 }, k2 = { 600, 15 }, kb = { 4000, 60 } }
+-- design values (the priors' centres, 3 % on the means) and the specimen-to-specimen scatter
+M.design = { k1 = 1000, k2 = 600, kb = 4000 }
+M.scatter = { k1 = 20, k2 = 15, kb = 60 }
+-- the four true forms a batch may come from, by the candidates they apply
+M.forms = { { name = "initial", applied = {} }, { name = "tip", applied = { "tip mass" } },
+            { name = "base", applied = { "base spring" } }, { name = "both", applied = { "tip mass", "base spring" } } }
 
 --- {f1, f2, d1} of the rows of k1, k2, kb (vecs, N/mm) with tip mass `tip` (kg).
 function M.respond(k1, k2, kb, tip)
@@ -35,14 +39,25 @@ function M.model(applied, unknowns, ctx)
   end }
 end
 
---- Writes n specimens of the form `form` ({base = bool, tip = bool}) to path, seed `seed`.
-function M.write_data(path, form, seed, n)
-  n = n or 9
+--- The true means of a batch: each drawn from its prior (3 % around the design value), seed `seed`.
+function M.draw_truth(seed)
+  local g = smi.rng(seed, "chain truth")
+  local t = {}
+  for _, n in ipairs{ "k1", "k2", "kb" } do t[n] = g:normal(1, M.design[n], 0.03 * M.design[n])[1] end
+  return t
+end
+
+--- Writes n specimens (default 9) of the true form `applied` (candidate names) with true means
+-- `truth` (M.draw_truth; default the design values) to path, seed `seed`.
+function M.write_data(path, applied, truth, seed, n)
+  n, truth = n or 9, truth or M.design
+  local on = {}
+  for _, a in ipairs(applied) do on[a] = true end
   local g = smi.rng(seed, "chain specimens")
-  local k1 = g:normal(n, M.truth.k1[1], M.truth.k1[2])
-  local k2 = g:normal(n, M.truth.k2[1], M.truth.k2[2])
-  local kb = g:normal(n, M.truth.kb[1], M.truth.kb[2])
-  local y = M.respond(k1, k2, form.base and kb or nil, form.tip and M.tip or 0)
+  local k1 = g:normal(n, truth.k1, M.scatter.k1)
+  local k2 = g:normal(n, truth.k2, M.scatter.k2)
+  local kb = g:normal(n, truth.kb, M.scatter.kb)
+  local y = M.respond(k1, k2, on["base spring"] and kb or nil, on["tip mass"] and M.tip or 0)
   smi.csv.write(path, { f1 = y.f1, f2 = y.f2, d1 = y.d1 }, { header = { "f1", "f2", "d1" } })
 end
 

@@ -10,7 +10,7 @@ local improve = require "smi.improve"
 local chain = require "chain_product"
 
 local data_file = smi.out("chain_tip_mass.csv")
-chain.write_data(data_file, { tip = true }, 11)
+chain.write_data(data_file, { "tip mass" }, nil, 11)
 
 local function run(name, priors)
   local d = chain.declaration(name, data_file, priors)
