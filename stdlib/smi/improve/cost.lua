@@ -95,6 +95,13 @@ function M.plan(t)
       or ("%d-point Latin hypercube + %d test points"):format(n, cfg.test_points), cond)
     add(("trial%d_validation"):format(k), cfg.solver_check,
         ("solver check of the Kriging verdicts: %d points"):format(cfg.solver_check), cond)
+    if D.evidence.alternatives ~= false and #D.candidates > 0 then
+      local n_alt = 0
+      for _, c in ipairs(D.candidates) do n_alt = n_alt + (c.revision.n_design or D.design.n) + cfg.test_points end
+      add(("trial%d_alternatives"):format(k), n_alt,
+          "the forms one untried candidate away: a design each, for their evidence (reused by the next trial)",
+          ("only if trial %d fits"):format(k))
+    end
     if k < t.max_trials and #D.candidates > 0 then
       local left = math.max(0, #D.candidates - (k - 1))
       add(("refinement%d"):format(k), left,

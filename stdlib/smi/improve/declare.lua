@@ -98,6 +98,8 @@ local FIELDS = {
   evidence = {
     { "margin", "number", 3, "the Bayes factor by which the chosen form must beat every other tried form"
       .. " (3: \"positive\" evidence, Kass & Raftery 1995)" },
+    { "alternatives", "boolean", true, "after a trial that fits, compare it with the forms one untried candidate"
+      .. " away by their evidence (a design each); false: compare only the trials run" },
     { "n", "number", 500, "propagated samples per likelihood value of a trial's evidence (smi.calibrate_bayes n)" },
     { "samples", "number", 500, "particles of the evidence's sampler (smi.calibrate_bayes samples)" },
   },

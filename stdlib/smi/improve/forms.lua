@@ -14,6 +14,8 @@
 --                 more than the analyst allowed).
 -- A Bayes factor counts as beating the margin only when it does so by two Monte Carlo standard
 -- errors of the log-evidence difference: the sampler's error decides nothing.
+-- A form that fits is compared with the forms one candidate away from it (the alternatives,
+-- evidence only): without them a fit says nothing of the forms the data cannot tell apart.
 -- Pure functions of saved results, so the summary and a harness judge the same way.
 local M = {}
 
@@ -38,7 +40,28 @@ function M.beats(a, b, margin)
   return d ~= nil and d - 2 * e >= math.log(margin)
 end
 
---- forms: the tried forms' records, in the order tried; margin: the Bayes factor (>= 1).
+--- Whether two lists of applied revisions name the same form (order aside).
+function M.same(a, b)
+  if #a ~= #b then return false end
+  local set = {}
+  for _, n in ipairs(a) do set[n] = true end
+  for _, n in ipairs(b) do if not set[n] then return false end end
+  return true
+end
+
+--- The alternative (evidence-only) form that beats `own` (a trial's record) by the margin and has
+-- the largest evidence of those that do: its index in `alternatives`, or nil.
+function M.better_alternative(own, alternatives, margin)
+  local best
+  for i, f in ipairs(alternatives) do
+    if M.beats(f, own, margin) and (not best or f.log_evidence > alternatives[best].log_evidence) then best = i end
+  end
+  return best
+end
+
+--- forms: the tried forms' records, in the order tried (a record with `alternative = true` was
+-- only compared by its evidence, not calibrated and validated as a trial: it is never chosen,
+-- and, unless it is beaten, it keeps the verdict from "valid"); margin: the Bayes factor (>= 1).
 -- Returns {verdict, chosen (index), supported = {index = true}, best (index of the largest
 -- evidence among the forms not rejected), reasons = {words}} and marks each form's `supported` and `chosen`.
 function M.compare(forms, margin)
@@ -61,11 +84,12 @@ function M.compare(forms, margin)
   local function pick(ok)
     local c
     for i, f in ipairs(forms) do
-      if ok(f) and (not c or (f.log_evidence or -math.huge) > (forms[c].log_evidence or -math.huge)) then c = i end
+      if not f.alternative and ok(f) and (not c or (f.log_evidence or -math.huge) > (forms[c].log_evidence or -math.huge)) then c = i end
     end
     return c
   end
-  local chosen = pick(valid_everywhere)
+  -- (a form valid everywhere that a better form beats by the margin is not the data's answer)
+  local chosen = pick(function(f) return valid_everywhere(f) and f.supported end)
   if chosen then
     local others = {}
     for i, f in ipairs(forms) do
@@ -89,7 +113,8 @@ function M.compare(forms, margin)
       end
     else
       out.verdict = "invalid"
-      chosen = best or #forms
+      chosen = best and not forms[best].alternative and best or nil
+      for i, f in ipairs(forms) do if not chosen and not f.alternative then chosen = i end end
     end
   end
   out.chosen = chosen

@@ -9,6 +9,7 @@ local trial = require "smi.improve.trial"
 local calibration = require "smi.improve.calibration"
 local evidence = require "smi.improve.evidence"
 local verdict = require "smi.improve.verdict"
+local forms = require "smi.improve.forms"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
 local revise = require "smi.improve.revise"
@@ -295,6 +296,90 @@ local function validation_step(run, k)
 end
 
 -- ---------------------------------------------------------------------------------------------
+-- Alternatives: after a trial that fits, the evidence of each untried candidate's form on top of
+-- it. A fit alone says nothing about forms the data cannot tell apart (nine specimens and free
+-- means absorb most revisions), so a form is called valid only against the forms it beat.
+-- ---------------------------------------------------------------------------------------------
+
+-- The candidates no trial up to k applied (R: the steps' results), in declared order.
+local function untried_candidates(run, R, k)
+  local tried = {}
+  for i = 1, k do tried[R["trial" .. i .. "_surrogate"].model.candidate] = true end
+  local untried = {}
+  for _, c in ipairs(run.D.candidates) do if not tried[c.name] then untried[#untried + 1] = c end end
+  return untried
+end
+
+-- The key of a form: its applied revisions, in name order.
+local function form_key(applied)
+  local a = {}
+  for i, n in ipairs(applied) do a[i] = n end
+  table.sort(a)
+  return table.concat(a, "\n")
+end
+
+-- The forms one candidate away from `base` (trial k's model) that no trial and no earlier
+-- alternative has tried: revise.apply's models, in the candidates' declared order.
+local function untried_forms(run, R, k, base)
+  local seen = {}
+  for i = 1, k do
+    seen[form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true
+    local alt = i < k and R["trial" .. i .. "_alternatives"]
+    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do seen[form_key(f.applied)] = true end
+  end
+  local out = {}
+  for _, c in ipairs(run.D.candidates) do
+    local applied = false
+    for _, a in ipairs(base.applied) do applied = applied or a == c.name end
+    if not applied then
+      local A = revise.apply(run.D, base, c.name)
+      if not seen[form_key(A.applied)] then
+        seen[form_key(A.applied)] = true
+        out[#out + 1] = A
+      end
+    end
+  end
+  return out
+end
+
+local function alternatives_step(run, k)
+  local D, cfg = run.D, run.cfg
+  return timed(function(ctx)
+    local R = ctx.results
+    local v, cal = R["trial" .. k .. "_validation"], R["trial" .. k .. "_calibration"]
+    if v.skipped then return skipped(v.reason) end
+    if verdict.needs_refinement(v) then
+      return skipped(("trial %d is not valid on every response: the refinement step revises it"):format(k))
+    end
+    if not D.evidence.alternatives then return skipped("the declaration sets evidence.alternatives = false") end
+    if not (cal.evidence and type(cal.evidence.log_evidence) == "number") then
+      return skipped(("trial %d has no evidence to compare with"):format(k))
+    end
+    local base = R["trial" .. k .. "_surrogate"].model
+    local untried = untried_forms(run, R, k, base)
+    if #untried == 0 then return skipped(("every form one candidate away from trial %d has been tried"):format(k)) end
+    local out = { forms = {}, trial = k, base_applied = base.applied }
+    for _, A in ipairs(untried) do
+      local c = { name = A.candidate }
+      ctx:log("alternative %s: %d-point design, its evidence", c.name, A.n_design)
+      -- the design and the evidence of trial k + 1 in this form: the runs are reused if it becomes that trial
+      local m = run.model(A, { purpose = "design", name = "trial" .. (k + 1) .. "-design" })
+      local sur = trial.surrogate{ name = "trial" .. (k + 1), model = m, responses = D.names, unknowns = A.unknowns,
+                                   specs = A.specs, trend = A.trend, n_design = A.n_design, design = cfg.design,
+                                   n_test = cfg.test_points, seed = stream(run.seed, "trial design", k + 1) }
+      local ev = trial_evidence(run, A, sur, R, k + 1)
+      out.forms[#out.forms + 1] = { candidate = c.name, applied = A.applied, unknowns = A.unknowns,
+                                    log_evidence = ev.log_evidence, log_evidence_error = ev.log_evidence_error,
+                                    mean = ev.mean, std = ev.std, names = ev.names, on = ev.on }
+    end
+    local own = { log_evidence = cal.evidence.log_evidence, log_evidence_error = cal.evidence.log_evidence_error }
+    out.better = forms.better_alternative(own, out.forms, D.evidence.margin)
+    view("alternatives")(run, ctx.report, out, own, k)
+    return out
+  end)
+end
+
+-- ---------------------------------------------------------------------------------------------
 -- Refinement: the decision matrix over the untried candidates, each on top of the kept revisions
 -- ---------------------------------------------------------------------------------------------
 
@@ -364,13 +449,31 @@ local function rank_candidates(run, R, base, untried)
   return out
 end
 
+-- After a trial valid on every response: the next trial is the alternative form whose evidence
+-- beats it by the margin (alternatives_step), if any and if the limit allows.
+local function refine_on_evidence(run, ctx, k, v)
+  local alt = ctx.results["trial" .. k .. "_alternatives"]
+  local better = alt and not alt.skipped and alt.better and alt.forms[alt.better]
+  if not better then return skipped(text.nothing_to_refine(k, v)) end
+  local why = text.favoured_alternative(better, ctx.results["trial" .. k .. "_calibration"].evidence, run.D.evidence.margin)
+  if k > run.opt.max_refinements then
+    return skipped(("%s, but the analyst's limit of %d refinement(s) is reached"):format(why, run.opt.max_refinements))
+  end
+  local base = revise.copy(ctx.results["trial" .. k .. "_surrogate"].model)
+  local out = { failed_responses = {}, chosen = better.candidate, model = revise.apply(run.D, base, better.candidate),
+                rank = 1, why = why, on_evidence = true }
+  ctx.report:section(("Model refinement after trial %d"):format(k))
+  ctx.report:callout(("Refinement after trial %d: %s (%s)."):format(k, out.chosen, why), "info")
+  return out
+end
+
 local function refinement_step(run, k)
   local D, opt = run.D, run.opt
   return timed(function(ctx)
     local R = ctx.results
     local v = R["trial" .. k .. "_validation"]
     if v.skipped then return skipped(v.reason) end
-    if not verdict.needs_refinement(v) then return skipped(text.nothing_to_refine(k, v)) end
+    if not verdict.needs_refinement(v) then return refine_on_evidence(run, ctx, k, v) end
     local state = v.verdict == "invalid" and "invalid" or ("undetermined on " .. table.concat(v.undetermined, ", "))
     if k > opt.max_refinements then
       return skipped(("trial %d is %s and the analyst's limit of %d refinement(s) is reached"):format(
@@ -384,10 +487,7 @@ local function refinement_step(run, k)
     end
     local undetermined_only = #failed == 0
     if undetermined_only then failed = undetermined end
-    local tried = {}
-    for i = 1, k do tried[R["trial" .. i .. "_surrogate"].model.candidate] = true end
-    local untried = {}
-    for _, c in ipairs(D.candidates) do if not tried[c.name] then untried[#untried + 1] = c end end
+    local untried = untried_candidates(run, R, k)
     if #untried == 0 then
       return skipped(("trial %d is %s and every candidate has been tried"):format(k, state))
     end
@@ -468,6 +568,7 @@ function M.add(run)
     s:step("trial" .. k .. "_surrogate", surrogate_step(run, k))
     s:step("trial" .. k .. "_calibration", calibration_step(run, k))
     s:step("trial" .. k .. "_validation", validation_step(run, k))
+    s:step("trial" .. k .. "_alternatives", alternatives_step(run, k))
     if k < run.max_trials then s:step("refinement" .. k, refinement_step(run, k)) end
   end
   s:step("summary", timed(function(ctx) return summary_step(run, ctx) end))

@@ -121,7 +121,8 @@ function M.conclusion_detail(D, c, R)
   for i, f in ipairs(c.forms) do
     if i ~= k then
       others[#others + 1] = f.verdict == "invalid" and ("%s is invalid"):format(form_name(f.applied))
-        or ("%s: %s%s"):format(form_name(f.applied), factor_words(c.forms[k], f),
+        or ("%s%s: %s%s"):format(form_name(f.applied), f.validated == false and " (evidence only)" or "",
+          factor_words(c.forms[k], f),
           f.supported and (", within the margin " .. ("%g"):format(D.evidence.margin)) or "")
     end
   end
@@ -389,6 +390,22 @@ function M.why_chosen(dm, jc, jr)
   end
   return ("rating %.3f%s; weighted difference by criterion: %s"):format(dm.overall[jc],
     jr and (" against %.3f for %s"):format(dm.overall[jr], dm.candidates[jr].name) or "", table.concat(why, ", "))
+end
+
+--- Why the study refines a trial that fits: an alternative form the data favour. alt: the
+-- alternative's record; own: the trial's evidence; margin: the declared Bayes factor.
+function M.favoured_alternative(alt, own, margin)
+  return ("the data favour %s over it by a Bayes factor of %.3g (log %.2f ± %.2f, the margin %g)"):format(
+    form_name(alt.applied), math.exp(alt.log_evidence - own.log_evidence), alt.log_evidence - own.log_evidence,
+    math.sqrt(alt.log_evidence_error ^ 2 + own.log_evidence_error ^ 2), margin)
+end
+
+--- The alternatives section's paragraph after trial k.
+function M.alternatives_intro(k, label)
+  return ("%s fits the data; other forms may fit them as well. Each form one untried candidate away from it gets"
+    .. " a design of its own and its log evidence under the declared priors (no calibration or validation: the"
+    .. " evidence alone compares forms). The trial is called valid only if it beats each of them by the margin;"
+    .. " an alternative that beats it becomes the next trial."):format(label)
 end
 
 --- Why a trial is not refined (its verdict is not invalid).

@@ -52,9 +52,29 @@ local function skipped(r) return r == nil or r.skipped end
 
 -- The calibrated means on a bound of their range (smi.calibrate's at_bounds, the means only):
 -- the range is the analyst's prior, and the data ask for more than it allows.
-local function means_at_bounds(cal)
+-- A mean with a declared prior is judged on its posterior instead (cal.evidence): the
+-- probability-residual optimum ignores the prior, and a mean the data leave free (a new unknown
+-- in series with an old one) lands on a bound there though its prior holds it well inside.
+-- T: the trial's model (its specs' ranges); on a bound: the posterior mean within 2 % of the
+-- range's width from it.
+local function means_at_bounds(cal, T)
   local out = {}
-  for _, p in ipairs(cal.at_bounds or {}) do if p:match("%.mean$") then out[#out + 1] = p end end
+  local ev = cal.evidence
+  local with_prior = {}
+  for _, p in ipairs(ev and ev.priors or {}) do with_prior[p.param] = true end
+  for _, p in ipairs(cal.at_bounds or {}) do
+    if p:match("%.mean$") then
+      local n = p:gsub("%.mean$", "")
+      local post = with_prior[p] and ev.mean and ev.mean[p]
+      local range = T and T.specs[n] and T.specs[n].mean
+      if not (post and range) then
+        out[#out + 1] = p
+      else
+        local w = 0.02 * (range[2] - range[1])
+        if post - range[1] <= w or range[2] - post <= w then out[#out + 1] = p end
+      end
+    end
+  end
   return out
 end
 
@@ -80,7 +100,7 @@ function M.conclusion(R, D, max_trials, extra)
     local T = sur.model
     local t = { candidate = T.candidate, applied = T.applied, unknowns = T.unknowns, responses = responses,
                 calibration = { converged = cal.converged == true, status = cal.status, means = means, stds = stds,
-                                at_bounds = means_at_bounds(cal) } }
+                                at_bounds = means_at_bounds(cal, sur.model) } }
     for key, v in pairs(extra and extra(T, responses) or {}) do t[key] = v end
     c.trials[#c.trials + 1] = t
     local ev = cal.evidence or {}
@@ -100,6 +120,19 @@ function M.conclusion(R, D, max_trials, extra)
       elseif ref then c.ended = ref.reason end
     end
   end
+  -- the alternatives' evidence (forms one candidate away from a trial that fits), after the trials
+  local n_trials = #records
+  for k = 1, n_trials do
+    local alt = R["trial" .. k .. "_alternatives"]
+    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do
+      local dup = false
+      for _, r in ipairs(records) do dup = dup or forms.same(r.applied, f.applied) end
+      if not dup then
+        records[#records + 1] = { applied = f.applied, log_evidence = f.log_evidence, alternative = true,
+                                  log_evidence_error = f.log_evidence_error, verdict = "not validated", undetermined = {} }
+      end
+    end
+  end
   local cmp = forms.compare(records, D.evidence.margin)
   c.verdict, c.chosen, c.comparison = cmp.verdict, cmp.chosen, cmp.reasons
   local chosen = records[cmp.chosen]
@@ -107,7 +140,7 @@ function M.conclusion(R, D, max_trials, extra)
   c.why = chosen and chosen.why
   for i, f in ipairs(records) do
     c.forms[i] = { applied = f.applied, log_evidence = f.log_evidence, log_evidence_error = f.log_evidence_error,
-                   supported = f.supported, chosen = f.chosen, verdict = f.verdict }
+                   supported = f.supported, chosen = f.chosen, verdict = f.verdict, validated = not f.alternative }
   end
   return c
 end
