@@ -60,4 +60,40 @@ T.case("undetermined: a response left open, or a mean on its bound; invalid when
   T.eq(forms.compare({ form({}, "valid", nil, nil) }, 3).verdict, "valid")
 end)
 
+T.case("alternatives (evidence only): never chosen; one within the margin keeps the verdict from valid", function()
+  local alt = { alternative = true }
+  -- the trial valid everywhere, an alternative within the margin: undetermined, the trial chosen
+  local f = { form({}, "valid", -10, 0.1), form({ "mass" }, "not validated", -9.8, 0.1, alt) }
+  local c = forms.compare(f, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(c.chosen, 1, "an alternative is never the chosen form")
+  T.eq(c.reasons[1].kind, "inseparable")
+  -- the alternative beaten by the margin (log BF 3 - 0.28 >= ln 3): valid
+  T.eq(forms.compare({ form({}, "valid", -10, 0.1), form({ "mass" }, "not validated", -13, 0.1, alt) }, 3).verdict, "valid")
+  -- an alternative that beats the trial: the trial is not supported, so not valid
+  f = { form({}, "valid", -10, 0.1), form({ "mass" }, "not validated", -5, 0.1, alt) }
+  c = forms.compare(f, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(f[1].supported, false)
+  T.eq(c.chosen, 1, "the best trial, though the data favour a form not yet validated")
+end)
+
+T.case("a form valid everywhere that a better trial beats is not chosen", function()
+  -- trial 2 has a mean on its bound (not valid everywhere) but beats trial 1 by 5 nats
+  local f = { form({}, "valid", -10, 0.1), form({ "joint" }, "valid", -5, 0.1, { at_bounds = { "k.mean" } }) }
+  local c = forms.compare(f, 3)
+  T.eq(c.verdict, "undetermined")
+  T.eq(c.chosen, 2, "the best supported form")
+  T.eq(c.reasons[1].kind, "bounds")
+end)
+
+T.case("better_alternative: the largest evidence among the alternatives that beat the trial", function()
+  local own = form({}, "valid", -10, 0.1)
+  local alts = { form({ "a" }, "x", -7, 0.1), form({ "b" }, "x", -6, 0.1), form({ "c" }, "x", -9.5, 0.1) }
+  T.eq(forms.better_alternative(own, alts, 3), 2)
+  T.eq(forms.better_alternative(own, { alts[3] }, 3), nil, "within the margin: none")
+  T.eq(forms.same({ "a", "b" }, { "b", "a" }), true)
+  T.eq(forms.same({ "a" }, { "a", "b" }), false)
+end)
+
 T.finish()

@@ -87,10 +87,17 @@ function M.separate(D, c, R)
   local cal = R["trial" .. k .. "_calibration"]
   local parts = {}
   local w = M.weak_inputs(cal and cal.near_optimal)
-  local priors = {}
-  for _, n in ipairs(c.trials[k].unknowns) do priors[#priors + 1] = n .. ".mean" end
-  parts[#parts + 1] = ("a prior (--prior) on %s%s"):format(listed(priors, " or "),
-    w and (" (the means move most along: " .. w .. ")") or "")
+  local priors, tighter, has = {}, {}, {}
+  for _, p in ipairs(cal and cal.evidence and cal.evidence.priors or {}) do has[p.param] = true end
+  for _, n in ipairs(c.trials[k].unknowns) do
+    local list = has[n .. ".mean"] and tighter or priors
+    list[#list + 1] = n .. ".mean"
+  end
+  local moves = w and (" (the means move most along: " .. w .. ")") or ""
+  if #priors > 0 then parts[#parts + 1] = ("a prior (--prior) on %s%s"):format(listed(priors, " or "), moves) end
+  if #tighter > 0 then
+    parts[#parts + 1] = ("a tighter prior on %s%s"):format(listed(tighter, " or "), #priors > 0 and "" or moves)
+  end
   if #c.undetermined > 0 then parts[#parts + 1] = ("calibrating on %s as well"):format(listed(c.undetermined)) end
   parts[#parts + 1] = "more specimens"
   return listed(parts, ", or ")

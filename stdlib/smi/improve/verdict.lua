@@ -78,6 +78,15 @@ local function means_at_bounds(cal, T)
   return out
 end
 
+-- The posterior of the unknowns' means of an evidence record ({names, mean, std}): {param = {mean, std}}.
+local function posterior_means(ev)
+  local out = {}
+  for _, n in ipairs(ev and ev.names or {}) do
+    if n:match("%.mean$") then out[n] = { mean = ev.mean[n], std = ev.std[n] } end
+  end
+  return next(out) and out or nil
+end
+
 --- The conclusion from the saved step results R (trialk_surrogate, trialk_calibration,
 -- trialk_validation, refinementk) for at most max_trials trials: {verdict, refinements,
 -- undetermined, trials = {{candidate, applied, unknowns, responses, calibration = {converged,
@@ -105,7 +114,7 @@ function M.conclusion(R, D, max_trials, extra)
     c.trials[#c.trials + 1] = t
     local ev = cal.evidence or {}
     local rec = { applied = T.applied, at_bounds = t.calibration.at_bounds, log_evidence = ev.log_evidence,
-                  log_evidence_error = ev.log_evidence_error }
+                  log_evidence_error = ev.log_evidence_error, posterior = posterior_means(ev) }
     records[#records + 1] = rec
     if skipped(val) then
       rec.verdict, rec.undetermined, rec.why = "inconclusive", {}, val and val.reason
@@ -129,6 +138,7 @@ function M.conclusion(R, D, max_trials, extra)
       for _, r in ipairs(records) do dup = dup or forms.same(r.applied, f.applied) end
       if not dup then
         records[#records + 1] = { applied = f.applied, log_evidence = f.log_evidence, alternative = true,
+                                  posterior = posterior_means(f),
                                   log_evidence_error = f.log_evidence_error, verdict = "not validated", undetermined = {} }
       end
     end
@@ -140,7 +150,8 @@ function M.conclusion(R, D, max_trials, extra)
   c.why = chosen and chosen.why
   for i, f in ipairs(records) do
     c.forms[i] = { applied = f.applied, log_evidence = f.log_evidence, log_evidence_error = f.log_evidence_error,
-                   supported = f.supported, chosen = f.chosen, verdict = f.verdict, validated = not f.alternative }
+                   supported = f.supported, chosen = f.chosen, verdict = f.verdict, validated = not f.alternative,
+                   posterior = f.posterior }
   end
   return c
 end

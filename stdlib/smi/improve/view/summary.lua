@@ -15,15 +15,23 @@ return function(run, r, out, R, walls, per)
   -- the forms tried, side by side: the paper's u-pooling verdict and the Bayes factors
   local forms = {}
   for i, f in ipairs(c.forms) do
-    forms[i] = { text.form_name(f.applied), f.verdict,
+    local post, names = {}, {}
+    for n in pairs(f.posterior or {}) do names[#names + 1] = n end
+    table.sort(names)
+    for _, n in ipairs(names) do
+      post[#post + 1] = ("%s %.4g ± %.2g"):format(n:gsub("%.mean$", ""), f.posterior[n].mean, f.posterior[n].std)
+    end
+    forms[i] = { text.form_name(f.applied), f.validated == false and "evidence only" or f.verdict,
                  type(f.log_evidence) == "number" and ("%.2f ± %.2f"):format(f.log_evidence, f.log_evidence_error or 0)
                    or "not computed",
-                 f.supported and "yes" or "no", f.chosen and "yes" or "" }
+                 f.supported and "yes" or "no", f.chosen and "yes" or "", table.concat(post, "; ") }
   end
-  r:table{ caption = ("The model forms tried: each trial's verdict (u-pooling), its log evidence under the"
-             .. " declared priors, and whether the data support it (within a Bayes factor of %g of the best)."):format(
-             D.evidence.margin),
-           columns = { "Form", "Trial verdict", "log evidence", "Supported", "Chosen" }, rows = forms }
+  r:table{ caption = ("The model forms tried: each trial's verdict (u-pooling of its calibration; \"evidence only\":"
+             .. " a form one candidate away from a trial that fits, compared by its evidence alone), its log evidence"
+             .. " under the declared priors, whether the data support it (within a Bayes factor of %g of the best),"
+             .. " and the posterior mean ± std of each unknown's mean."):format(D.evidence.margin),
+           columns = { "Form", "Trial verdict", "log evidence", "Supported", "Chosen", "Posterior of the means" },
+           rows = forms }
   local rows = {}
   for name, cnt in pairs(cost.counts) do rows[#rows + 1] = { name, cnt.points, cnt.launched, cnt.reused } end
   table.sort(rows, function(a, b) return a[1] < b[1] end)
