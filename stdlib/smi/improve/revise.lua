@@ -95,6 +95,18 @@ function M.apply(D, prev, name, drop)
   return m
 end
 
+--- The model `m` without its applied revision `name` (a step back: a revision applied before the
+-- one that mattered may have been kept only because it absorbed part of the truth's change).
+function M.without(D, m, name, why)
+  local keep = {}
+  for _, a in ipairs(m.applied) do if a ~= name then keep[#keep + 1] = a end end
+  local out = fold(D, m.base_unknowns, keep)
+  out.candidate = keep[#keep] or "initial"
+  out.dropped = { { name = name, why = why } }
+  out.without = name
+  return out
+end
+
 --- Which of the previous trial's revisions the next keeps, on evidence: the last-applied revision
 -- of trial k is dropped when trial k's calibrated objective is worse than trial k-1's (same
 -- calibrated responses, the same metric). Returns {name = why} or nil.

@@ -272,7 +272,8 @@ local function validation_step(run, k)
     local sur = ctx.results["trial" .. k .. "_surrogate"]
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
-    local cal = ctx.results["trial" .. k .. "_calibration"]
+    -- the near-optimal fits the declared priors allow (the PR fit ignores them)
+    local cal = evidence.plausible_near_optimal(ctx.results["trial" .. k .. "_calibration"])
     if calibration.units_stop(cal) then
       local why = ("trial %d's calibration found no overlap between the predicted and the measured distributions,"
         .. " a power of ten apart (status no_overlap): %s The study stops before validation: check the data's"
@@ -449,6 +450,25 @@ local function rank_candidates(run, R, base, untried)
   return out
 end
 
+-- After a trial that is not valid with every candidate tried: the form without the earliest of
+-- its revisions that no trial has had (the decision matrix's first pick may have been kept only
+-- because it absorbed part of what a later revision explains). Returns the refinement's result or nil.
+local function step_back(run, R, k, state)
+  local T = R["trial" .. k .. "_surrogate"].model
+  if #T.applied < 2 then return nil end
+  local seen = {}
+  for i = 1, k do seen[form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true end
+  for _, name in ipairs(T.applied) do
+    local why = ("trial %d is %s with every candidate applied or tried: %s was applied first and may only have"
+      .. " absorbed part of what a later revision explains"):format(k, state, name)
+    local m = revise.without(run.D, T, name, why)
+    if not seen[form_key(m.applied)] then
+      return { failed_responses = {}, chosen = "without " .. name, model = m, rank = 1, why = why, step_back = true }
+    end
+  end
+  return nil
+end
+
 -- After a trial valid on every response: the next trial is the alternative form whose evidence
 -- beats it by the margin (alternatives_step), if any and if the limit allows.
 local function refine_on_evidence(run, ctx, k, v)
@@ -462,8 +482,7 @@ local function refine_on_evidence(run, ctx, k, v)
   local base = revise.copy(ctx.results["trial" .. k .. "_surrogate"].model)
   local out = { failed_responses = {}, chosen = better.candidate, model = revise.apply(run.D, base, better.candidate),
                 rank = 1, why = why, on_evidence = true }
-  ctx.report:section(("Model refinement after trial %d"):format(k))
-  ctx.report:callout(("Refinement after trial %d: %s (%s)."):format(k, out.chosen, why), "info")
+  view("refinement")(run, ctx.report, out, k)
   return out
 end
 
@@ -489,7 +508,13 @@ local function refinement_step(run, k)
     if undetermined_only then failed = undetermined end
     local untried = untried_candidates(run, R, k)
     if #untried == 0 then
-      return skipped(("trial %d is %s and every candidate has been tried"):format(k, state))
+      -- every candidate is in: take back the earliest revision whose removal no trial has tried
+      local back = step_back(run, R, k, state)
+      if back then
+        view("refinement")(run, ctx.report, back, k)
+        return back
+      end
+      return skipped(("trial %d is %s, every candidate has been tried and every step back too"):format(k, state))
     end
     -- the base of the next trial: this trial's revisions, minus the last one if it made the fit worse
     local base = revise.copy(R["trial" .. k .. "_surrogate"].model)
