@@ -334,7 +334,7 @@ local function untried_forms(run, R, k, base)
     for _, a in ipairs(base.applied) do applied = applied or a == c.name end
     if not applied then
       local A = revise.apply(run.D, base, c.name)
-      if not seen[form_key(A.applied)] then
+      if not seen[form_key(A.applied)] and not revise.same_model(A, base) then
         seen[form_key(A.applied)] = true
         out[#out + 1] = A
       end
