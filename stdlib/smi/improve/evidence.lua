@@ -129,7 +129,7 @@ function M.calibrate(t)
   local err = math.sqrt(r.log_evidence_error ^ 2 + (r.loglik_error or 0) ^ 2)
   local out = { log_evidence = r.log_evidence, log_evidence_error = err, sampler_error = r.log_evidence_error,
                 loglik_error = r.loglik_error,
-                mean = r.mean, std = r.std, interval = r.interval, map = r.map, names = r.names, converged = r.converged,
+                mean = r.mean, std = r.std, interval = r.interval, interval_level = r.interval_level, map = r.map, names = r.names, converged = r.converged,
                 diagnostics = r.diagnostics, on = on_model and "model" or "surrogate", cost = t.cost,
                 priors = t.priors, evaluations = r.evaluations, model_runs = r.model_runs, n = t.n, samples = t.samples }
   return out

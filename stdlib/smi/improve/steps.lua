@@ -575,6 +575,8 @@ local function summary_step(run, ctx)
   local walls, per, total = runs_per_step(run, R)
   out.solver_runs_total = total
   view("summary")(run, ctx.report, out, R, walls, per)
+  view("before_after")(run, ctx.report, out, R)
+  view("opening")(run, ctx.report, out, R)
   hook(run, "summary", ctx, c, out)
   ctx.report:provenance{ seed = run.seed, quick = opt.quick, data = opt.data, lua = _VERSION,
                          prior = opt.prior or "none", solver_runs = out.solver_totals, sample_sizes = cfg }
