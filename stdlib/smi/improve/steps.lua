@@ -10,6 +10,7 @@ local calibration = require "smi.improve.calibration"
 local evidence = require "smi.improve.evidence"
 local verdict = require "smi.improve.verdict"
 local forms = require "smi.improve.forms"
+local alternatives = require "smi.improve.alternatives"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
 local revise = require "smi.improve.revise"
@@ -311,38 +312,6 @@ local function untried_candidates(run, R, k)
   return untried
 end
 
--- The key of a form: its applied revisions, in name order.
-local function form_key(applied)
-  local a = {}
-  for i, n in ipairs(applied) do a[i] = n end
-  table.sort(a)
-  return table.concat(a, "\n")
-end
-
--- The forms one candidate away from `base` (trial k's model) that no trial and no earlier
--- alternative has tried: revise.apply's models, in the candidates' declared order.
-local function untried_forms(run, R, k, base)
-  local seen = {}
-  for i = 1, k do
-    seen[form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true
-    local alt = i < k and R["trial" .. i .. "_alternatives"]
-    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do seen[form_key(f.applied)] = true end
-  end
-  local out = {}
-  for _, c in ipairs(run.D.candidates) do
-    local applied = false
-    for _, a in ipairs(base.applied) do applied = applied or a == c.name end
-    if not applied then
-      local A = revise.apply(run.D, base, c.name)
-      if not seen[form_key(A.applied)] and not revise.same_model(A, base) then
-        seen[form_key(A.applied)] = true
-        out[#out + 1] = A
-      end
-    end
-  end
-  return out
-end
-
 local function alternatives_step(run, k)
   local D, cfg = run.D, run.cfg
   return timed(function(ctx)
@@ -357,19 +326,18 @@ local function alternatives_step(run, k)
       return skipped(("trial %d has no evidence to compare with"):format(k))
     end
     local base = R["trial" .. k .. "_surrogate"].model
-    local untried = untried_forms(run, R, k, base)
+    local untried = alternatives.untried_forms(run.D, R, k, base)
     if #untried == 0 then return skipped(("every form one candidate away from trial %d has been tried"):format(k)) end
     local out = { forms = {}, trial = k, base_applied = base.applied }
     for _, A in ipairs(untried) do
-      local c = { name = A.candidate }
-      ctx:log("alternative %s: %d-point design, its evidence", c.name, A.n_design)
+      ctx:log("alternative %s: %d-point design, its evidence", A.candidate, A.n_design)
       -- the design and the evidence of trial k + 1 in this form: the runs are reused if it becomes that trial
       local m = run.model(A, { purpose = "design", name = "trial" .. (k + 1) .. "-design" })
       local sur = trial.surrogate{ name = "trial" .. (k + 1), model = m, responses = D.names, unknowns = A.unknowns,
                                    specs = A.specs, trend = A.trend, n_design = A.n_design, design = cfg.design,
                                    n_test = cfg.test_points, seed = stream(run.seed, "trial design", k + 1) }
       local ev = trial_evidence(run, A, sur, R, k + 1)
-      out.forms[#out.forms + 1] = { candidate = c.name, applied = A.applied, unknowns = A.unknowns,
+      out.forms[#out.forms + 1] = { candidate = A.candidate, applied = A.applied, unknowns = A.unknowns,
                                     log_evidence = ev.log_evidence, log_evidence_error = ev.log_evidence_error,
                                     mean = ev.mean, std = ev.std, names = ev.names, on = ev.on }
     end
@@ -450,23 +418,12 @@ local function rank_candidates(run, R, base, untried)
   return out
 end
 
--- After a trial that is not valid with every candidate tried: the form without the earliest of
--- its revisions that no trial has had (the decision matrix's first pick may have been kept only
--- because it absorbed part of what a later revision explains). Returns the refinement's result or nil.
+-- After a trial that is not valid with every candidate tried: a step back (alternatives.lua),
+-- as the refinement step's result, or nil.
 local function step_back(run, R, k, state)
-  local T = R["trial" .. k .. "_surrogate"].model
-  if #T.applied < 2 then return nil end
-  local seen = {}
-  for i = 1, k do seen[form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true end
-  for _, name in ipairs(T.applied) do
-    local why = ("trial %d is %s with every candidate applied or tried: %s was applied first and may only have"
-      .. " absorbed part of what a later revision explains"):format(k, state, name)
-    local m = revise.without(run.D, T, name, why)
-    if not seen[form_key(m.applied)] then
-      return { failed_responses = {}, chosen = "without " .. name, model = m, rank = 1, why = why, step_back = true }
-    end
-  end
-  return nil
+  local m, why = alternatives.step_back(run.D, R, k, state)
+  if not m then return nil end
+  return { failed_responses = {}, chosen = "without " .. m.without, model = m, rank = 1, why = why, step_back = true }
 end
 
 -- After a trial valid on every response: the next trial is the alternative form whose evidence
