@@ -153,11 +153,13 @@ function M.run(declaration, argv, run_opts)
       D.name, planned, D.limits.runs), 0)
   end
   if opt.dry_run or smi.dry_run then
-    local probe = M.model(D, opt, revise.initial(D, D.unknowns), { purpose = "nominal", name = "nominal" })
+    local T0 = revise.initial(D, D.unknowns)
+    local probe = M.model(D, opt, T0, { purpose = "nominal", name = "nominal" })
     local minutes, source = cost.minutes_per_run(opt.minutes_per_run, probe)
     local words, total = cost.plan_text(plan_rows, minutes, source)
     -- print, not io.stdout: what a reference example prints is captured with print
     print((words:gsub("\n$", "")))
+    print(cost.calibration_text(probe, T0, D, cfg, require("smi.improve.trial").design_box))
     if D.limits.runs and total > D.limits.runs then
       print(("the plan's %d runs exceed the declared limits.runs = %d"):format(total, D.limits.runs))
     end

@@ -117,6 +117,23 @@ T.case("a plan over the declared limit on runs stops before anything runs", func
   T.truthy(e:find("the plan needs up to 119 solver runs, more than limits.runs = 20", 1, true), e)
 end)
 
+T.case("--dry-run prints the calibration's measured cost for a Lua model, and runs nothing", function()
+  local printed, real = {}, print
+  print = function(...) printed[#printed + 1] = table.concat({ ... }, "\t") end
+  local ok, r = pcall(run, declaration{ name = "improve_dry" }, { "--quick", "--dry-run" })
+  print = real
+  T.truthy(ok, tostring(r))
+  T.eq(r, nil, "nothing ran")
+  local line
+  for _, l in ipairs(printed) do if l:find("^calibration per trial") then line = l end end
+  T.truthy(line, "a calibration line: " .. table.concat(printed, " | "))
+  -- 300 evaluations x (1 + 2 x 2 x 1 unknown) passes of 2000 rows through the model itself
+  T.truthy(line:find("at most 300 evaluations of 2000 rows through the model itself", 1, true), line)
+  T.truthy(line:find("at most 1500 passes", 1, true), line)
+  local s = tonumber(line:match("one pass takes ([%d.e+-]+) s"))
+  T.truthy(s and s > 0 and s < 5, "a measured time: " .. tostring(s))
+end)
+
 T.case("a declared plausible range the data leave stops the study", function()
   local d = declaration{ name = "improve_plausible" }
   d.responses[1].plausible = { 20, 100 }

@@ -112,6 +112,34 @@ function M.plan(t)
   return rows
 end
 
+--- The calibration's cost per trial in words, measured here, for any model: an objective
+-- evaluation propagates cal_n rows through the in-process model itself, or through one Kriging
+-- per response for a solver (a stand-in fitted on a design of the declared size: the trial's own
+-- are fitted on its runs, and a predict costs the same for any response values). A calibration
+-- makes at most maxeval evaluations, each with a gradient of 2p more passes where it is taken by
+-- differences (p unknowns, a mean and a std each). T: the initial model; box(spec) -> {lo, hi}.
+function M.calibration_text(probe, T, D, cfg, box)
+  local b = {}
+  for i, n in ipairs(T.unknowns) do b[i] = box(T.specs[n]) end
+  local P = smi.doe.lhs(cfg.cal_n, b, { seed = 1, criterion = "none" })
+  local seconds, through
+  if probe.kind == "lua" then
+    local t0 = smi.now()
+    probe.model:evaluate(P)
+    seconds, through = smi.now() - t0, "the model itself (in-process)"
+  else
+    local X = smi.doe.lhs(D.design.n, b, { seed = 2, criterion = "none" })
+    local k = smi.kriging.fit(X, X:col(1), { trend = D.design.trend, corr = "gauss", seed = 3 })
+    local t0 = smi.now()
+    for _ = 1, #D.names do k:predict(P) end
+    seconds, through = smi.now() - t0, ("%d Krigings of %d points (a stand-in for the trial's)"):format(#D.names, D.design.n)
+  end
+  local passes = cfg.maxeval * (1 + 2 * 2 * #T.unknowns)
+  return ("calibration per trial: at most %d evaluations of %d rows through %s; one pass takes %.3g s here,"
+    .. " so at most %d passes (with gradients by differences) take %.3g s; the evidence and the validation add"
+    .. " a few times one calibration's passes"):format(cfg.maxeval, cfg.cal_n, through, seconds, passes, passes * seconds)
+end
+
 --- The plan as text: runs per step, × minutes per run ÷ concurrency, total runs and wall time.
 function M.plan_text(rows, minutes, source)
   local L = {}
