@@ -7,10 +7,9 @@
 -- evidence of each tried form, on the same data and priors, is what the study's Bayes factors
 -- compare (forms.lua).
 --
--- Where the likelihood runs: on the trial's Krigings, or on the model itself when a model pass is
--- cheaper than the Krigings' fit and predict (a Lua model of a few degrees of freedom is). The
--- choice is measured, not assumed: one batch of `n` points through each, timed; a model that
--- launches a solver process is never run directly (its runs are the study's budget).
+-- Where the likelihood runs: where the trial runs (surface.lua), on its Krigings or on the model
+-- itself when a model pass is measured cheaper than the Krigings' fit and predict (M.costs times
+-- both); a model that launches a solver process is never run directly.
 local M = {}
 
 --- The kernel's prior list from the declaration's unknowns (their `prior`) and the --prior file's
