@@ -8,8 +8,10 @@
 --
 -- Where the Krigings are used they must resolve what the data resolve: a leave-one-out error
 -- that is not clearly smaller than the specimens' scatter is a surrogate error the calibration
--- would read as a property of the unknowns. A fixed design then gets more points, once; what
--- is still unresolved is a warning naming the response, both figures and the fix.
+-- would read as a property of the unknowns. A fixed design of an in-process model then gets more
+-- points, once (they cost no solver run); a solver model's design is not grown: its points are
+-- solver runs that the plan (--dry-run) and limits.runs did not count, so the analyst decides.
+-- What is still unresolved is a warning naming the response, both figures and the fix.
 local evidence = require "smi.improve.evidence"
 local stream = require "smi.improve.stream"
 
@@ -65,16 +67,16 @@ function M.unresolved(sur, data, names)
 end
 
 --- The trial's surrogate and the decision where it runs. build(added) is trial.surrogate with
--- `added` more design points; how: M.decide's arguments after the model and the surrogate
--- {m, responses, n, seed, trend}; data: the specimens; sequential: the design is sequential (it
--- already grows to its own target). log(fmt, ...) writes to the console. Returns the surrogate
--- result with `on`, `cost` and, per unresolved response, a warning in its diagnostics.
+-- `added` more design points; how: M.decide's arguments {m, responses, n, seed, trend}; data:
+-- the specimens; sequential: the design is sequential (it already grows to its own target).
+-- log(fmt, ...) writes to the console. Returns the surrogate result with `on`, `cost` and, per
+-- unresolved response, a warning in its diagnostics.
 function M.surrogate(build, how, data, n_design, sequential, log)
   local sur = build(0)
   local d = M.decide(how.m, sur, how.responses, how.n, how.seed, how.trend)
   local poor = d.on == "surrogate" and M.unresolved(sur, data, how.responses) or {}
   local added = math.min(n_design, M.MAX_DESIGN - n_design)
-  if #poor > 0 and not sequential and added > 0 then
+  if #poor > 0 and not sequential and added > 0 and how.m.kind == "lua" then
     log("the Krigings of %s do not resolve the data's scatter: %d more design points", poor[1].response, added)
     sur = build(added)
     poor = M.unresolved(sur, data, how.responses)
@@ -84,7 +86,7 @@ function M.surrogate(build, how, data, n_design, sequential, log)
     local w = ("the Kriging's leave-one-out RMSE %.4g is %.2f times the data's scatter (sample std %.4g over the"
       .. " %d specimens), above the %.1f the data resolve: the calibration would read the surrogate's error as a"
       .. " property of the unknowns. Fix: a larger design (n_design; now %d points), a trend that follows the"
-      .. " response, or a cheaper model that runs in-process (the trial then runs on it)"):format(p.loo_rmse,
+      .. " response (trend), or a cheaper model that runs in-process (the trial then runs on it)"):format(p.loo_rmse,
       p.loo_rmse / p.scatter, p.scatter, #data[p.response], M.LOO_OVER_SCATTER, sur.n_design)
     local dg = sur.diagnostics[p.response]
     local ws = {}
