@@ -33,7 +33,7 @@ T.case("a cheap Lua model: calibration, validation and evidence run on it, and t
   local sur, cal, val = R.trial1_surrogate, R.trial1_calibration, R.trial1_validation
   -- (1) one measured decision, recorded, used by every step of the trial
   T.eq(sur.on, "model")
-  T.truthy(sur.cost.model_s < sur.cost.kriging_s, "the model pass was measured cheaper than the Krigings' fit and predict")
+  T.truthy(sur.cost.model_s < sur.cost.kriging_s, "the model pass measured cheaper than the Krigings' fit and predict")
   T.eq(sur.cost.points, 2000)
   T.eq(cal.on, "model")
   T.eq(cal.evidence.on, "model")
@@ -45,7 +45,8 @@ T.case("a cheap Lua model: calibration, validation and evidence run on it, and t
   for _, p in ipairs(cal.params) do
     -- two standard errors of a mean of N specimens: what N specimens resolve of it
     local tol = 2 * chain.scatter[p.input] / math.sqrt(N)
-    print(("  %s: calibrated mean %.3f, specimens' mean %.3f, tolerance %.3f"):format(p.input, p.mean, k[p.input]:mean(), tol))
+    print(("  %s: calibrated mean %.3f, specimens' mean %.3f, tolerance %.3f"):format(
+      p.input, p.mean, k[p.input]:mean(), tol))
     T.near(p.mean, k[p.input]:mean(), tol, p.input .. "'s calibrated mean")
   end
   T.eq(val.verdict, "valid")
@@ -77,7 +78,8 @@ T.case("a slow model whose Krigings miss the specimens' scatter: the design grow
   local y = smi.vec(R.data.f1)
   local w = table.concat(sur.diagnostics.f1.warnings or {}, "\n")
   T.truthy(w:find("leave-one-out RMSE", 1, true) and w:find(("%.4g"):format(sur.diagnostics.f1.loo_rmse), 1, true)
-    and w:find(("%.4g"):format(y:std()), 1, true) and w:find("Fix:", 1, true), "f1's warning names both figures and the fix: " .. w)
+    and w:find(("%.4g"):format(y:std()), 1, true) and w:find("Fix:", 1, true),
+    "f1's warning names both figures and the fix: " .. w)
   T.truthy(sur.diagnostics.f1.loo_rmse > 0.3 * y:std(), "the LOO error is above the threshold")
 end)
 T.finish()

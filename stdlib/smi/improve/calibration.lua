@@ -122,8 +122,8 @@ function M.objective(metric, predicted, grids, f_exp, data, MODES)
 end
 
 --- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of the calibrated responses as
--- the model (or the model itself, t.direct, with its differences for the gradient), the unknowns' distributions as the inputs (every Kriging input is an unknown: the
--- fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
+-- the model (or the model itself, t.direct, with its differences for the gradient), the unknowns'
+-- distributions as the inputs (every Kriging input is an unknown: the fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
 -- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
 -- predictor, quantile chain rule, KDE, metric), the overlapping start when PR saturates, and the
 -- identifiability directions of the objective itself. o: {f_exp, data, start, maxeval,
@@ -367,7 +367,8 @@ function M.calibrate(t)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
     status = r.status, message = r.message, no_overlap = r.no_overlap,
-    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]], t.direct), at_bounds = r.at_bounds, params = params,
+    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]], t.direct), at_bounds = r.at_bounds,
+    params = params,
     theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
     n = t.n, seed = t.seed, calibrate = t.calibrate, on = t.direct and "model" or "surrogate",
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,

@@ -243,7 +243,8 @@ local function calibration_step(run, k)
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
     ctx:log("SLSQP on %d CRN samples, %d parameters, at most %d evaluations", cfg.cal_n, 2 * #T.unknowns, cfg.maxeval)
-    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "calibration", "trial" .. k .. "-calibration")
+    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "calibration",
+                                  "trial" .. k .. "-calibration")
     local res = calibration.calibrate{
       unknowns = T.unknowns, specs = T.specs, calibrate = D.calibrate, validate = D.validate,
       data = run.vecs(ctx.results.data), f_exp = run.f_exp(ctx.results.data), grid_margins = run.margins,
@@ -280,7 +281,8 @@ local function validation_step(run, k)
       return skipped(why)
     end
     -- on the model itself there is no surrogate for a solver check to check
-    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "validation", "trial" .. k .. "-validation")
+    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "validation",
+                                  "trial" .. k .. "-validation")
     local n_check = direct and 0 or cfg.solver_check
     local check = n_check > 0 and run.model(T, { purpose = "check", batch = true,
       name = "trial" .. k .. "-check", points = n_check }) or nil

@@ -307,7 +307,8 @@ function M.calibration_intro(D, T, res, cfg, prior_file, labels)
     direct and ("the model itself (it runs in-process, cheaper than the Krigings: %s)"):format(res.cost.why)
       or "the Kriging models",
     direct and "the model, its differences for the gradient" or "the Krigings as the model: analytic gradients",
-    listed(D.calibrate), direct and "model's differences" or "Krigings' Jacobian", res.moments_stage.evaluations, M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
+    listed(D.calibrate), direct and "model's differences" or "Krigings' Jacobian", res.moments_stage.evaluations,
+    M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
     res.objective, pr and "PR" or "-logL", table.concat(parts, ", "), res.evaluations,
     res.starts and #res.starts or 1, res.status, tostring(res.converged))
 end
