@@ -33,7 +33,7 @@ T.case("a cheap Lua model: calibration, validation and evidence run on it, and t
   local sur, cal, val = R.trial1_surrogate, R.trial1_calibration, R.trial1_validation
   -- (1) one measured decision, recorded, used by every step of the trial
   T.eq(sur.on, "model")
-  T.truthy(sur.cost.model_s < sur.cost.kriging_s, "the model pass measured cheaper than the Krigings' fit and predict")
+  T.truthy(sur.cost.model_seconds < sur.cost.kriging_seconds, "the model pass measured cheaper than the Krigings' fit and predict")
   T.eq(sur.cost.points, 2000)
   T.eq(cal.on, "model")
   T.eq(cal.evidence.on, "model")
@@ -72,7 +72,7 @@ T.case("a slow model whose Krigings miss the specimens' scatter: the design grow
   local R = improve.run(d, { "--quick", "--only", "data,trial1_surrogate" }, { results = fresh("chain_tight") })
   local sur = R.trial1_surrogate
   T.eq(sur.on, "surrogate")
-  T.truthy(sur.cost.model_s > sur.cost.kriging_s, "the model pass was measured slower")
+  T.truthy(sur.cost.model_seconds > sur.cost.kriging_seconds, "the model pass was measured slower")
   T.eq(sur.added_points, 20)
   T.eq(sur.n_design, 40)
   local y = smi.vec(R.data.f1)

@@ -32,7 +32,8 @@ M.MAX_DESIGN = 400
 
 --- The trial's decision: m the factory's model (cost.wrap's, `kind` and the raw `model`), sur
 -- the surrogate's result (design, outputs, box), n points per batch. Returns {on = "model" |
--- "surrogate", model_s, kriging_s, points, why}.
+-- "surrogate", model_seconds, kriging_seconds, points, why}. The times stay out of `why`: it
+-- goes to the report and the console, which the same seed must reproduce byte for byte.
 function M.decide(m, sur, responses, n, seed, trend)
   if m.kind ~= "lua" then
     return { on = "surrogate", why = ("the model runs a solver (%s model): its runs are the study's budget"):format(
@@ -43,9 +44,9 @@ function M.decide(m, sur, responses, n, seed, trend)
   for i, u in ipairs(sur.unknowns) do box[i] = sur.design_bounds[u] end
   local model_s, kriging_s = evidence.costs(m.model, smi.mat(sur.design), Y, responses, box, n, seed, trend)
   local on = model_s < kriging_s and "model" or "surrogate"
-  return { on = on, model_s = model_s, kriging_s = kriging_s, points = n,
-           why = ("a pass of %d points took %.3g s on the model, %.3g s for the Krigings' fit and predict"):format(
-             n, model_s, kriging_s) }
+  return { on = on, model_seconds = model_s, kriging_seconds = kriging_s, points = n,
+           why = ("a pass of %d points through the model was measured %s than the Krigings' fit and predict;"
+             .. " both times: the surrogate step's cost in results.json"):format(n, on == "model" and "faster" or "slower") }
 end
 
 --- The in-process smi.model a trial runs on (its surrogate result `sur` says where), or nil: the
