@@ -29,24 +29,26 @@ local run_context = require "smi.improve.run_context"
 local M = {}
 
 -- The options every study gets (a declaration adds its own with `options`).
-local function spec(D)
+local function spec(D, script)
   local s = {
     name = D.name, summary = D.title or ("the statistical model improvement study " .. D.name),
-    usage = ("smi-lua [--allow-exec SOLVER] %s.lua [options]"):format(D.name),
+    -- the script as it was run (its declaration's name may differ); a solver needs --allow-exec
+    usage = ("smi-lua [--allow-exec SOLVER] %s [options]"):format(script or (D.name .. ".lua")),
     { name = "data", type = "path", input = true, default = D.data, meaning = "measurements (CSV; give --allow-read for its folder)" },
     { name = "quick", type = "flag", default = false,
-      meaning = "CI form: a 40-point screening sample, no bootstrap, a smaller solver check" },
+      meaning = D.screening and "CI form: a 40-point screening sample, no bootstrap, half the evidence's sample sizes"
+        or "CI form: no bootstrap of the calibration, half the evidence's sample sizes" },
     { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
       meaning = "calibration metric per response: the paper's probability residual, or minus the log-likelihood" },
     { name = "multistart", type = "integer", default = 1, min = 1,
       meaning = "the PR stage from its start plus N-1 seeded points in the bounds" },
     { name = "prior", type = "path", meaning = "a Lua file returning prior entries {param, mean, std[, dist]}: densities in the trials' evidence; none by default" },
     { name = "max-refinements", type = "integer", default = D.limits.refinements, min = 0,
-      meaning = "how many refinements (revised trials) to try after an invalid trial" },
-    { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" },
+      meaning = "how many refinements (revised trials) to try after a trial that is not valid or that an alternative beats" },
+    { name = "screening", type = "string", default = "surrogate", allowed = { "surrogate", "full" }, applies = D.screening ~= nil,
       meaning = "eq.-3 screening on a ridge quadratic of --screening-runs runs, or on the model itself" },
     { name = "screening-runs", type = "integer", default = D.screening and D.screening.runs or 300, min = 50,
-      meaning = "solver runs of the surrogate screening" },
+      applies = D.screening ~= nil, meaning = "solver runs of the surrogate screening" },
     { name = "design", type = "string", default = "fixed", allowed = { "fixed", "sequential" },
       meaning = "the trials' Kriging designs: a maximin hypercube, or sequential batches up to the same size" },
     { name = "test-points", type = "integer", min = 0,
@@ -117,7 +119,8 @@ example:
 function M.run(declaration, argv, run_opts)
   run_opts = run_opts or {}
   local D = declare.check(declaration)
-  local opt = options.parse(argv or {}, spec(D))
+  local script = type(argv) == "table" and type(argv[0]) == "string" and argv[0]:match("[^/]+$") or nil
+  local opt = options.parse(argv or {}, spec(D, script))
   if not opt.data then error(("smi.improve: %s: no data: give --data FILE.csv or declare `data`"):format(D.name), 0) end
   local cfg = run_context.config(opt, D)
   local seed = smi.seed

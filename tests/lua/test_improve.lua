@@ -112,7 +112,9 @@ end)
 T.case("a plan over the declared limit on runs stops before anything runs", function()
   local d = declaration{ name = "improve_limit", limits = { refinements = 1, runs = 20 } }
   local e = run_error(d)
-  T.truthy(e:find("the plan needs up to 55 solver runs, more than limits.runs = 20", 1, true), e)
+  -- 1 nominal + trial 1 (12 design + 10 check) + 2 decision-matrix runs + trial 2 (20 + 10) = 55,
+  -- and after each trial that fits, the alternatives' designs (joint 20 + nothing 12) twice: 119
+  T.truthy(e:find("the plan needs up to 119 solver runs, more than limits.runs = 20", 1, true), e)
 end)
 
 T.case("a declared plausible range the data leave stops the study", function()

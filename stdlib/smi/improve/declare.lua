@@ -79,7 +79,9 @@ local FIELDS = {
     { "solver_check", "number", 40, "points of the validation's solver check" },
   },
   limits = {
-    { "refinements", "number", 2, "how many refinements (revised trials) to try after a trial that is not valid" },
+    { "refinements", "number", nil, "how many refinements (revised trials) to try after a trial that is not valid,"
+      .. " or that an alternative form beats (default: one more than the candidates, so that every candidate can"
+      .. " be tried and one applied too early taken back)" },
     { "runs", "number", nil, "the most solver runs the plan may need" },
   },
   screening = {
@@ -280,6 +282,7 @@ function M.check(d)
   D.candidates = candidates(D.candidates, D.specs)
   D.design = part(D.design, "design", "declaration, design", D)
   D.limits = part(D.limits, "limits", "declaration, limits")
+  D.limits.refinements = D.limits.refinements or (#D.candidates + 1)
   D.weights = part(D.weights, "weights", "declaration, weights")
   D.evidence = part(D.evidence, "evidence", "declaration, evidence")
   if not (D.evidence.margin >= 1) then

@@ -43,6 +43,49 @@ function M.priors(unknowns, specs, file_entries)
   return list
 end
 
+-- Whether value x lies within `k` standard deviations of the prior entry p ({dist, mean, std},
+-- of the parameter itself; a lognormal is judged on the log scale).
+local function within(p, x, k)
+  if p.dist == "lognormal" then
+    if not (x > 0) then return false end
+    local s2 = math.log(1 + (p.std / p.mean) ^ 2)
+    return math.abs(math.log(x) - (math.log(p.mean) - s2 / 2)) <= k * math.sqrt(s2)
+  end
+  return math.abs(x - p.mean) <= k * p.std
+end
+
+--- The near-optimal calibrations (the PR fits as good as the optimum) that the declared priors
+-- allow: a point with a parameter beyond 3 standard deviations of its prior is one the analyst's
+-- knowledge rules out, and a verdict over the near-optimal range must not rest on it. The PR fit
+-- itself ignores the priors (the paper's calibration); this is where they count in the validity
+-- check. cal: the trial's calibration (its evidence holds the priors). Returns cal, or a copy with
+-- the allowed points (all of them when none is: the priors then disagree with every fit, which the
+-- evidence already says) and `prior_dropped`.
+function M.plausible_near_optimal(cal)
+  local ev, no = cal.evidence, cal.near_optimal
+  if not (ev and ev.priors and #ev.priors > 0 and no and no.points) then return cal end
+  local kept = {}
+  for _, pt in ipairs(no.points) do
+    local ok = true
+    for _, p in ipairs(ev.priors) do
+      local x = pt[p.param]
+      if x ~= nil and not within(p, x, 3) then ok = false end
+    end
+    if ok then kept[#kept + 1] = pt end
+  end
+  if #kept == #no.points or #kept == 0 then return cal end
+  local near = {}
+  for key, v in pairs(no) do near[key] = v end
+  near.points = kept
+  near.prior_dropped = #no.points - #kept
+  near.source = ("%s; %d beyond 3 standard deviations of a declared prior left out"):format(no.source or "",
+    near.prior_dropped)
+  local out = {}
+  for key, v in pairs(cal) do out[key] = v end
+  out.near_optimal = near
+  return out
+end
+
 -- Timings per side; the fastest counts. A single timing of a few milliseconds moves by its own
 -- size when another process takes the core, and a choice that flips from run to run changes the
 -- study's numbers; the fastest of three is what the code costs.
@@ -95,7 +138,7 @@ function M.calibrate(t)
   local err = math.sqrt(r.log_evidence_error ^ 2 + (r.loglik_error or 0) ^ 2)
   local out = { log_evidence = r.log_evidence, log_evidence_error = err, sampler_error = r.log_evidence_error,
                 loglik_error = r.loglik_error,
-                mean = r.mean, std = r.std, interval = r.interval, map = r.map, names = r.names, converged = r.converged,
+                mean = r.mean, std = r.std, interval = r.interval, interval_level = r.interval_level, map = r.map, names = r.names, converged = r.converged,
                 diagnostics = r.diagnostics, on = on_model and "model" or "surrogate", cost = t.cost,
                 priors = t.priors, evaluations = r.evaluations, model_runs = r.model_runs, n = t.n, samples = t.samples }
   return out

@@ -95,6 +95,34 @@ function M.apply(D, prev, name, drop)
   return m
 end
 
+--- Whether two trial models are the same model whatever their revisions' names: the same form
+-- switches, fixed values and unknowns (a revision that changes nothing, or only repeats what
+-- another set, gives no new form to compare).
+function M.same_model(a, b)
+  local function same_map(x, y)
+    for k, v in pairs(x) do if y[k] ~= v then return false end end
+    for k, v in pairs(y) do if x[k] ~= v then return false end end
+    return true
+  end
+  if #a.unknowns ~= #b.unknowns or not same_map(a.form, b.form) or not same_map(a.fixed, b.fixed) then return false end
+  local set = {}
+  for _, n in ipairs(a.unknowns) do set[n] = true end
+  for _, n in ipairs(b.unknowns) do if not set[n] then return false end end
+  return true
+end
+
+--- The model `m` without its applied revision `name` (a step back: a revision applied before the
+-- one that mattered may have been kept only because it absorbed part of the truth's change).
+function M.without(D, m, name, why)
+  local keep = {}
+  for _, a in ipairs(m.applied) do if a ~= name then keep[#keep + 1] = a end end
+  local out = fold(D, m.base_unknowns, keep)
+  out.candidate = keep[#keep] or "initial"
+  out.dropped = { { name = name, why = why } }
+  out.without = name
+  return out
+end
+
 --- Which of the previous trial's revisions the next keeps, on evidence: the last-applied revision
 -- of trial k is dropped when trial k's calibrated objective is worse than trial k-1's (same
 -- calibrated responses, the same metric). Returns {name = why} or nil.

@@ -11,6 +11,7 @@ local evidence = require "smi.improve.evidence"
 local surface = require "smi.improve.surface"
 local verdict = require "smi.improve.verdict"
 local forms = require "smi.improve.forms"
+local alternatives = require "smi.improve.alternatives"
 local cost = require "smi.improve.cost"
 local text = require "smi.improve.text"
 local revise = require "smi.improve.revise"
@@ -272,7 +273,8 @@ local function validation_step(run, k)
     local sur = ctx.results["trial" .. k .. "_surrogate"]
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
-    local cal = ctx.results["trial" .. k .. "_calibration"]
+    -- the near-optimal fits the declared priors allow (the PR fit ignores them)
+    local cal = evidence.plausible_near_optimal(ctx.results["trial" .. k .. "_calibration"])
     if calibration.units_stop(cal) then
       local why = ("trial %d's calibration found no overlap between the predicted and the measured distributions,"
         .. " a power of ten apart (status no_overlap): %s The study stops before validation: check the data's"
@@ -315,38 +317,6 @@ local function untried_candidates(run, R, k)
   return untried
 end
 
--- The key of a form: its applied revisions, in name order.
-local function form_key(applied)
-  local a = {}
-  for i, n in ipairs(applied) do a[i] = n end
-  table.sort(a)
-  return table.concat(a, "\n")
-end
-
--- The forms one candidate away from `base` (trial k's model) that no trial and no earlier
--- alternative has tried: revise.apply's models, in the candidates' declared order.
-local function untried_forms(run, R, k, base)
-  local seen = {}
-  for i = 1, k do
-    seen[form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true
-    local alt = i < k and R["trial" .. i .. "_alternatives"]
-    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do seen[form_key(f.applied)] = true end
-  end
-  local out = {}
-  for _, c in ipairs(run.D.candidates) do
-    local applied = false
-    for _, a in ipairs(base.applied) do applied = applied or a == c.name end
-    if not applied then
-      local A = revise.apply(run.D, base, c.name)
-      if not seen[form_key(A.applied)] then
-        seen[form_key(A.applied)] = true
-        out[#out + 1] = A
-      end
-    end
-  end
-  return out
-end
-
 local function alternatives_step(run, k)
   local D, cfg = run.D, run.cfg
   return timed(function(ctx)
@@ -361,19 +331,18 @@ local function alternatives_step(run, k)
       return skipped(("trial %d has no evidence to compare with"):format(k))
     end
     local base = R["trial" .. k .. "_surrogate"].model
-    local untried = untried_forms(run, R, k, base)
+    local untried = alternatives.untried_forms(run.D, R, k, base)
     if #untried == 0 then return skipped(("every form one candidate away from trial %d has been tried"):format(k)) end
     local out = { forms = {}, trial = k, base_applied = base.applied }
     for _, A in ipairs(untried) do
-      local c = { name = A.candidate }
-      ctx:log("alternative %s: %d-point design, its evidence", c.name, A.n_design)
+      ctx:log("alternative %s: %d-point design, its evidence", A.candidate, A.n_design)
       -- the design and the evidence of trial k + 1 in this form: the runs are reused if it becomes that trial
       local m = run.model(A, { purpose = "design", name = "trial" .. (k + 1) .. "-design" })
       local sur = trial.surrogate{ name = "trial" .. (k + 1), model = m, responses = D.names, unknowns = A.unknowns,
                                    specs = A.specs, trend = A.trend, n_design = A.n_design, design = cfg.design,
                                    n_test = cfg.test_points, seed = stream(run.seed, "trial design", k + 1) }
       local ev = trial_evidence(run, A, sur, R, k + 1)
-      out.forms[#out.forms + 1] = { candidate = c.name, applied = A.applied, unknowns = A.unknowns,
+      out.forms[#out.forms + 1] = { candidate = A.candidate, applied = A.applied, unknowns = A.unknowns,
                                     log_evidence = ev.log_evidence, log_evidence_error = ev.log_evidence_error,
                                     mean = ev.mean, std = ev.std, names = ev.names, on = ev.on }
     end
@@ -454,6 +423,14 @@ local function rank_candidates(run, R, base, untried)
   return out
 end
 
+-- After a trial that is not valid with every candidate tried: a step back (alternatives.lua),
+-- as the refinement step's result, or nil.
+local function step_back(run, R, k, state)
+  local m, why = alternatives.step_back(run.D, R, k, state)
+  if not m then return nil end
+  return { failed_responses = {}, chosen = "without " .. m.without, model = m, rank = 1, why = why, step_back = true }
+end
+
 -- After a trial valid on every response: the next trial is the alternative form whose evidence
 -- beats it by the margin (alternatives_step), if any and if the limit allows.
 local function refine_on_evidence(run, ctx, k, v)
@@ -467,8 +444,7 @@ local function refine_on_evidence(run, ctx, k, v)
   local base = revise.copy(ctx.results["trial" .. k .. "_surrogate"].model)
   local out = { failed_responses = {}, chosen = better.candidate, model = revise.apply(run.D, base, better.candidate),
                 rank = 1, why = why, on_evidence = true }
-  ctx.report:section(("Model refinement after trial %d"):format(k))
-  ctx.report:callout(("Refinement after trial %d: %s (%s)."):format(k, out.chosen, why), "info")
+  view("refinement")(run, ctx.report, out, k)
   return out
 end
 
@@ -494,7 +470,13 @@ local function refinement_step(run, k)
     if undetermined_only then failed = undetermined end
     local untried = untried_candidates(run, R, k)
     if #untried == 0 then
-      return skipped(("trial %d is %s and every candidate has been tried"):format(k, state))
+      -- every candidate is in: take back the earliest revision whose removal no trial has tried
+      local back = step_back(run, R, k, state)
+      if back then
+        view("refinement")(run, ctx.report, back, k)
+        return back
+      end
+      return skipped(("trial %d is %s, every candidate has been tried and every step back too"):format(k, state))
     end
     -- the base of the next trial: this trial's revisions, minus the last one if it made the fit worse
     local base = revise.copy(R["trial" .. k .. "_surrogate"].model)
@@ -555,6 +537,8 @@ local function summary_step(run, ctx)
   local walls, per, total = runs_per_step(run, R)
   out.solver_runs_total = total
   view("summary")(run, ctx.report, out, R, walls, per)
+  view("before_after")(run, ctx.report, out, R)
+  view("opening")(run, ctx.report, out, R)
   hook(run, "summary", ctx, c, out)
   ctx.report:provenance{ seed = run.seed, quick = opt.quick, data = opt.data, lua = _VERSION,
                          prior = opt.prior or "none", solver_runs = out.solver_totals, sample_sizes = cfg }

@@ -1,12 +1,18 @@
 -- SPDX-License-Identifier: MIT
 --- The report's refinement section after trial k: the weighted decision matrix, the revised
--- models at their start means and the choice (the refinement step's result `out`).
+-- models at their start means and the choice (the refinement step's result `out`); a refinement
+-- without a matrix (on evidence, or a step back) gets its reason only.
 local text = require "smi.improve.text"
 local figs = require "smi.improve.figures"
 
 return function(run, r, out, k)
   local D, dm = run.D, out.matrix
   r:section(("Model refinement after trial %d"):format(k))
+  -- a refinement on evidence (an alternative beats the trial) or a step back has no matrix
+  if not dm then
+    r:callout(("Refinement after trial %d: %s (%s)."):format(k, out.chosen, out.why), "info")
+    return
+  end
   local M_rows, pred, cols = {}, {}, { "Candidate" }
   for _, n in ipairs(dm.criteria) do cols[#cols + 1] = "M " .. n end
   for _, n in ipairs(dm.criteria) do cols[#cols + 1] = "S " .. n end
