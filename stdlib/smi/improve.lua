@@ -134,10 +134,10 @@ function M.run(declaration, argv, run_opts)
     end
   end
   -- wall time and solver-run counts differ between identical runs (reused runs count 0), and so
-  -- does a refinement candidate's run time: left out of the steps' result hashes, so a rerun does
-  -- not mark the later steps stale
+  -- do a refinement candidate's run time and the timings that decide where a trial runs
+  -- (surface.lua): left out of the steps' result hashes, so a rerun does not mark the later steps stale
   local s = study.new{ name = D.name, seed = seed, results = run_opts.results, out = run_opts.out,
-    volatile = { "wall_seconds", "solver_runs", "run_seconds" },
+    volatile = { "wall_seconds", "solver_runs", "run_seconds", "model_seconds", "kriging_seconds" },
     report = { title = D.title or D.name, subtitle = (D.subtitle or "") .. (opt.quick and " (quick run)" or ""),
                author = D.author or "smi.improve" } }
   local run = run_context.new{ D = D, opt = opt, cfg = cfg, seed = seed, study = s, prior = PRIOR,

@@ -14,7 +14,8 @@
 #      a solver model's constants/env/executor, smi.improve fields and revision clashes,
 #      smi.options suggestions, the figure check).
 # Removed before comparing, as legitimately run-dependent (nothing else is):
-#   results.json  "seconds", "wall_seconds", "run_seconds": N (timings)
+#   results.json  "seconds", "wall_seconds", "run_seconds", "model_seconds", "kriging_seconds": N
+#                 (timings)
 #   report        "Generated YYYY-MM-DD HH:MM UTC"           (the date)
 #                 "Steps of this run, N s|ms in total" and that table's time cells
 # Output paths are the same in every run (each runs in ./run, moved aside after), so absolute
@@ -24,7 +25,7 @@ RUNS=${RUNS:-4}
 : > .out; : > .err  # (lib.sh's bad() shows them; these checks compare files instead)
 
 normalize() {  # FILE OUT
-  sed -E -e 's/"(seconds|wall_seconds|run_seconds)": [-0-9.e+]+/"\1": T/g' \
+  sed -E -e 's/"(seconds|wall_seconds|run_seconds|model_seconds|kriging_seconds)": [-0-9.e+]+/"\1": T/g' \
          -e 's/Generated [0-9]{4}-[0-9]{2}-[0-9]{2} [0-9]{2}:[0-9]{2} UTC/Generated DATE/' \
          -e 's/Steps of this run, [0-9.]+ m?s in total/Steps of this run, T in total/' \
          -e 's#ran</td><td class="num">[0-9.]+</td>#ran</td><td class="num">T</td>#' "$1" > "$2"

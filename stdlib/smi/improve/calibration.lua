@@ -122,8 +122,8 @@ function M.objective(metric, predicted, grids, f_exp, data, MODES)
 end
 
 --- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of the calibrated responses as
--- the model, the unknowns' distributions as the inputs (every Kriging input is an unknown: the
--- fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
+-- the model (or the model itself, t.direct, with its differences for the gradient), the unknowns'
+-- distributions as the inputs (every Kriging input is an unknown: the fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
 -- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
 -- predictor, quantile chain rule, KDE, metric), the overlapping start when PR saturates, and the
 -- identifiability directions of the objective itself. o: {f_exp, data, start, maxeval,
@@ -131,14 +131,14 @@ end
 -- bench/calibrate_trial2.lua, which times this very call.
 function M.pr_stage(t, grids, o)
   local MODES = t.calibrate
-  local ins, model, dat, g = {}, {}, {}, {}
+  local ins, dat, g = {}, {}, {}
+  local model = trial.responses_model(t.kriging, t.direct, MODES)
   for i, n in ipairs(t.unknowns) do
     local u = t.specs[n]
     ins[i] = { name = n, dist = u.dist, mean = { u.mean[1], u.mean[2], o.start[n .. ".mean"] },
                std = { u.std[1], u.std[2], o.start[n .. ".std"] } }
   end
   for _, m in ipairs(MODES) do
-    model[m] = t.kriging[m]
     dat[m] = t.metric == "pr" and o.f_exp[m] or o.data[m]
     g[m] = { grids[m].lower, grids[m].upper, grids[m].nodes }
   end
@@ -168,12 +168,13 @@ local pr_stage = M.pr_stage
 -- + 1e-4: matched as well as a start needs), "stationary" (no step within the bounds lowers it)
 -- or "max_iterations" (its budget: not converged).
 local ENDS_ON_CRITERION = { tolerance_reached = true, ftol_reached = true, stationary = true }
-local function moments_record(r0, params)
+local function moments_record(r0, params, direct)
   local s1, moved = r0.starts[1], false
   local p = s1.prepared or {}
   -- the kernel hands the start back through scaled units: a kept start differs by rounding only
   for _, q in ipairs(params) do moved = moved or math.abs(s1.start[q.name] - q.start) > 1e-9 * (q.upper - q.lower) end
-  return { method = "smi.calibrate's moment start (Levenberg-Marquardt, the Krigings' analytic Jacobian)",
+  return { method = direct and "smi.calibrate's moment start (Levenberg-Marquardt, the model's differences)"
+             or "smi.calibrate's moment start (Levenberg-Marquardt, the Krigings' analytic Jacobian)",
            params = s1.start, moved = moved, evaluations = r0.start_evaluations, objective_start = p.before,
            objective = p.after, status = p.status or "none",
            converged = ENDS_ON_CRITERION[p.status] == true }
@@ -204,7 +205,7 @@ local function optimum(t, predicted, grids, params)
   -- optimum where the data can tell (smi.calibrate's agreement, at its PR tolerance)
   r.starts, r.history, r.optima, r.agreement = r0.starts, r0.history, r0.optima, r0.agreement
   if not restarted then r.at_bounds = r0.at_bounds end
-  return r, tol, moments_record(r0, params)
+  return r, tol, moments_record(r0, params, t.direct)
 end
 
 -- The calibrated parameters as the report lists them.
@@ -239,10 +240,11 @@ local function bound_words(w, n)
     .. " the range only if the physics allows it)"):format(head)
 end
 
-local function box_warnings(r, params, design_bounds, n)
+local function box_warnings(r, params, design_bounds, n, direct)
   local warnings = {}
   for _, w in ipairs(r.warnings) do warnings[#warnings + 1] = bound_words(w, n) end
-  for _, p in ipairs(params) do
+  -- on the model itself there is no surrogate to extrapolate
+  for _, p in ipairs(direct and {} or params) do
     local d = smi.dist[p.dist]{ mean = p.mean, std = p.std }
     local lo, hi = d:quantile(0.001), d:quantile(0.999)
     local box = design_bounds[p.input]
@@ -337,7 +339,8 @@ end
 
 --- Calibration: t {unknowns, specs (name -> {dist, mean = {lo, hi, start}, std = {...}, unit}),
 -- calibrate, validate (response names), data = {response = vec}, f_exp = {response = dist},
--- grid_margins = {response = number}, kriging, design_bounds, n, seed, maxeval, bootstrap,
+-- grid_margins = {response = number}, kriging, direct (the in-process smi.model when the trial runs
+-- on it, surface.lua: then it replaces the Krigings everywhere), design_bounds, n, seed, maxeval, bootstrap,
 -- boot_maxeval, metric = "pr"|"loglik", multistart, prior (the analyst's, smi.calibrate's `prior`
 -- list; nil: none), prior_labels}. Both stages are one smi.calibrate call in its model form:
 -- stage 1 its moment start, stage 2 the paper's metric (analytic gradients).
@@ -356,7 +359,7 @@ end
 
 function M.calibrate(t)
   t.metric = t.metric or "pr"
-  local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed)
+  local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed, t.direct)
   local params1 = declared_params(t)
   local grids = grids_of(t.data, t.calibrate, t.grid_margins)
   local r, tol, r1 = optimum(t, predicted, grids, params1)
@@ -364,9 +367,10 @@ function M.calibrate(t)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
     status = r.status, message = r.message, no_overlap = r.no_overlap,
-    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]]), at_bounds = r.at_bounds, params = params,
+    warnings = box_warnings(r, params, t.design_bounds, #t.data[t.calibrate[1]], t.direct), at_bounds = r.at_bounds,
+    params = params,
     theta = r.params, weak = r.identifiability and r.identifiability.weak or {},
-    n = t.n, seed = t.seed, calibrate = t.calibrate,
+    n = t.n, seed = t.seed, calibrate = t.calibrate, on = t.direct and "model" or "surrogate",
     maxeval = t.maxeval, metric = t.metric, starts = r.starts, optima = r.optima, agreement = r.agreement,
     priors = t.prior_labels or {}, moments_stage = r1 }
   out.objective = 0

@@ -8,6 +8,7 @@
 local trial = require "smi.improve.trial"
 local calibration = require "smi.improve.calibration"
 local evidence = require "smi.improve.evidence"
+local surface = require "smi.improve.surface"
 local verdict = require "smi.improve.verdict"
 local forms = require "smi.improve.forms"
 local alternatives = require "smi.improve.alternatives"
@@ -198,9 +199,14 @@ local function surrogate_step(run, k)
       and ("sequential design of at most " .. T.n_design .. " points") or (T.n_design .. "-point Latin hypercube"),
       #T.unknowns, cfg.test_points)
     local m = run.model(T, { purpose = "design", name = "trial" .. k .. "-design" })
-    local res = trial.surrogate{ name = "trial" .. k, model = m, responses = D.names, unknowns = T.unknowns,
-                                 specs = T.specs, trend = T.trend, n_design = T.n_design, design = cfg.design,
-                                 n_test = cfg.test_points, seed = stream(run.seed, "trial design", k) }
+    -- where the trial runs, measured once (surface.lua); Krigings it runs on must resolve the data's scatter
+    local res = surface.surrogate(function(added)
+      return trial.surrogate{ name = "trial" .. k, model = m, responses = D.names, unknowns = T.unknowns,
+                              specs = T.specs, trend = T.trend, n_design = T.n_design, design = cfg.design,
+                              n_test = cfg.test_points, seed = stream(run.seed, "trial design", k), added = added }
+    end, { m = m, responses = D.names, n = cfg.cal_n, seed = surface.seed(run.seed, k), trend = T.trend },
+      ctx.results.data, T.n_design, cfg.design == "sequential", function(...) ctx:log(...) end)
+    ctx:log("%s: calibration, validation and evidence on the %s (%s)", label(T, k), res.on, res.cost.why)
     res.model = T
     -- data far outside everything the model gives over the design box: likely units
     local units = {}
@@ -215,25 +221,16 @@ local function surrogate_step(run, k)
   end)
 end
 
--- The trial's posterior and log evidence under the declared priors (evidence.lua): on the
--- Krigings, or on the model itself when it runs in-process and one batch of it is cheaper than
--- the Krigings' fit and predict (measured here, recorded in the result). --quick halves the sizes.
+-- The trial's posterior and log evidence under the declared priors (evidence.lua): where the
+-- trial runs (its surrogate step's measured decision, surface.lua; an alternative form's design
+-- is measured here). --quick halves the sizes.
 local function trial_evidence(run, T, sur, R, k)
   local D = run.D
   local n, samples = D.evidence.n, D.evidence.samples
   if run.opt.quick then n, samples = math.ceil(n / 2), math.ceil(samples / 2) end
-  local direct, cost
   local m = run.model(T, { purpose = "evidence", name = "trial" .. k .. "-evidence" })
-  if m.kind == "lua" then
-    local Y = {}
-    for _, r in ipairs(D.names) do Y[r] = smi.vec(sur.diagnostics[r].observed) end
-    local box = {}
-    for i, u in ipairs(T.unknowns) do box[i] = sur.design_bounds[u] end
-    local model_s, kriging_s = evidence.costs(m.model, smi.mat(sur.design), Y, D.names, box, n,
-      stream(run.seed, "trial evidence cost", k), T.trend)
-    cost = { model_s = model_s, kriging_s = kriging_s, points = n }
-    direct = m.model
-  end
+  local cost = sur.cost or surface.decide(m, sur, D.names, run.cfg.cal_n, surface.seed(run.seed, k), T.trend)
+  local direct = cost.on == "model" and m.model or nil
   return evidence.calibrate{ unknowns = T.unknowns, specs = T.specs, responses = D.names, data = run.vecs(R.data),
     kriging = trial.krigings(sur), direct = direct, cost = cost,
     priors = evidence.priors(T.unknowns, T.specs, run.prior.entries),
@@ -247,13 +244,16 @@ local function calibration_step(run, k)
     if sur.skipped then return skipped(sur.reason) end
     local T = sur.model
     ctx:log("SLSQP on %d CRN samples, %d parameters, at most %d evaluations", cfg.cal_n, 2 * #T.unknowns, cfg.maxeval)
+    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "calibration",
+                                  "trial" .. k .. "-calibration")
     local res = calibration.calibrate{
       unknowns = T.unknowns, specs = T.specs, calibrate = D.calibrate, validate = D.validate,
       data = run.vecs(ctx.results.data), f_exp = run.f_exp(ctx.results.data), grid_margins = run.margins,
-      kriging = trial.krigings(sur), design_bounds = sur.design_bounds, n = cfg.cal_n,
+      kriging = trial.krigings(sur), direct = direct, design_bounds = sur.design_bounds, n = cfg.cal_n,
       seed = stream(run.seed, "trial calibration", k),
       maxeval = cfg.maxeval, bootstrap = cfg.bootstrap, boot_maxeval = cfg.boot_maxeval, metric = opt.metric,
       multistart = opt.multistart, prior_labels = run.prior.labels }
+    res.cost = sur.cost
     if not calibration.units_stop(res) then
       local t0 = smi.now()
       res.evidence = trial_evidence(run, T, sur, ctx.results, k)
@@ -282,11 +282,16 @@ local function validation_step(run, k)
       ctx.report:callout(why, "fail")
       return skipped(why)
     end
-    local check = cfg.solver_check > 0 and run.model(T, { purpose = "check", batch = true,
-      name = "trial" .. k .. "-check", points = cfg.solver_check }) or nil
+    -- on the model itself there is no surrogate for a solver check to check
+    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "validation",
+                                  "trial" .. k .. "-validation")
+    local n_check = direct and 0 or cfg.solver_check
+    local check = n_check > 0 and run.model(T, { purpose = "check", batch = true,
+      name = "trial" .. k .. "-check", points = n_check }) or nil
     local res = trial.validate{ name = "trial" .. k, model = T, check_model = check, kriging = trial.krigings(sur),
+                                direct = direct,
                                 calibration = cal, data = run.vecs(ctx.results.data), responses = D.names,
-                                calibrate = D.calibrate, n = cfg.val_n, n_solver = cfg.solver_check,
+                                calibrate = D.calibrate, n = cfg.val_n, n_solver = n_check,
                                 n_near = cfg.near_n, seed = stream(run.seed, "trial validation", k) }
     for _, m in ipairs(D.names) do
       local v = res.responses[m]

@@ -8,8 +8,9 @@
 local OFFSET = {
   ["experimental pdf"] = 0, screening = 20,
   ["trial design"] = 0, ["trial calibration"] = 10, ["trial validation"] = 30,
-  ["trial evidence"] = 40, ["trial evidence cost"] = 50,
-  ["test points"] = 1000, ["sequential candidates"] = 2000, tolerance = 11, bootstrap = 7,
+  ["trial evidence"] = 40, ["trial cost"] = 50,
+  ["test points"] = 1000, ["sequential candidates"] = 2000, ["added design points"] = 3000,
+  tolerance = 11, bootstrap = 7,
   ["u-pooling"] = 3, ["near-optimal predictions"] = 5, ["solver check points"] = 7, ["before after"] = 60,
 }
 local PER_TRIAL = 100

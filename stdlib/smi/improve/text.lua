@@ -254,6 +254,18 @@ function M.surrogate_intro(D, T, res, fixed, test_points)
     T.trend, listed(D.names), how, table.concat(T.unknowns, ", "), table.concat(form, ", "), fixed, test_points)
 end
 
+--- Where the trial's calibration, validation and evidence ran (the surrogate step's decision,
+-- surface.lua), for the surrogate section.
+function M.surface_note(res)
+  if res.on == "model" then
+    return ("The calibration, the validation and the evidence of this trial ran on the model itself, not on these"
+      .. " Krigings: it runs in-process and is cheaper (%s). The Krigings are shown for their accuracy only."):format(
+      res.cost.why)
+  end
+  return ("The calibration, the validation and the evidence of this trial run on these Krigings (%s)."):format(
+    res.cost and res.cost.why or "where they ran was not recorded")
+end
+
 -- ---------------------------------------------------------------------------------------------
 -- Calibration
 -- ---------------------------------------------------------------------------------------------
@@ -281,17 +293,22 @@ function M.calibration_intro(D, T, res, cfg, prior_file, labels)
   local pr = res.metric == "pr"
   local parts = {}
   for _, m in ipairs(D.calibrate) do parts[#parts + 1] = ("%s %.4f"):format(m, res.metrics[m]) end
+  local direct = res.on == "model"
   return ("Means and standard deviations of the %d unknowns (types, bounds and start values as declared: the"
     .. " study's unknowns, and each applied candidate's new ones) minimize %s over the KDEs of %d"
-    .. " common-random-number samples propagated through the Kriging models; SLSQP (NLopt), in"
-    .. " smi.calibrate's model form (the Krigings as the model: analytic gradients). PR saturates when the PDFs"
+    .. " common-random-number samples propagated through %s; SLSQP (NLopt), in"
+    .. " smi.calibrate's model form (%s). PR saturates when the PDFs"
     .. " do not overlap, so a first stage moves the start values to match the means and stds of %s"
-    .. " (smi.calibrate's moment start: Levenberg-Marquardt on the Krigings' Jacobian, %d model runs; %s); the"
+    .. " (smi.calibrate's moment start: Levenberg-Marquardt on the %s, %d model runs; %s); the"
     .. " PR stage starts from there. %s Objective at the optimum %.4f (%s %s), %d"
     .. " evaluations from %d start(s), %s (converged: %s)."):format(
     #T.unknowns, (pr and "the summed PR between the KDE-ebd PDFs of the data and the predicted ones, over %s"
-      or "minus the log-likelihood of the data points of %s"):format(listed(D.calibrate)), cfg.cal_n, listed(D.calibrate),
-    res.moments_stage.evaluations, M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
+      or "minus the log-likelihood of the data points of %s"):format(listed(D.calibrate)), cfg.cal_n,
+    direct and ("the model itself (it runs in-process, cheaper than the Krigings: %s)"):format(res.cost.why)
+      or "the Kriging models",
+    direct and "the model, its differences for the gradient" or "the Krigings as the model: analytic gradients",
+    listed(D.calibrate), direct and "model's differences" or "Krigings' Jacobian", res.moments_stage.evaluations,
+    M.stage1_outcome(res.moments_stage), priors_sentence(prior_file, labels),
     res.objective, pr and "PR" or "-logL", table.concat(parts, ", "), res.evaluations,
     res.starts and #res.starts or 1, res.status, tostring(res.converged))
 end
@@ -354,13 +371,16 @@ function M.validation_intro(D, res, n, cfg)
     .. " verdict is valid or invalid only when that whole range lies on one side of the threshold, else"
     .. " inconclusive; an undecided one in a trial that is otherwise valid is listed as undetermined, not hidden."):format(
     listed(D.validate), #D.validate > 1 and "were" or "was", cfg.near_n)
+  local direct = res.on == "model"
+  local check = direct and " The samples ran through the model itself (in-process), so there is no surrogate to check."
+    or (" As a check of the surrogate, %d points of the calibrated distributions, stratified (a Latin hypercube in"
+      .. " probability space), were also run through the solver itself."):format(res.n_solver)
   return ("u-pooling area metric (eq. 11 and 12) of the data of each response against the KDE of %d samples of"
-    .. " the calibrated model (Kriging), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
+    .. " the calibrated model (%s), with the exact 95 %% threshold for the number of data (%.4f for n = %d,"
     .. " docs/spec/algorithms.md §5). %s were used by the calibration: their verdict is the optimum's.%s The"
-    .. " trial is valid when every calibrated response is valid and its calibration converged. As a check of the"
-    .. " surrogate, %d points of the calibrated distributions, stratified (a Latin hypercube in probability"
-    .. " space), were also run through the solver itself."):format(
-    res.n, res.responses[D.calibrate[1]].threshold, n, listed(D.calibrate), val, res.n_solver)
+    .. " trial is valid when every calibrated response is valid and its calibration converged.%s"):format(
+    res.n, direct and "the model itself" or "Kriging", res.responses[D.calibrate[1]].threshold, n,
+    listed(D.calibrate), val, check)
 end
 
 --- The sentence that says which of the Kriging verdict and the solver check governs when they

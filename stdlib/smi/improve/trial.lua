@@ -20,18 +20,25 @@ function M.design_box(u)
   return { lo, u.mean[2] + reach }
 end
 
+--- The model that predicts `names`: `direct`, the in-process smi.model the trial runs on
+-- (surface.lua; one call gives every response), or else the table of their Krigings k.
+function M.responses_model(k, direct, names)
+  if direct then return direct end
+  local model = {}
+  for _, m in ipairs(names) do model[m] = k[m] end
+  return model
+end
+
 --- predicted(th, names): the named responses of the common-random-number sample of n points
--- through the Krigings k ({response = kriging}), the unknowns distributed as their specs say
--- with the means and stds of th ({["input.mean"] = v, ["input.std"] = v}).
-function M.predictor(k, unknowns, specs, n, seed)
+-- through the Krigings k ({response = kriging}) or the model `direct`, the unknowns distributed
+-- as their specs say with the means and stds of th ({["input.mean"] = v, ["input.std"] = v}).
+function M.predictor(k, unknowns, specs, n, seed, direct)
   return function(th, names)
     local dists = {}
     for i, name in ipairs(unknowns) do
       dists[i] = { name, smi.dist[specs[name].dist]{ mean = th[name .. ".mean"], std = th[name .. ".std"] } }
     end
-    local model = {}
-    for _, m in ipairs(names) do model[m] = k[m] end
-    return smi.propagate{ model = model, inputs = dists, n = n, seed = seed }
+    return smi.propagate{ model = M.responses_model(k, direct, names), inputs = dists, n = n, seed = seed }
   end
 end
 
@@ -44,7 +51,8 @@ end
 --- Design, solver runs, Kriging per response, leave-one-out and an independent test set.
 -- t: {name, model (the factory's smi.model over the unknowns), responses, unknowns, specs, trend,
 -- n_design (the fixed design's size, the sequential one's limit), design = "sequential"|"fixed",
--- n_test, seed}
+-- n_test, seed, added (a fixed design's further points: a second maximin hypercube of that many
+-- over the same box, its own seed, so the first n_design points and their runs are kept)}
 function M.surrogate(t)
   local box = {}
   for i, n in ipairs(t.unknowns) do box[i] = M.design_box(t.specs[n]) end
@@ -58,6 +66,13 @@ function M.surrogate(t)
       max = t.n_design, seed = t.seed, trend = t.trend, responses = t.responses }
   else
     X = smi.doe.lhs(t.n_design, box, { seed = t.seed, criterion = "maximin" })
+    if (t.added or 0) > 0 then
+      local rows = {}
+      for i = 1, X:rows() do rows[i] = col_table(X[i]) end
+      local X2 = smi.doe.lhs(t.added, box, { seed = stream(t.seed, "added design points"), criterion = "maximin" })
+      for i = 1, X2:rows() do rows[#rows + 1] = col_table(X2[i]) end
+      X = smi.mat(rows)
+    end
     Y = model:evaluate(X)
   end
   local Xt = t.n_test > 0 and smi.doe.lhs(t.n_test, box, { seed = stream(t.seed, "test points"), criterion = "maximin" }) or nil
@@ -115,7 +130,8 @@ function M.krigings(s)
 end
 
 --- What the calibrated responses can determine (beyond the paper): the relative sensitivities
--- d ln y / d ln x of each response's Kriging at the calibrated means (central differences of
+-- d ln y / d ln x of each response's Kriging (or of the model, t.direct, when the trial runs on
+-- it) at the calibrated means (central differences of
 -- ±1 %), for each validation-only response the share of its sensitivity vector outside the span
 -- of the calibrated ones' (0: the calibration fixes it; 1: it leaves it free), and the number of
 -- mean combinations the calibrated responses leave undetermined. t: {calibrate, validate}.
@@ -125,16 +141,25 @@ function M.sensitivity(k, cal, t)
   local all = {}
   for _, m in ipairs(t.calibrate) do all[#all + 1] = m end
   for _, m in ipairs(t.validate) do all[#all + 1] = m end
+  -- the point and its 2 d steps, in one call per Kriging (or one model call)
+  local rows = { x0 }
+  for j = 1, #x0 do
+    local up, dn = {}, {}
+    for i = 1, #x0 do up[i], dn[i] = x0[i], x0[i] end
+    up[j], dn[j] = x0[j] * 1.01, x0[j] * 0.99
+    rows[#rows + 1], rows[#rows + 2] = up, dn
+  end
+  local P, Y = smi.mat(rows), nil
+  if t.direct then
+    Y = t.direct:evaluate(P)
+  else
+    Y = {}
+    for _, m in ipairs(all) do Y[m] = k[m]:predict(P) end
+  end
   local J = {}
   for _, m in ipairs(all) do
     J[m] = {}
-    local f0 = k[m]:predict(smi.mat{ x0 })[1]
-    for j = 1, #x0 do
-      local up, dn = {}, {}
-      for i = 1, #x0 do up[i], dn[i] = x0[i], x0[i] end
-      up[j], dn[j] = x0[j] * 1.01, x0[j] * 0.99
-      J[m][j] = (k[m]:predict(smi.mat{ up })[1] - k[m]:predict(smi.mat{ dn })[1]) / (0.02 * f0)
-    end
+    for j = 1, #x0 do J[m][j] = (Y[m][2 * j] - Y[m][2 * j + 1]) / (0.02 * Y[m][1]) end
   end
   -- Gram-Schmidt on the calibrated rows, then each validation-only row's residual.
   local function dot(a, b) local s = 0 for i = 1, #a do s = s + a[i] * b[i] end return s end
@@ -180,7 +205,7 @@ function M.metric_range(t, response)
   local cal, specs = t.calibration, t.model.specs
   local names = {}
   for i, p in ipairs(cal.params) do names[i] = p.input end
-  local predicted = M.predictor(t.kriging, names, specs, t.n_near, stream(t.seed, "near-optimal predictions"))
+  local predicted = M.predictor(t.kriging, names, specs, t.n_near, stream(t.seed, "near-optimal predictions"), t.direct)
   local lo, hi, threshold, metrics = math.huge, -math.huge, nil, {}
   for i, th in ipairs(cal.near_optimal.points) do
     local Y = predicted(th, { response })
@@ -200,13 +225,13 @@ end
 -- A response used by the calibration gets the verdict at the optimum; a validation-only one
 -- gets the verdict over the near-optimal calibrations (metric_range). t: {name, model (trial
 -- model record), check_model (the factory's smi.model over the unknowns, or nil: no solver
--- check), kriging, calibration, data, responses, calibrate, n, n_solver, n_near, seed}.
+-- check), kriging, direct (the in-process smi.model when the trial runs on it, surface.lua: then
+-- it replaces the Krigings), calibration, data, responses, calibrate, n, n_solver, n_near, seed}.
 function M.validate(t)
-  local k, dists = t.kriging, M.distributions(t.calibration)
-  local km = {}
-  for _, m in ipairs(t.responses) do km[m] = k[m] end
-  local Ys = smi.propagate{ model = km, inputs = dists, n = t.n, seed = t.seed }
-  local out = { n = t.n, n_solver = t.n_solver, responses = {} }
+  local dists = M.distributions(t.calibration)
+  local Ys = smi.propagate{ model = M.responses_model(t.kriging, t.direct, t.responses), inputs = dists, n = t.n,
+                            seed = t.seed }
+  local out = { n = t.n, n_solver = t.n_solver, responses = {}, on = t.direct and "model" or "surrogate" }
   local Ysol
   if t.check_model and t.n_solver > 0 then
     local Xs = require("smi.improve.check_points")(dists, t.n_solver, stream(t.seed, "solver check points"))

@@ -33,7 +33,8 @@ return function(run, r, res, T, k)
     srows[#srows + 1] = { n }
     for _, m in ipairs(sv.responses) do srows[#srows][#srows[#srows] + 1] = sv.sensitivity[m][n] end
   end
-  r:table{ caption = "Relative sensitivities d ln y / d ln x of the Krigings at the calibrated means.",
+  r:table{ caption = ("Relative sensitivities d ln y / d ln x of the %s at the calibrated means."):format(
+             res.on == "model" and "model" or "Krigings"),
            rows = srows, columns = columns }
   r:callout(text.identifiability(D, res), sv.most_unconstrained_share > 0.2 and "warn" or "info")
   if #res.weak > 0 then r:callout(text.weak_parameters(D, res.weak), "warn") end

@@ -17,6 +17,7 @@ return function(run, r, res, k, units)
   if #T.dropped > 0 then r:callout("Revisions dropped before this trial: " .. text.dropped(T.dropped) .. ".", "info") end
   r:text(text.surrogate_intro(D, T, res, next(T.fixed) and (", fixed " .. assignments(T.fixed)) or "",
     run.cfg.test_points))
+  r:callout(text.surface_note(res), "info")
   local figures, rows = {}, {}
   for _, name in ipairs(D.names) do
     local d, title = res.diagnostics[name], D.by_name[name].title
