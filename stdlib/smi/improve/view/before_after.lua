@@ -1,21 +1,24 @@
 -- SPDX-License-Identifier: MIT
 --- The report's before/after figure of each response: the data, the initial model as declared
--- (trial 1's Krigings at the unknowns' start values, before any calibration) and the model the
--- conclusion names (its trial's Krigings at its calibrated values). out: the summary step's
+-- (trial 1 at the unknowns' start values, before any calibration) and the model the conclusion
+-- names (its trial at its calibrated values). out: the summary step's
 -- result; R: the steps' results.
 local trial = require "smi.improve.trial"
+local surface = require "smi.improve.surface"
 local stream = require "smi.improve.stream"
 local svg = require "smi.report.svg"
 
 local N = 2000
 
--- The propagated samples of trial k's Krigings at th ({"x.mean" =, "x.std" =}), or nil.
+-- The propagated samples of trial k at th ({"x.mean" =, "x.std" =}) where the trial ran (its
+-- Krigings, or the in-process model itself: surface.lua), or nil.
 local function samples(run, R, k, th, seed)
   local sur = R["trial" .. k .. "_surrogate"]
   if not sur or sur.skipped then return nil end
   local ok, Y = pcall(function()
     local T = sur.model
-    return trial.predictor(trial.krigings(sur), T.unknowns, T.specs, N, seed)(th, run.D.names)
+    local direct = surface.direct(sur, function(c) return run.model(T, c) end, "validation", "trial" .. k .. "-before-after")
+    return trial.predictor(trial.krigings(sur), T.unknowns, T.specs, N, seed, direct)(th, run.D.names)
   end)
   return ok and Y or nil
 end
