@@ -1,6 +1,6 @@
 -- SPDX-License-Identifier: MIT
--- smi.improve's model-form evidence end to end on two products of its own. The chain
--- (tests/lua/chain_product.lua):
+-- smi.improve's model-form evidence end to end on a product of its own (the isolator's is
+-- test_improve_evidence_isolator.lua). The chain (tests/lua/chain_product.lua):
 -- nine specimens generated from the "tip mass" form (a known 0.1 kg on m2). The frequencies alone
 -- let the initial form absorb part of the tip mass in its stiffnesses; the gauge d1 = 1/k1 and
 -- the design values as priors (3 % on the stiffness means) are what separate the forms.
@@ -61,41 +61,4 @@ T.case("without priors, no form the truth lacks is called valid", function()
     end
   end
 end)
--- The isolator (tests/lua/isolator_product.lua): with the means free within ±25 % the initial
--- form absorbs the bracket's mass; the design values as priors (3 %) separate the forms. The true
--- means are drawn from the priors (the sweep's first batch, bench/forms_sweep.lua).
-local iso = require "isolator_product"
-local iso_data = smi.out("isolator_bracket.csv")
-local seed = 9100 + 17
-iso.write_data(iso_data, { "bracket mass" }, iso.draw_truth(seed), seed + 1, 9)
-
-local function run_iso(name, priors)
-  local results = smi.out(name .. "_results.json")
-  os.remove(results)
-  local _, c = improve.run(iso.declaration(name, iso_data, priors), { "--quick" }, { results = results })
-  report(c)
-  return c
-end
-
-T.case("a valid trial is compared with its alternatives: with priors, the true form is the valid one", function()
-  local c = run_iso("iso_priors", true)
-  T.eq(c.verdict, "valid")
-  local chosen, alternatives = nil, 0
-  for _, f in ipairs(c.forms) do
-    if f.chosen then chosen = f end
-    if f.validated == false then alternatives = alternatives + 1 end
-  end
-  T.eq(applied(chosen), "bracket mass")
-  T.truthy(alternatives >= 1, "the forms one candidate away were compared by their evidence")
-  T.eq(c.refinements[1], "bracket mass", "the initial form fits; the alternative that beats it is the next trial")
-end)
-
-T.case("without priors the forms fit alike: undetermined, never valid in one form", function()
-  local c = run_iso("iso_no_priors", false)
-  T.eq(c.verdict, "undetermined")
-  local supported = 0
-  for _, f in ipairs(c.forms) do if f.supported then supported = supported + 1 end end
-  T.truthy(supported >= 2, "the forms the data cannot separate are named")
-end)
-
 T.finish()
