@@ -12,6 +12,7 @@
 -- Prints one line per study and the counts; writes OUT/forms_sweep_PRODUCT.json.
 local improve = require "smi.improve"
 local json = require "smi.report.json"
+local forms = require "smi.improve.forms"
 
 local product_file = arg[1] or error("usage: forms_sweep.lua PRODUCT.lua [BATCHES] [FIRST_SEED] [--quick]", 0)
 local product_name = product_file:match("([^/]+)%.lua$"):gsub("_product$", "")
@@ -20,12 +21,8 @@ local first_seed = tonumber(arg[3] or "9100")
 local quick = arg[4] == "--quick"
 local P = dofile(product_file)
 
-local function key(applied)
-  local a = {}
-  for i, v in ipairs(applied) do a[i] = v end
-  table.sort(a)
-  return table.concat(a, " + ")
-end
+-- a form in the lines' words: its revisions in name order (smi.improve.forms.key)
+local function key(applied) return (forms.key(applied):gsub("\n", " + ")) end
 
 local rows = {}
 local counts = { priors = { right = 0, other_valid = 0, n = 0 }, none = { lacking_valid = 0, valid_true = 0, n = 0 } }

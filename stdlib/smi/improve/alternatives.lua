@@ -6,24 +6,17 @@
 -- form without the earliest revision is tried (a step back). Pure functions of the saved step
 -- results R (trialk_surrogate, trialk_alternatives) and the checked declaration D.
 local revise = require "smi.improve.revise"
+local forms = require "smi.improve.forms"
 
 local M = {}
-
---- The key of a form: its applied revisions, in name order.
-function M.form_key(applied)
-  local a = {}
-  for i, n in ipairs(applied) do a[i] = n end
-  table.sort(a)
-  return table.concat(a, "\n")
-end
 
 -- The forms tried up to trial k: the trials' and, before trial k, the alternatives'.
 local function tried(R, k)
   local seen = {}
   for i = 1, k do
-    seen[M.form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true
+    seen[forms.key(R["trial" .. i .. "_surrogate"].model.applied)] = true
     local alt = i < k and R["trial" .. i .. "_alternatives"]
-    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do seen[M.form_key(f.applied)] = true end
+    for _, f in ipairs(alt and not alt.skipped and alt.forms or {}) do seen[forms.key(f.applied)] = true end
   end
   return seen
 end
@@ -38,8 +31,8 @@ function M.untried_forms(D, R, k, base)
     for _, a in ipairs(base.applied) do applied = applied or a == c.name end
     if not applied then
       local A = revise.apply(D, base, c.name)
-      if not seen[M.form_key(A.applied)] and not revise.same_model(A, base) then
-        seen[M.form_key(A.applied)] = true
+      if not seen[forms.key(A.applied)] and not revise.same_model(A, base) then
+        seen[forms.key(A.applied)] = true
         out[#out + 1] = A
       end
     end
@@ -55,12 +48,12 @@ function M.step_back(D, R, k, state)
   local T = R["trial" .. k .. "_surrogate"].model
   if #T.applied < 2 then return nil end
   local seen = {}
-  for i = 1, k do seen[M.form_key(R["trial" .. i .. "_surrogate"].model.applied)] = true end
+  for i = 1, k do seen[forms.key(R["trial" .. i .. "_surrogate"].model.applied)] = true end
   for _, name in ipairs(T.applied) do
     local why = ("trial %d is %s with every candidate applied or tried: %s was applied first and may only have"
       .. " absorbed part of what a later revision explains"):format(k, state, name)
     local m = revise.without(D, T, name, why)
-    if not seen[M.form_key(m.applied)] then return m, why end
+    if not seen[forms.key(m.applied)] then return m, why end
   end
   return nil
 end

@@ -43,6 +43,16 @@ function M.priors(unknowns, specs, file_entries)
   return list
 end
 
+--- The posterior of the unknowns' means of an evidence record ({names, mean, std}):
+-- {["x.mean"] = {mean, std}}, or nil when it has none.
+function M.posterior_means(ev)
+  local out = {}
+  for _, n in ipairs(ev and ev.names or {}) do
+    if n:match("%.mean$") then out[n] = { mean = ev.mean[n], std = ev.std[n] } end
+  end
+  return next(out) and out or nil
+end
+
 -- Whether value x lies within `k` standard deviations of the prior entry p ({dist, mean, std},
 -- of the parameter itself; a lognormal is judged on the log scale).
 local function within(p, x, k)

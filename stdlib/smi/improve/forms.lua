@@ -40,14 +40,17 @@ function M.beats(a, b, margin)
   return d ~= nil and d - 2 * e >= math.log(margin)
 end
 
---- Whether two lists of applied revisions name the same form (order aside).
-function M.same(a, b)
-  if #a ~= #b then return false end
-  local set = {}
-  for _, n in ipairs(a) do set[n] = true end
-  for _, n in ipairs(b) do if not set[n] then return false end end
-  return true
+--- The key of a form: its applied revisions in name order (the order they were applied in does
+-- not make another form).
+function M.key(applied)
+  local a = {}
+  for i, n in ipairs(applied) do a[i] = n end
+  table.sort(a)
+  return table.concat(a, "\n")
 end
+
+--- Whether two lists of applied revisions name the same form (order aside).
+function M.same(a, b) return M.key(a) == M.key(b) end
 
 --- The alternative (evidence-only) form that beats `own` (a trial's record) by the margin and has
 -- the largest evidence of those that do: its index in `alternatives`, or nil.

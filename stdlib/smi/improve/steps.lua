@@ -344,7 +344,7 @@ local function alternatives_step(run, k)
       local ev = trial_evidence(run, A, sur, R, k + 1)
       out.forms[#out.forms + 1] = { candidate = A.candidate, applied = A.applied, unknowns = A.unknowns,
                                     log_evidence = ev.log_evidence, log_evidence_error = ev.log_evidence_error,
-                                    mean = ev.mean, std = ev.std, names = ev.names, on = ev.on }
+                                    posterior = evidence.posterior_means(ev), on = ev.on }
     end
     local own = { log_evidence = cal.evidence.log_evidence, log_evidence_error = cal.evidence.log_evidence_error }
     out.better = forms.better_alternative(own, out.forms, D.evidence.margin)

@@ -422,9 +422,18 @@ end
 --- Why the study refines a trial that fits: an alternative form the data favour. alt: the
 -- alternative's record; own: the trial's evidence; margin: the declared Bayes factor.
 function M.favoured_alternative(alt, own, margin)
-  return ("the data favour %s over it by a Bayes factor of %.3g (log %.2f ± %.2f, the margin %g)"):format(
-    form_name(alt.applied), math.exp(alt.log_evidence - own.log_evidence), alt.log_evidence - own.log_evidence,
-    math.sqrt(alt.log_evidence_error ^ 2 + own.log_evidence_error ^ 2), margin)
+  return ("the data favour %s over it by a %s, the margin %g"):format(form_name(alt.applied), factor_words(alt, own), margin)
+end
+
+--- A form's posterior of the unknowns' means ({["x.mean"] = {mean, std}}) in words, by name.
+function M.posterior_words(posterior)
+  local names, out = {}, {}
+  for n in pairs(posterior or {}) do names[#names + 1] = n end
+  table.sort(names)
+  for _, n in ipairs(names) do
+    out[#out + 1] = ("%s %.4g ± %.2g"):format(n:gsub("%.mean$", ""), posterior[n].mean, posterior[n].std)
+  end
+  return table.concat(out, "; ")
 end
 
 --- The alternatives section's paragraph after trial k.

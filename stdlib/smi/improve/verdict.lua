@@ -12,6 +12,7 @@
 --   valid         otherwise, with the undecided validation-only responses listed as `undetermined`.
 -- A trial that is not invalid ends the study: nothing is refined without an invalid verdict.
 local forms = require "smi.improve.forms"
+local evidence = require "smi.improve.evidence"
 
 local M = {}
 
@@ -78,15 +79,6 @@ local function means_at_bounds(cal, T)
   return out
 end
 
--- The posterior of the unknowns' means of an evidence record ({names, mean, std}): {param = {mean, std}}.
-local function posterior_means(ev)
-  local out = {}
-  for _, n in ipairs(ev and ev.names or {}) do
-    if n:match("%.mean$") then out[n] = { mean = ev.mean[n], std = ev.std[n] } end
-  end
-  return next(out) and out or nil
-end
-
 --- The conclusion from the saved step results R (trialk_surrogate, trialk_calibration,
 -- trialk_validation, refinementk) for at most max_trials trials: {verdict, refinements,
 -- undetermined, trials = {{candidate, applied, unknowns, responses, calibration = {converged,
@@ -114,7 +106,7 @@ function M.conclusion(R, D, max_trials, extra)
     c.trials[#c.trials + 1] = t
     local ev = cal.evidence or {}
     local rec = { applied = T.applied, at_bounds = t.calibration.at_bounds, log_evidence = ev.log_evidence,
-                  log_evidence_error = ev.log_evidence_error, posterior = posterior_means(ev) }
+                  log_evidence_error = ev.log_evidence_error, posterior = evidence.posterior_means(ev) }
     records[#records + 1] = rec
     if skipped(val) then
       rec.verdict, rec.undetermined, rec.why = "inconclusive", {}, val and val.reason
@@ -138,7 +130,7 @@ function M.conclusion(R, D, max_trials, extra)
       for _, r in ipairs(records) do dup = dup or forms.same(r.applied, f.applied) end
       if not dup then
         records[#records + 1] = { applied = f.applied, log_evidence = f.log_evidence, alternative = true,
-                                  posterior = posterior_means(f),
+                                  posterior = f.posterior,
                                   log_evidence_error = f.log_evidence_error, verdict = "not validated", undetermined = {} }
       end
     end

@@ -11,12 +11,8 @@ return function(run, r, out, own, k)
   local rows = { { text.form_name(out.base_applied) .. " (trial " .. k .. ")",
                    ("%.2f ± %.2f"):format(own.log_evidence, own.log_evidence_error), "1", "" } }
   for _, f in ipairs(out.forms) do
-    local post = {}
-    for _, n in ipairs(f.names or {}) do
-      if n:match("%.mean$") then post[#post + 1] = ("%s %.4g ± %.2g"):format(n, f.mean[n], f.std[n]) end
-    end
     rows[#rows + 1] = { text.form_name(f.applied), ("%.2f ± %.2f"):format(f.log_evidence, f.log_evidence_error),
-                        ("%.3g"):format(math.exp(f.log_evidence - own.log_evidence)), table.concat(post, "; ") }
+                        ("%.3g"):format(math.exp(f.log_evidence - own.log_evidence)), text.posterior_words(f.posterior) }
   end
   r:table{ caption = ("Log evidence of trial %d's form and of each alternative under the declared priors; Bayes"
              .. " factor against the trial (the margin: %g); posterior mean ± std of the unknowns' means."):format(

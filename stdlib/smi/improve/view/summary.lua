@@ -15,16 +15,10 @@ return function(run, r, out, R, walls, per)
   -- the forms tried, side by side: the paper's u-pooling verdict and the Bayes factors
   local forms = {}
   for i, f in ipairs(c.forms) do
-    local post, names = {}, {}
-    for n in pairs(f.posterior or {}) do names[#names + 1] = n end
-    table.sort(names)
-    for _, n in ipairs(names) do
-      post[#post + 1] = ("%s %.4g ± %.2g"):format(n:gsub("%.mean$", ""), f.posterior[n].mean, f.posterior[n].std)
-    end
     forms[i] = { text.form_name(f.applied), f.validated == false and "evidence only" or f.verdict,
                  type(f.log_evidence) == "number" and ("%.2f ± %.2f"):format(f.log_evidence, f.log_evidence_error or 0)
                    or "not computed",
-                 f.supported and "yes" or "no", f.chosen and "yes" or "", table.concat(post, "; ") }
+                 f.supported and "yes" or "no", f.chosen and "yes" or "", text.posterior_words(f.posterior) }
   end
   r:table{ caption = ("The model forms tried: each trial's verdict (u-pooling of its calibration; \"evidence only\":"
              .. " a form one candidate away from a trial that fits, compared by its evidence alone), its log evidence"
