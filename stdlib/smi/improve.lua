@@ -159,7 +159,7 @@ function M.run(declaration, argv, run_opts)
     local words, total = cost.plan_text(plan_rows, minutes, source)
     -- print, not io.stdout: what a reference example prints is captured with print
     print((words:gsub("\n$", "")))
-    print(cost.calibration_text(probe, T0, D, cfg, require("smi.improve.trial").design_box))
+    print(cost.calibration_text(probe, T0, D, cfg))
     if D.limits.runs and total > D.limits.runs then
       print(("the plan's %d runs exceed the declared limits.runs = %d"):format(total, D.limits.runs))
     end

@@ -4,6 +4,8 @@
 -- plan: runs per step × minutes per run ÷ concurrency. A "run" is one solution (one point), as
 -- the analyst with a per-point solver pays for it; batch mode runs many points per process,
 -- which the plan does not count as cheaper.
+local trial = require "smi.improve.trial"
+
 local M = { counts = {} }
 
 M.CONCURRENCY = 2 -- the solver concurrency the plan assumes
@@ -117,10 +119,10 @@ end
 -- per response for a solver (a stand-in fitted on a design of the declared size: the trial's own
 -- are fitted on its runs, and a predict costs the same for any response values). A calibration
 -- makes at most maxeval evaluations, each with a gradient of 2p more passes where it is taken by
--- differences (p unknowns, a mean and a std each). T: the initial model; box(spec) -> {lo, hi}.
-function M.calibration_text(probe, T, D, cfg, box)
+-- differences (p unknowns, a mean and a std each). T: the initial model.
+function M.calibration_text(probe, T, D, cfg)
   local b = {}
-  for i, n in ipairs(T.unknowns) do b[i] = box(T.specs[n]) end
+  for i, n in ipairs(T.unknowns) do b[i] = trial.design_box(T.specs[n]) end
   local P = smi.doe.lhs(cfg.cal_n, b, { seed = 1, criterion = "none" })
   local seconds, through
   if probe.kind == "lua" then
