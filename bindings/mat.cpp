@@ -334,7 +334,7 @@ const luaL_Reg kMeta[] = {{"__len", mat_len}, {"__tostring", mat_tostring}, {"__
                           {"__sub", mat_subtract}, {"__mul", mat_mul}, {"__div", mat_div},
                           {"__unm", mat_unm}, {nullptr, nullptr}};
 
-const luaL_Reg kFunctions[] = {{"zeros", mat_zeros}, {"identity", mat_identity}, {"hcat", mat_hcat},
+const luaL_Reg kMatFunctions[] = {{"zeros", mat_zeros}, {"identity", mat_identity}, {"hcat", mat_hcat},
                                {"vcat", mat_vcat},   {"eigh", mat_eigh},         {nullptr, nullptr}};
 
 }  // namespace
@@ -342,7 +342,7 @@ const luaL_Reg kFunctions[] = {{"zeros", mat_zeros}, {"identity", mat_identity},
 void open_mat(lua_State* L) {
   lua::register_type<Eigen::MatrixXd>(L, lua::kMatType, kMethods, kMeta, mat_get);
   lua_newtable(L);
-  luaL_setfuncs(L, kFunctions, 0);
+  luaL_setfuncs(L, kMatFunctions, 0);
   lua_newtable(L);
   lua_pushcfunction(L, mat_new);
   lua_setfield(L, -2, "__call");

@@ -14,19 +14,19 @@ namespace {
 
 using Ptr = smi::stats::DistributionPtr;
 
-const smi::stats::Distribution& self(lua_State* L) { return *lua::check_box<Ptr>(L, 1, kDistType); }
+const smi::stats::Distribution& dist_self(lua_State* L) { return *lua::check_box<Ptr>(L, 1, kDistType); }
 
 /// d:pdf(x), d:cdf(x), d:quantile(p): x a number (-> number) or a vec/table (-> vec).
 int dist_pdf(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   return lua::push_mapped(L, 2, "dist:pdf", [&](const Eigen::VectorXd& x) { return d.pdf(x); });
 }
 int dist_cdf(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   return lua::push_mapped(L, 2, "dist:cdf", [&](const Eigen::VectorXd& x) { return d.cdf(x); });
 }
 int dist_quantile(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   return lua::push_mapped(L, 2, "dist:quantile", [&](const Eigen::VectorXd& p) {
     for (Eigen::Index i = 0; i < p.size(); ++i)
       if (!(p[i] > 0.0 && p[i] < 1.0) && !(p[i] == 0.0 || p[i] == 1.0))
@@ -38,7 +38,7 @@ int dist_quantile(lua_State* L) {
 /// relative precision (d:sf(x) is not 1 − d:cdf(x) rounded).
 template <double (smi::stats::Distribution::*F)(double) const>
 int dist_scalar_map(lua_State* L, const char* fname) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   return lua::push_mapped(L, 2, fname, [&](const Eigen::VectorXd& x) {
     Eigen::VectorXd y(x.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) y[i] = (d.*F)(x[i]);
@@ -50,7 +50,7 @@ int dist_logcdf(lua_State* L) { return dist_scalar_map<&smi::stats::Distribution
 int dist_sf(lua_State* L) { return dist_scalar_map<&smi::stats::Distribution::sf>(L, "dist:sf"); }
 /// d:isf(q): x with sf(x) = q, q in [0, 1] (the upper-tail quantile without rounding 1 − q).
 int dist_isf(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   return lua::push_mapped(L, 2, "dist:isf", [&](const Eigen::VectorXd& q) {
     Eigen::VectorXd y(q.size());
     for (Eigen::Index i = 0; i < q.size(); ++i) {
@@ -63,7 +63,7 @@ int dist_isf(lua_State* L) {
 }
 /// d:sample(n, seed_or_rng): n draws; the generator is explicit (an integer seed or an smi.rng).
 int dist_sample(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   const lua_Integer n = luaL_checkinteger(L, 2);
   luaL_argcheck(L, n >= 0, 2, "count must be >= 0");
   Rng* rng = lua::test_box<Rng>(L, 3, "smi.rng");
@@ -80,15 +80,15 @@ int dist_sample(lua_State* L) {
   });
 }
 int dist_mean(lua_State* L) {
-  lua_pushnumber(L, self(L).mean());
+  lua_pushnumber(L, dist_self(L).mean());
   return 1;
 }
 int dist_std(lua_State* L) {
-  lua_pushnumber(L, self(L).stddev());
+  lua_pushnumber(L, dist_self(L).stddev());
   return 1;
 }
 int dist_support(lua_State* L) {
-  const auto s = self(L).support();
+  const auto s = dist_self(L).support();
   lua_pushnumber(L, s.first);
   lua_pushnumber(L, s.second);
   return 2;
@@ -97,7 +97,7 @@ int dist_support(lua_State* L) {
 /// (a KDE: data range ± 4h; otherwise the 1e-4 and 1 − 1e-4 quantiles, or finite support ends).
 /// An ECDF gives its steps {x =, cdf =} instead.
 int dist_curve(lua_State* L) {
-  const smi::stats::Distribution& d = self(L);
+  const smi::stats::Distribution& d = dist_self(L);
   const lua_Integer n = luaL_optinteger(L, 2, kDefaultCurvePoints);
   luaL_argcheck(L, n >= 2 && n <= 10000000, 2, "number of points must be in 2..1e7");  // literal: the most points
   return lua::protect(L, "dist:curve", [&] {
@@ -127,7 +127,7 @@ int dist_curve(lua_State* L) {
   });
 }
 int dist_tostring(lua_State* L) {
-  const std::string s = self(L).describe();
+  const std::string s = dist_self(L).describe();
   lua_pushlstring(L, s.data(), s.size());
   return 1;
 }
@@ -136,22 +136,22 @@ int dist_field(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING) return 0;
   const std::string key = lua_tostring(L, 2);
   if (key == "family") {
-    lua_pushstring(L, self(L).family().c_str());
+    lua_pushstring(L, dist_self(L).family().c_str());
     return 1;
   }
-  if (const auto v = self(L).field(key)) {
+  if (const auto v = dist_self(L).field(key)) {
     lua_pushnumber(L, *v);
     return 1;
   }
   return 0;
 }
 
-const luaL_Reg kMethods[] = {{"pdf", dist_pdf},   {"cdf", dist_cdf}, {"quantile", dist_quantile},
+const luaL_Reg kDistMethods[] = {{"pdf", dist_pdf},   {"cdf", dist_cdf}, {"quantile", dist_quantile},
                              {"sample", dist_sample}, {"mean", dist_mean}, {"std", dist_std},
                              {"support", dist_support}, {"curve", dist_curve}, {"logpdf", dist_logpdf},
                              {"logcdf", dist_logcdf}, {"sf", dist_sf},   {"isf", dist_isf},
                              {nullptr, nullptr}};
-const luaL_Reg kMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
+const luaL_Reg kDistMeta[] = {{"__tostring", dist_tostring}, {nullptr, nullptr}};
 
 }  // namespace
 
@@ -168,6 +168,6 @@ smi::stats::DistributionPtr to_distribution(lua_State* L, int idx, const char* w
   return nullptr;
 }
 
-void register_distribution_type(lua_State* L) { lua::register_type<Ptr>(L, kDistType, kMethods, kMeta, dist_field); }
+void register_distribution_type(lua_State* L) { lua::register_type<Ptr>(L, kDistType, kDistMethods, kDistMeta, dist_field); }
 
 }  // namespace smi::bind

@@ -10,7 +10,7 @@
 namespace smi::bind {
 namespace {
 
-const char* const kText = R"DOC(
+const char* const kMetricText = R"DOC(
 @ module smi.metric
 Validity and calibration metrics: probability residual, intersection area, area metric,
 log-likelihood, and the u-pooling verdict with its Monte Carlo threshold.
@@ -109,7 +109,7 @@ example:
 
 DocText doc_stats_metric() {
   return {"bindings/stats/metric_doc.cpp",
-          fill(kText, {{"pr_options", stats::overlap_schema(true).doc()},
+          fill(kMetricText, {{"pr_options", stats::overlap_schema(true).doc()},
                        {"intersection_options", stats::overlap_schema(false).doc()},
                        {"loglik_options", stats::loglik_schema().doc()},
                        {"upool_options", stats::upool_schema().doc()},

@@ -19,7 +19,7 @@
 namespace smi::bind {
 namespace {
 
-const char* const kText = R"DOC(
+const char* const kSurrogateText = R"DOC(
 @ module smi.doe
 Designs of experiments as matrices (rows = points): optimized Latin hypercubes, Sobol sequences,
 full factorials. space is a dimension count (the unit cube) or one entry per input: {lo, hi}
@@ -175,7 +175,7 @@ example:
 
 DocText doc_surrogate() {
   return {"bindings/surrogate/doc.cpp",
-          fill(kText, {{"lhs_options", surrogate::lhs_schema().doc()},
+          fill(kSurrogateText, {{"lhs_options", surrogate::lhs_schema().doc()},
                        {"screen_options", surrogate::screen_schema().doc()},
                        {"kriging_fit_options", surrogate::kriging_fit_schema().doc()},
                        {"kriging_predict_options", surrogate::kriging_predict_schema().doc()},

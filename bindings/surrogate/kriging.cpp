@@ -159,7 +159,7 @@ int k_field(lua_State* L) {
 const luaL_Reg kMethods[] = {{"predict", k_predict}, {"loo", k_loo},           {"save", k_save},
                              {"evaluate", k_evaluate}, {nullptr, nullptr}};
 const luaL_Reg kMeta[] = {{"__tostring", k_tostring}, {nullptr, nullptr}};
-const luaL_Reg kFuncs[] = {{"fit", k_fit}, {"load", k_load}, {nullptr, nullptr}};
+const luaL_Reg kKrigingFuncs[] = {{"fit", k_fit}, {"load", k_load}, {nullptr, nullptr}};
 
 }  // namespace
 
@@ -168,7 +168,7 @@ KrigingBox* test_kriging(lua_State* L, int idx) { return lua::test_box<KrigingBo
 void open_kriging(lua_State* L) {
   lua::register_type<KrigingBox>(L, kKrigingType, kMethods, kMeta, k_field);
   lua_newtable(L);
-  lua::set_funcs(L, kFuncs);
+  lua::set_funcs(L, kKrigingFuncs);
   lua_setfield(L, -2, "kriging");
 }
 

@@ -53,6 +53,9 @@ int cmd_report(const Args& a, const std::vector<std::string>& args);
 /// when written, 1 when not.
 int print_report_pdf(const std::string& html);
 
+/// A git commit as the libs commands print it: its first 12 hex digits (a shorter string as is).
+inline std::string short_commit(const std::string& c) { return c.size() == 40 ? c.substr(0, 12) : c; }
+
 /// The library set the options and environment describe (SMI_PATH unless -E).
 vm::LibrarySet current_libraries(const Args& a);
 

@@ -19,8 +19,6 @@ const char* const kLibsUsage =
     "remove NAME[@VERSION] | pack DIR [FILE] | registry [NAME URL] | publish REGISTRY SOURCE@REF | search WORD]"
     " [--into DIR]";
 
-std::string short_commit(const std::string& c) { return c.size() == 40 ? c.substr(0, 12) : c; }
-
 /// What requires what, from the libraries a study would see: each library nobody requires at
 /// the top, its requirements below it.
 int libs_tree(const Args& a) {

@@ -100,8 +100,6 @@ struct Scratch {
   }
 };
 
-std::string short_commit(const std::string& c) { return c.size() == 40 ? c.substr(0, 12) : c; }
-
 /// One staged folder to move into the tree at name/version; `replace`: a changed copy is there
 /// and is removed first (libs sync repairing it).
 struct Move {

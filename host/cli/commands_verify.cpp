@@ -169,7 +169,7 @@ Recorded read_recorded(const fs::path& file) {
   return r;
 }
 
-std::string short_commit(const std::string& c) { return c.empty() ? "no commit" : "commit " + c.substr(0, 12); }
+std::string commit_words(const std::string& c) { return c.empty() ? "no commit" : "commit " + c.substr(0, 12); }
 
 /// A digest as text for messages: the hash, or "size N, mtime T (over 1 GB, not hashed)".
 std::string digest_text(const FileDigest& d) {
@@ -240,7 +240,7 @@ void check_library(const RecordedLib& r, const vm::LibrarySet& here, bool text, 
                   cur->folder.string().c_str(), h.digest.substr(0, 19).c_str());
       if (!r.commit.empty() && cur->git.commit != r.commit)
         std::printf("         same content, but the checkout is at %s (recorded %s)\n",
-                    short_commit(cur->git.commit).c_str(), short_commit(r.commit).c_str());
+                    commit_words(cur->git.commit).c_str(), commit_words(r.commit).c_str());
     }
     return;
   }
@@ -249,7 +249,7 @@ void check_library(const RecordedLib& r, const vm::LibrarySet& here, bool text, 
                 cur->folder.string().c_str(), r.version.c_str());
     if (ver != r.version) std::printf(" (version %s now)", ver.c_str());
     if (!r.commit.empty() || !cur->git.commit.empty())
-      std::printf("; recorded %s, now %s", short_commit(r.commit).c_str(), short_commit(cur->git.commit).c_str());
+      std::printf("; recorded %s, now %s", commit_words(r.commit).c_str(), commit_words(cur->git.commit).c_str());
     std::printf("\n         recorded %s\n         now      %s\n", r.hash.c_str(), h.digest.c_str());
   }
   diffs.push_back({"library", r.name, "changed", r.hash, h.digest, cur->folder.string()});

@@ -19,6 +19,7 @@ namespace {
 
 /// Message handler for call(): the message plus a traceback; non-string errors are described.
 int traceback_handler(lua_State* L) {
+  if (is_failure(L, 1)) return 1;  // the user's data is at fault: the failure as it is, no traceback
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
@@ -59,6 +60,11 @@ void call(lua_State* L, int nargs, int nresults) {
   const int status = lua_pcall(L, nargs, nresults, base);
   lua_remove(L, base);
   if (status != LUA_OK) {
+    if (is_failure(L, -1)) {
+      std::string msg = failure_message(L, -1), traceback = failure_traceback(L, -1);
+      lua_pop(L, 1);
+      throw LuaError(msg, true, std::move(traceback));
+    }
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error without message)";
     lua_pop(L, 1);
     throw LuaError(msg);
@@ -307,6 +313,12 @@ void set_vec(lua_State* L, const char* key, Eigen::VectorXd v) {
   lua_setfield(L, -2, key);
 }
 void set_funcs(lua_State* L, const luaL_Reg* funcs) { luaL_setfuncs(L, funcs, 0); }
+
+void raise_failure(lua_State* L, const char* msg, const char* traceback) {
+  push_failure(L, msg, traceback);
+  lua_error(L);
+  std::abort();  // not reached: lua_error does not return
+}
 
 void raise_from_binding(lua_State* L, const char* msg) {
   if (called_from_stdlib(L, 1)) {

@@ -46,22 +46,47 @@ void error_message(char* buf, std::size_t size, const char* fname, const char* w
 
 /// Runs body() (returns the number of Lua results). A std::exception thrown by it becomes the
 /// Lua error "<fname>: <what>" (raise_from_binding).
+/// A Lua error met while C++ called into Lua; what() is the Lua message (with traceback when
+/// one was asked for). `failure()`: the Lua code raised a failure (smi.fail: an error in the
+/// user's data, luax/user_error.hpp), which stays one when it crosses the C++ call back to Lua.
+struct LuaError : smi::Error {
+  explicit LuaError(const std::string& what, bool failure = false, std::string traceback = {})
+      : smi::Error(what), failure_(failure), traceback_(std::move(traceback)) {}
+  bool failure() const { return failure_; }
+  /// A failure's own traceback (an error in the user's code the stdlib caught and raised again).
+  const std::string& traceback() const { return traceback_; }
+
+ private:
+  bool failure_;
+  std::string traceback_;
+};
+
+/// Raises the failure `msg` with `traceback` (may be empty): luax/user_error.hpp.
+[[noreturn]] void raise_failure(lua_State* L, const char* msg, const char* traceback);
+
+/// Runs body() (returns the number of Lua results). A std::exception thrown by it becomes the
+/// Lua error "<fname>: <what>" (raise_from_binding); a failure raised by a Lua callback that
+/// body() called (smi.fail in an objective or a model) is raised again as that failure.
 template <class F>
 int protect(lua_State* L, const char* fname, F&& body) {
   char msg[2048];  // trivially destructible: nothing to unwind when luaL_error throws
+  char traceback[2048] = "";
+  bool failure = false;
   try {
     return body();
   } catch (const std::exception& e) {
-    error_message(msg, sizeof msg, fname, e.what());
+    const auto* lua_error = dynamic_cast<const LuaError*>(&e);
+    failure = lua_error != nullptr && lua_error->failure();
+    if (failure) {
+      std::snprintf(msg, sizeof msg, "%s", e.what());
+      std::snprintf(traceback, sizeof traceback, "%s", lua_error->traceback().c_str());
+    } else {
+      error_message(msg, sizeof msg, fname, e.what());
+    }
   }
+  if (failure) raise_failure(L, msg, traceback);
   raise_from_binding(L, msg);
 }
-
-/// A Lua error met while C++ called into Lua; what() is the Lua message (with traceback when
-/// one was asked for).
-struct LuaError : smi::Error {
-  using smi::Error::Error;
-};
 
 /// lua_pcall with a traceback handler; on error pops the message and throws LuaError.
 /// Stack: [f, args...] -> [results...].

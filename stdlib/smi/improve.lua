@@ -28,16 +28,37 @@ local run_context = require "smi.improve.run_context"
 
 local M = {}
 
+-- Whether the study's initial model runs in this process (smi.model.lua), asked of the factory
+-- with every option at its default: only then does the usage line leave out --allow-exec. A
+-- factory that fails on the defaults (a solver not found, not allowed) keeps the flag in.
+local function in_process(D, s)
+  local opt = {}
+  for _, d in ipairs(s) do
+    local list = d.name and { d } or d
+    for _, e in ipairs(list) do if type(e) == "table" and e.name then opt[e.name:gsub("%-", "_")] = e.default end end
+  end
+  local ok, m = pcall(factory.model, D, opt, revise.initial(D, D.unknowns), { purpose = "help", name = "help" })
+  return ok and m.kind == "lua"
+end
+
 -- The options every study gets (a declaration adds its own with `options`).
 local function spec(D, script)
-  local s = {
+  local s
+  s = {
     name = D.name, summary = D.title or ("the statistical model improvement study " .. D.name),
     -- the script as it was run (its declaration's name may differ); a solver needs --allow-exec
-    usage = ("smi-lua [--allow-exec SOLVER] %s [options]"):format(script or (D.name .. ".lua")),
+    usage = function()
+      local run = script or (D.name .. ".lua")
+      if in_process(D, s) then return ("smi-lua %s [options]"):format(run) end
+      return ("smi-lua [--allow-exec SOLVER] %s [options]"):format(run)
+    end,
     { name = "data", type = "path", input = true, default = D.data, meaning = "measurements (CSV; give --allow-read for its folder)" },
     { name = "quick", type = "flag", default = false,
       meaning = D.screening and "CI form: a 40-point screening sample, no bootstrap, half the evidence's sample sizes"
         or "CI form: no bootstrap of the calibration, half the evidence's sample sizes" },
+    { name = "bootstrap", type = "integer", min = 0,
+      check = function(v) return v ~= 1, "0 (no bootstrap) or at least 2 replicates" end,
+      meaning = "bootstrap replicates of the calibration (default 50; 0 with --quick; 0: none)" },
     { name = "metric", type = "string", default = "pr", allowed = { "pr", "loglik" },
       meaning = "calibration metric per response: the paper's probability residual, or minus the log-likelihood" },
     { name = "multistart", type = "integer", default = 1, min = 1,

@@ -152,7 +152,10 @@ function M.help(spec)
   local lines = {}
   local script = M.script_name(spec)
   lines[#lines + 1] = script .. (spec.summary and (": " .. spec.summary) or "")
-  lines[#lines + 1] = "usage: " .. (spec.usage and spec.usage:gsub("{script}", (script:gsub("%%", "%%%%")))
+  -- a function usage is asked only here: what it says may cost a look at the study (its model)
+  local usage = spec.usage
+  if type(usage) == "function" then usage = usage() end
+  lines[#lines + 1] = "usage: " .. (usage and usage:gsub("{script}", (script:gsub("%%", "%%%%")))
     or ("smi-lua [smi-lua options] " .. script .. " [options]"))
   lines[#lines + 1] = ""
   lines[#lines + 1] = "options:"
@@ -262,7 +265,7 @@ doc.add[==[
 @ smi.options.check(argv, spec) -> opt | nil, message
 Parses argv (--name VALUE, --name=VALUE, flags alone) against the declared options without
 ending the run. The spec is a list of declarations plus name, summary, usage ("{script}" stands for the script as
-it was run), epilog and args;
+it was run; a function returning that string is called only when --help is printed), epilog and args;
 with rest = true, every argument the spec does not declare is kept, in order, in opt.rest (for
 another parser: smi.study.parse_args is check(argv, {rest = true, options.study_steps})).
 options:

@@ -65,6 +65,42 @@ lacks_err "stack traceback"
 has_err "smi-lua: smi.study: the results file '/proc/no-such-place/results.json' does not lie under --out"
 has_err "/proc/no-such-place"
 
+# smi.fail inside a function C++ calls back (an objective, a model): still one line, no
+# traceback, no binding's name in front; an error in code there keeps its traceback
+cat > callback_fail.lua <<'LUA'
+smi.calibrate{
+  parameters = {{"k", 0, 10, 5}},
+  objective = function(t)
+    if t.k > -1 then smi.fail(("k.csv line 4: stiffness %g is not in the measured range"):format(t.k)) end
+    return (t.k - 3)^2
+  end,
+}
+LUA
+run callback_failure 1 "$SMI" callback_fail.lua
+has_err "smi-lua: k.csv line 4: stiffness 5 is not in the measured range"
+lacks_err "stack traceback"
+lacks_err "smi.calibrate:"
+[ "$(wc -l < "$WORK/.err")" = 1 ] && ok || bad "the callback's failure is not one line"
+sed 's/smi.fail(/error(/' callback_fail.lua > callback_error.lua
+run callback_code_error 1 "$SMI" callback_error.lua
+has_err "stack traceback"
+
+# a study on an in-process Lua model: its usage line asks for no --allow-exec
+cat > lua_model_study.lua <<'LUA'
+require("smi.improve").run({name = "frame_decl", data = "tests.csv",
+  responses = {{name = "mode_1_Hz"}},
+  unknowns = {{name = "k", dist = "normal", mean = {1, 3, 2}, std = {0.1, 0.3, 0.2}}},
+  model = function(applied, unknowns, ctx)
+    return smi.model.lua{inputs = unknowns, outputs = {"mode_1_Hz"}, fn = function(X) return {mode_1_Hz = X:col(1) * 15} end}
+  end}, arg)
+LUA
+run lua_model_usage 0 "$SMI" lua_model_study.lua --help
+has_out "usage: smi-lua lua_model_study.lua [options]"
+lacks_out "allow-exec"
+# and a solver study's keeps it
+run solver_usage 0 "$SMI" "$SMI_SOURCE_DIR/scripts/steering_column.lua" --help
+has_out "usage: smi-lua [--allow-exec SOLVER] steering_column.lua [options]"
+
 # smi-lua's own options: a misspelt one gets the closest name
 run alow_exec 2 "$SMI" --alow-exec x data_study.lua
 has_err "unrecognized option '--alow-exec' (did you mean --allow-exec?)"

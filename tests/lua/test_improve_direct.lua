@@ -82,4 +82,29 @@ T.case("a slow model whose Krigings miss the specimens' scatter: the design grow
     "f1's warning names both figures and the fix: " .. w)
   T.truthy(sur.diagnostics.f1.loo_rmse > 0.3 * y:std(), "the LOO error is above the threshold")
 end)
+T.case("the bootstrap: smi.calibrate's replicates, their sd on the scale of a mean's standard error", function()
+  local data = smi.out("chain_boot.csv")
+  chain.write_data(data, {}, TRUTH, SEED, N)
+  local d = chain.declaration("chain_boot", data, false)
+  d.candidates = { d.candidates[1] }
+  local R = improve.run(d, { "--quick", "--bootstrap", "20", "--only", "data,trial1_surrogate,trial1_calibration" },
+                       { results = fresh("chain_boot") })
+  local cal = R.trial1_calibration
+  local b = cal.bootstrap
+  T.eq(b.replicates, 20)
+  T.eq(b.failed, 0)
+  for _, p in ipairs(cal.params) do
+    local name = p.input .. ".mean"
+    -- the closed-form reference: the standard error of a mean of N specimens. The calibrated mean
+    -- rests on two responses that mix both stiffnesses, so its spread is of that order, not equal
+    local se = chain.scatter[p.input] / math.sqrt(N)
+    print(("  %s: bootstrap sd %.3f, standard error of a %d-specimen mean %.3f; 90 %% interval [%.2f, %.2f]"):format(
+      name, b.std[name], N, se, b.lower[name], b.upper[name]))
+    T.truthy(b.std[name] > 0.4 * se and b.std[name] < 2.5 * se, name .. "'s bootstrap sd on the scale of the standard error")
+    T.near(b.upper[name] - b.lower[name], 2 * 1.645 * b.std[name], 1e-9 * se, name .. ": the interval is estimate ± 1.645 sd")
+    T.truthy(b.lower[name] < p.mean and p.mean < b.upper[name], name .. ": the interval holds the estimate")
+    T.truthy(b.percentile.lower[name] < b.percentile.upper[name], name .. ": the kernel's percentiles kept")
+  end
+  T.truthy(b.replicates_needed >= 100, "20 replicates are too few for a 90 % percentile interval: 5 beyond each end need 100")
+end)
 T.finish()

@@ -11,7 +11,6 @@
 
 namespace smi::stats {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSqrt3 = 1.7320508075688772935;
 constexpr double kLogSqrt2Pi = 0.91893853320467274178;
 

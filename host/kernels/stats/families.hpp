@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <limits>
 // Parametric 1-D families. Constructors validate their parameters and throw InvalidArgument
 // naming the parameter and the fix. Parameters follow the paper's tables where it gives them
 // (normal, lognormal and uniform by the variable's own mean and std).
@@ -10,6 +11,9 @@
 #include "kernels/stats/distribution.hpp"
 
 namespace smi::stats {
+
+/// +∞: the open end of a support, the log-density outside it (-kInf).
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Shared by the families: quantile and isf by bracketed Newton/bisection (used unless a family
 /// has a closed form) on cdf below the median and on sf above it, so both tails keep their

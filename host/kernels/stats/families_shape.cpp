@@ -10,7 +10,6 @@
 
 namespace smi::stats {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEulerGamma = 0.57721566490153286061;
 
 void positive(double v, const char* name, const char* family) {

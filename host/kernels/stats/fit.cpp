@@ -14,7 +14,6 @@
 namespace smi::stats {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// −log L of the data under the distribution built from parameters p (inf when infeasible).
 template <class Make>

@@ -14,7 +14,7 @@
 namespace smi::surrogate::kriging {
 namespace {
 
-constexpr Eigen::Index kBlock = 128;
+constexpr Eigen::Index kGradientBlock = 128;
 
 /// d f(x~)' beta / d x~ for a block (B x n).
 Eigen::MatrixXd trend_gradient(Trend t, const Eigen::MatrixXd& Xn, const Eigen::VectorXd& beta) {
@@ -45,9 +45,9 @@ Eigen::MatrixXd predict_gradient(const Model& md, const Eigen::MatrixXd& X, int 
     throw DimensionMismatch("points have " + std::to_string(X.cols()) + " columns but the model has " + std::to_string(n) + " inputs");
   const Eigen::VectorXd theta = md.theta.size() == 1 ? Eigen::VectorXd::Constant(n, md.theta[0]) : md.theta;
   Eigen::MatrixXd out(X.rows(), n);
-  const Eigen::Index nb = (X.rows() + kBlock - 1) / kBlock;
+  const Eigen::Index nb = (X.rows() + kGradientBlock - 1) / kGradientBlock;
   pool::parallel_for(static_cast<long>(nb), threads, [&](long b) {
-    const Eigen::Index r0 = b * kBlock, B = std::min(kBlock, X.rows() - r0);
+    const Eigen::Index r0 = b * kGradientBlock, B = std::min(kGradientBlock, X.rows() - r0);
     const Eigen::MatrixXd Xn = (X.middleRows(r0, B).rowwise() - md.mS).array().rowwise() / md.sS.array();
     // s (B x m) as in cross_correlation, then g'(s) weighted by gamma.
     Eigen::MatrixXd s(B, m);

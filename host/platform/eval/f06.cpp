@@ -18,7 +18,7 @@ bool is_int(const std::string& s, int& out) {
 
 enum class Block { None, Eigen, Labels };
 
-struct Parser {
+struct F06Parser {
   const std::string& source;
   int line = 0;
   F06Result r;
@@ -70,7 +70,7 @@ struct Parser {
 }  // namespace
 
 F06Result parse_f06(const std::string& text, const std::string& source) {
-  Parser p{source, 0, {}};
+  F06Parser p{source, 0, {}};
   std::istringstream in(text);
   std::string raw;
   Block block = Block::None;

@@ -15,13 +15,13 @@ namespace cfe {
 
 namespace {
 
-std::string trim(const std::string& s) {
+std::string trimmed(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
   if (b == std::string::npos) return {};
   return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
 }
 
-[[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
+[[noreturn]] void fail_at(const std::string& file, int line, const std::string& key, const std::string& value,
                        const std::string& what) {
   std::ostringstream os;
   os << file << ":" << line << ": key '" << key << "' value '" << value << "': " << what;
@@ -74,39 +74,39 @@ Inputs parse_deck(const std::string& text, const std::string& file) {
   bool have_model = false;
   while (std::getline(is, raw)) {
     ++line;
-    const std::string body = trim(raw.substr(0, raw.find('#')));
+    const std::string body = trimmed(raw.substr(0, raw.find('#')));
     if (body.empty()) continue;
     const auto eq = body.find('=');
     if (eq == std::string::npos)
-      fail(file, line, body, "", "expected 'key = value' (a '#' starts a comment)");
-    const std::string key = trim(body.substr(0, eq)), value = trim(body.substr(eq + 1));
-    if (key.empty()) fail(file, line, key, value, "missing key before '='");
+      fail_at(file, line, body, "", "expected 'key = value' (a '#' starts a comment)");
+    const std::string key = trimmed(body.substr(0, eq)), value = trimmed(body.substr(eq + 1));
+    if (key.empty()) fail_at(file, line, key, value, "missing key before '='");
     if (auto [it, fresh] = seen.emplace(key, line); !fresh)
-      fail(file, line, key, value, "duplicate key (first given on line " + std::to_string(it->second) + "); give each key once");
+      fail_at(file, line, key, value, "duplicate key (first given on line " + std::to_string(it->second) + "); give each key once");
     if (key == "airbag_model") {
       if (value == "rigid") in.airbag = Airbag::rigid;
       else if (value == "spring") in.airbag = Airbag::spring;
-      else fail(file, line, key, value, "must be 'rigid' or 'spring'");
+      else fail_at(file, line, key, value, "must be 'rigid' or 'spring'");
       have_model = true;
       continue;
     }
     double x = 0;
     if (key == "mesh_refinement") {
       if (!to_number(value, x) || x != std::floor(x) || x < 1 || x > 8)
-        fail(file, line, key, value, "must be an integer from 1 to 8");
+        fail_at(file, line, key, value, "must be an integer from 1 to 8");
       in.refinement = static_cast<int>(x);
       continue;
     }
     const InputSpec* spec = find_input(key);
     if (!spec)
-      fail(file, line, key, value,
+      fail_at(file, line, key, value,
            "unknown key; " + suggestion(key) + "expected airbag_model, mesh_refinement, airbag_stiffness or one of the 46 inputs "
            "(column_frame_E, ..., tilt_lock_k; spec steering-column.md section 2)");
-    if (!to_number(value, x)) fail(file, line, key, value, "not a number");
-    if (!std::isfinite(x)) fail(file, line, key, value, "not finite");
+    if (!to_number(value, x)) fail_at(file, line, key, value, "not a number");
+    if (!std::isfinite(x)) fail_at(file, line, key, value, "not finite");
     if (spec->kind == InputKind::poisson && !(x > 0 && x < 0.5))
-      fail(file, line, key, value, "a Poisson's ratio must lie in (0, 0.5)");
-    if (x <= 0) fail(file, line, key, value, "must be > 0");
+      fail_at(file, line, key, value, "a Poisson's ratio must lie in (0, 0.5)");
+    if (x <= 0) fail_at(file, line, key, value, "must be > 0");
     in.values[key] = x;
   }
   std::string missing;

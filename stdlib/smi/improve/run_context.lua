@@ -19,6 +19,7 @@ function M.config(opt, D)
   local cfg = {}
   for k, v in pairs(M.SIZES[opt.quick and "quick" or "full"]) do cfg[k] = v end
   cfg.screening, cfg.screen_runs, cfg.design = opt.screening, opt.screening_runs, opt.design
+  if opt.bootstrap then cfg.bootstrap = opt.bootstrap end
   cfg.test_points = opt.test_points or D.design.test_points
   cfg.solver_check = opt.solver_check or D.design.solver_check
   return cfg

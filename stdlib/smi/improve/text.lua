@@ -316,7 +316,7 @@ end
 --- The bootstrap interval of one input (mean / std), or why there is none.
 function M.bootstrap_cell(res, input)
   local b = res.bootstrap
-  if not b then return "not computed (--quick)" end
+  if not b then return "not computed (--quick or --bootstrap 0)" end
   if b.replicates == 0 then return ("all %d replicates failed"):format(b.failed) end
   return ("[%.4g, %.4g] / [%.4g, %.4g]"):format(b.lower[input .. ".mean"], b.upper[input .. ".mean"],
     b.lower[input .. ".std"], b.upper[input .. ".std"])
@@ -324,10 +324,17 @@ end
 
 function M.parameters_caption(res)
   local b = res.bootstrap
-  local ci = b and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart"
-    .. " SLSQP at the optimum with %d evaluations each%s: the local pull of the data, which understates the spread"
-    .. " along the directions the calibrated responses leave undetermined"):format(b.replicates, b.maxeval,
-      b.failed > 0 and ("; %d failed, see the warnings"):format(b.failed) or "") or "none (--quick)"
+  -- the sd of B replicates is known to about 1/sqrt(2(B - 1)) of itself; the percentiles need
+  -- more replicates (the kernel's replicates_needed: their Monte Carlo error under a tenth of the
+  -- half-width), said with the option that asks for them
+  local ci = b and b.replicates > 1 and ("90 %% bootstrap over the data (mean / std), estimate ± 1.645 sd of %d replicates that restart"
+    .. " SLSQP at the optimum with %d evaluations each (the sd's Monte Carlo error about %.0f %%)%s%s: the local pull"
+    .. " of the data, which understates the spread along the directions the calibrated responses leave undetermined"):format(
+      b.replicates, b.maxeval, 100 / math.sqrt(2 * (b.replicates - 1)),
+      b.failed > 0 and ("; %d failed, see the warnings"):format(b.failed) or "",
+      (b.replicates_needed or 0) > b.replicates and ("; the 90 %% percentile interval would need about %d replicates"
+        .. " (--bootstrap %d)"):format(b.replicates_needed, b.replicates_needed) or "")
+    or b and ("none: all %d replicates failed"):format(b.failed) or "none (--quick or --bootstrap 0)"
   return ("Calibrated statistical parameters. CI: %s."):format(ci)
 end
 
