@@ -2,9 +2,10 @@
 #pragma once
 // Reference texts of the C++ bindings. Each binding folder keeps its texts in a *_doc.cpp file
 // beside the registration (format: stdlib/smi/doc.lua's header) and exposes them through one
-// function listed in doc_sources.cpp (DocText and fill: luax/doc_text.hpp).
+// function named in the area's record in areas.cpp (DocText and fill: luax/doc_text.hpp).
 #include <vector>
 
+#include "bindings/modules.hpp"
 #include "luax/doc_text.hpp"
 
 namespace smi::bind {
@@ -16,16 +17,6 @@ using lua::num;
 /// Every binding area's texts, in a fixed order.
 std::vector<DocText> binding_docs();
 
-// One per binding folder (in *_doc.cpp beside the registration).
-DocText doc_vec();
-DocText doc_mat();
-DocText doc_rng();
-DocText doc_csv_json();
-DocText doc_stats_dist();
-DocText doc_stats_kde();
-DocText doc_stats_metric();
-DocText doc_surrogate();
-DocText doc_eval();
-DocText doc_improve();
+// The texts of each area: declared with its open function in modules.hpp.
 
 }  // namespace smi::bind

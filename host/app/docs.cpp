@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // smi._docs(): hands the compiled-in reference texts of the C++ side to stdlib/smi/doc.lua,
 // with the methods table of every smi userdata type (found in the registry), so that the doc
-// module can walk the public API at run time. The texts of the host functions registered in
-// runtime.cpp and library_lua.cpp (smi.out, smi.now, smi.write_file, smi.lock_out, smi.warnings,
-// smi.libraries, smi.provenance) are here.
+// module can walk the public API at run time. The texts of the smi module's values set from the
+// command line and of the host functions registered by library_lua.cpp (smi.libraries,
+// smi.provenance) are here; the run-level functions' are in bindings/run_doc.cpp.
 #include <cstring>
 #include <exception>
 #include <string>
@@ -23,24 +23,6 @@ output not a terminal), smi.out_dir (--out, default smi-out/<script>), smi.scrip
 script's folder), smi.version (the program's version), smi.dry_run (--dry-run), smi.pdf (--pdf:
 a study also prints its report to PDF).
 
-@ smi.out([name]) -> path
-A path in the run's output folder (--out, default smi-out/<script>/), which is created on
-first use. Scripts write their files here: the sandbox allows writes under it.
-returns: the path as a string (the folder itself when name is omitted)
-errors: the folder cannot be created (a file is in the way, or no permission)
-example:
-  local p = smi.out("table.csv")
-  print(p:match("table%.csv$") ~= nil)
-
-@ smi.now() -> seconds
-Wall-clock seconds from a monotonic clock, for timing steps that wait on solver processes
-(os.clock counts only this process's CPU time).
-returns: a number of seconds from an arbitrary origin; differences are durations
-errors: none
-example:
-  local t0 = smi.now()
-  print(smi.now() - t0 >= 0)
-
 @ smi.libraries() -> list
 The libraries a study sees (--lib, SMI_PATH), as the manifests declare them.
 returns: a list of {name =, version =, path =, description =, commit =} (commit when the
@@ -48,76 +30,6 @@ returns: a list of {name =, version =, path =, description =, commit =} (commit 
 errors: none (a bad library stops the run before the script starts)
 example:
   print(#smi.libraries() >= 0)
-
-@ smi.write_file(path, text) -> path
-Writes a whole file atomically: a temporary file in the same folder (created O_EXCL, never
-through a symlink), every write checked, fsync, then renamed over the target. A full disk or a
-kill leaves the old file as it was. smi.study writes results.json and report.html this way.
-returns: the path as given
-errors: the sandbox refuses the folder (write only under --out and --allow-write); the target is
-  a symlink; a write fails (the message names the file and the reason, e.g. no space left)
-example:
-  local p = smi.write_file(smi.out("note.txt"), "done\n")
-  print(p:match("note%.txt$") ~= nil)
-
-@ smi.lock_out([folder]) -> nothing
-Takes this process's lock on an output folder (default --out), so that two studies never share
-work folders or results; smi.study calls it before its first step. The lock is released when the
-process ends.
-returns: nothing
-errors: another process holds the lock (the message names its pid, host, start time and command,
-  and the fix: wait for it or give another --out); the sandbox refuses the folder
-example:
-  smi.lock_out()
-  print("locked")
-
-@ smi.warnings() -> list
-The run's warnings so far, in order, each as "<function>: <text>" (data outside a KDE's bounds,
-duplicated CSV rows, an integration grid too coarse for a pdf, ...). Every warning a smi function
-gives comes here; it is also printed on stderr as "<function>: warning: <text>" unless the run is
-quiet (--quiet, or output not a terminal), so a quiet run loses none.
-returns: a list of strings (empty when nothing was warned)
-errors: none
-example:
-  for _, w in ipairs(smi.warnings()) do print(w) end
-  print(#smi.warnings() >= 0)
-
-@ smi.fail(message [, traceback]) -> never returns
-Raises a failure: an error in the user's data, options or declaration (a missing column, a bad
-option value, an unknown distribution family), as opposed to an error in code. smi-lua prints a
-failure as one line, "smi-lua: <message>", with no Lua traceback (--traceback adds it); an error
-in code keeps its traceback. The message names the culprit (file, line, field, value) and the
-fix. The error value is a table whose tostring is the message; string methods (e:find, e:match)
-and `..` act on the message, and smi.failure(e) returns it. Every check of smi's own raises one,
-and so does a smi function called by the stdlib. With a traceback (a step of smi.study catching an
-error in the user's code), the failure carries that traceback, which is printed under it.
-returns: never (raises)
-errors: always: the failure
-example:
-  local msg = "tests.csv: no column 'mode2_Hz' (did you mean mode_2_Hz?); columns: mode_1_Hz, mode_2_Hz"
-  local ok, e = pcall(smi.fail, msg)
-  print(ok, smi.failure(e), e:find('mode2') ~= nil)
-
-@ smi.failure(e) -> message | nil
-The message of a failure raised by smi.fail (or by a smi check), nil for any other error value:
-tells an error in the user's data or declaration from an error in code after a pcall.
-returns: a string, or nil
-errors: none
-example:
-  local _, e = pcall(smi.fail, 'bad value')
-  local _, plain = pcall(error, 'plain error')
-  print(smi.failure(e), smi.failure(plain))
-
-@ smi.progress_label([text]) -> nothing
-What the progress lines that follow belong to, written in front of each ("[beam] step 4/7
-calibrate: calibration: start 2/4, 310 evaluations"); no text clears it. smi.study sets it to
-the step that runs.
-returns: nothing
-errors: none
-example:
-  smi.progress_label('[demo] fit')
-  smi.progress_label()
-  print("ok")
 
 @ smi.provenance([opts]) -> table
 What this run's numbers depend on so far: every file it read (Lua modules, dofile/loadfile
