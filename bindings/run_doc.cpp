@@ -4,6 +4,7 @@
 
 namespace smi::bind {
 
+// long: one raw string of reference text (data, no logic); doc.lua reads it entry by entry
 DocText doc_run() {
   return {"bindings/run_doc.cpp", R"DOC(
 @ smi.out([name]) -> path

@@ -87,10 +87,10 @@ void simulate_chunk_network(int n, Rng& rng, double* out, std::int64_t count) {
   }
 }
 
-void simulate_chunk_sort(int n, Rng& rng, double* out, std::int64_t count) {
+void simulate_chunk_sort(int n, Rng& rng, double* out, std::int64_t count, const cancel::Token& stop) {
   std::vector<double> u(static_cast<std::size_t>(n));
   for (std::int64_t r = 0; r < count; ++r) {
-    if ((r & 63) == 0) cancel::poll();  // one replicate sorts n values: 64 take milliseconds
+    if ((r & 63) == 0) stop.poll();  // one replicate sorts n values: 64 take milliseconds
     for (int i = 0; i < n; ++i) u[static_cast<std::size_t>(i)] = rng.uniform01();
     std::sort(u.begin(), u.end());
     out[r] = statistic_sorted(u.data(), n);
@@ -102,15 +102,16 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
   std::vector<double> out(static_cast<std::size_t>(reps));
   const std::int64_t chunks = (reps + kChunk - 1) / kChunk;
   std::atomic<std::int64_t> done{0};
+  const cancel::Token& stop = s.stop ? *s.stop : cancel::process_token();
   auto work = [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c) {
-      cancel::poll();  // --timeout and Ctrl-C reach the Monte Carlo (it ran 49 s past --timeout 3)
+      stop.poll();  // --timeout and Ctrl-C reach the Monte Carlo (it ran 49 s past --timeout 3)
       Rng rng(s.seed, static_cast<std::uint64_t>(c) + 1);
       const std::int64_t b = c * kChunk, e = std::min(reps, b + kChunk);
       if (n <= kNetMax)
         simulate_chunk_network(n, rng, out.data() + b, e - b);
       else
-        simulate_chunk_sort(n, rng, out.data() + b, e - b);
+        simulate_chunk_sort(n, rng, out.data() + b, e - b, stop);
       if (s.progress) s.progress(static_cast<double>(++done) / static_cast<double>(chunks));
     }
   };
@@ -118,7 +119,7 @@ std::vector<double> simulate(int n, const UpoolMcSettings& s) {
   // pool::parallel_blocks caps the threads and carries a worker's exception (Interrupted) back here.
   const int nt = std::max(1, std::min<int>(s.threads, static_cast<int>(chunks)));
   pool::parallel_blocks(static_cast<Eigen::Index>(chunks), nt, 1e12,
-                          [&](Eigen::Index c0, Eigen::Index c1) { work(c0, c1); });
+                          [&](Eigen::Index c0, Eigen::Index c1) { work(c0, c1); }, stop);
   return out;
 }
 

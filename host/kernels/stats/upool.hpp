@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "platform/core/cancel.hpp"
 #include "kernels/stats/distribution.hpp"
 #include "platform/core/defaults.hpp"
 #include "platform/core/descriptive.hpp"
@@ -29,6 +30,8 @@ struct UpoolMcSettings {
   /// must be thread-safe), only while a sample is being made (a cached one calls nothing). Not
   /// part of the cached state: it changes no number.
   std::function<void(double done)> progress;
+  /// The run's cancel token, polled between chunks (nullptr: the process's). Changes no number.
+  const cancel::Token* stop = nullptr;
 };
 
 /// The H0 sample of U for n u-values, in generation order (computed once per (n, replications,

@@ -28,10 +28,11 @@ struct Local {
   int evals = 0;
   std::vector<double> best_z;
   double best = std::numeric_limits<double>::infinity();
+  const cancel::Token* stop = &cancel::process_token();  ///< the run's token (ml_search's argument)
 
   double eval(const std::vector<double>& z, std::vector<double>& grad) {
     // NLopt turns an exception here into a stop; local() below then polls to raise the reason.
-    if (cancel::stop_requested()) throw nlopt::forced_stop();
+    if (stop->stop_requested()) throw nlopt::forced_stop();
     ++evals;
     Eigen::VectorXd theta(n);
     for (Eigen::Index j = 0; j < n; ++j) theta[j] = std::exp(z[j]);
@@ -99,7 +100,7 @@ int local_search_count(const Problem& pb, int starts, const std::vector<double>&
 
 // One L-BFGS search from z; loc keeps the best point it saw.
 void local_search(Local& loc, std::vector<double> z, const std::vector<double>& zlo, const std::vector<double>& zhi,
-                  int maxeval) {
+                  int maxeval, const cancel::Token& stop) {
   nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(zlo.size()));
   opt.set_lower_bounds(zlo);
   opt.set_upper_bounds(zhi);
@@ -113,7 +114,7 @@ void local_search(Local& loc, std::vector<double> z, const std::vector<double>& 
   } catch (const std::exception&) {
     // roundoff_limited and friends: the best point seen so far stands
   }
-  cancel::poll();  // a forced stop for --timeout / Ctrl-C: raise it, do not keep the point
+  stop.poll();  // a forced stop for --timeout / Ctrl-C: raise it, do not keep the point
 }
 
 // Confirming rounds end once the best optimum has been reached from two different starts.
@@ -130,7 +131,7 @@ bool best_reached_twice(const std::vector<Local>& runs, int done) {
 
 MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, double nugget,
                    bool estimate_nugget, int starts, std::uint64_t seed, int threads, const MlResult* start,
-                   int maxeval) {
+                   int maxeval, const cancel::Token& stop) {
   const Eigen::Index n = lower.size(), dim = n + (estimate_nugget ? 1 : 0);
   std::vector<double> zlo(dim), zhi(dim);
   for (Eigen::Index j = 0; j < n; ++j) zlo[j] = std::log(lower[j]), zhi[j] = std::log(upper[j]);
@@ -141,11 +142,11 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   std::vector<double> cval(ncand);
   std::vector<int> cevals(ncand, 0);
   pool::parallel_for(ncand, threads, [&](long c) {
-    Local loc{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()};
+    Local loc{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity(), &stop};
     std::vector<double> nograd;
     cval[c] = loc.eval(cand[c], nograd);
     cevals[c] = loc.evals;
-  });
+  }, stop);
   std::vector<long> order(ncand);
   std::iota(order.begin(), order.end(), 0L);
   std::stable_sort(order.begin(), order.end(), [&](long a, long b) { return cval[a] < cval[b]; });
@@ -154,12 +155,12 @@ MlResult ml_search(const Problem& pb, const Eigen::VectorXd& lower, const Eigen:
   bool confirm = false;
   starts = local_search_count(pb, starts, cval, confirm);
   const int round = confirm ? 2 : starts;
-  std::vector<Local> runs(starts, Local{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity()});
-  auto local = [&](long r) { local_search(runs[r], cand[order[r]], zlo, zhi, maxeval > 0 ? maxeval : (m > 500 ? 80 : 150)); };
+  std::vector<Local> runs(starts, Local{&pb, n, estimate_nugget, nugget, 0, {}, std::numeric_limits<double>::infinity(), &stop});
+  auto local = [&](long r) { local_search(runs[r], cand[order[r]], zlo, zhi, maxeval > 0 ? maxeval : (m > 500 ? 80 : 150), stop); };
   int done = 0;
   while (done < starts) {
     const int k = std::min(round, starts - done);
-    pool::parallel_for(k, threads, [&](long r) { local(done + r); });
+    pool::parallel_for(k, threads, [&](long r) { local(done + r); }, stop);
     done += k;
     if (confirm && best_reached_twice(runs, done)) break;
   }

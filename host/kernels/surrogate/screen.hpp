@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "platform/core/cancel.hpp"
 #include "kernels/surrogate/propagate.hpp"
 #include "platform/core/defaults.hpp"
 
@@ -46,8 +47,10 @@ std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const pr
                            const std::vector<std::string>& outputs, const Options& opt);
 
 /// Sobol' estimators on given model outputs: fA, fB (n) and fAB (n x k, column k from A with
-/// input k taken from B). Writes s1/st (and CIs when bootstrap > 0) into rows[0..k).
+/// input k taken from B). Writes s1/st (and CIs when bootstrap > 0) into rows[0..k). `stop` is
+/// polled between bootstrap resamples.
 void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const Eigen::MatrixXd& fAB, int bootstrap,
-                   double level, std::uint64_t seed, std::vector<Row>& rows);
+                   double level, std::uint64_t seed, std::vector<Row>& rows,
+                   const cancel::Token& stop = cancel::process_token());
 
 }  // namespace smi::surrogate::screen

@@ -48,7 +48,8 @@ Est estimate(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const Eigen::
 }  // namespace
 
 void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const Eigen::MatrixXd& fAB, int bootstrap,
-                   double level, std::uint64_t seed, std::vector<Row>& rows) {
+                   double level, std::uint64_t seed, std::vector<Row>& rows,
+                   const cancel::Token& stop) {
   const Eigen::Index n = fA.size(), k = fAB.cols();
   if (fB.size() != n || fAB.rows() != n || static_cast<Eigen::Index>(rows.size()) < k)
     throw DimensionMismatch("sobol_indices: sizes of fA, fB, fAB and rows disagree");
@@ -64,7 +65,7 @@ void sobol_indices(const Eigen::VectorXd& fA, const Eigen::VectorXd& fB, const E
   Eigen::MatrixXd bs1(bootstrap, k), bst(bootstrap, k);
   std::vector<Eigen::Index> idx(n);
   for (int b = 0; b < bootstrap; ++b) {
-    cancel::poll();
+    stop.poll();
     for (auto& i : idx) i = rng.integer(0, n - 1);
     const Est eb = estimate(fA, fB, fAB, &idx);
     bs1.row(b) = eb.s1.transpose(), bst.row(b) = eb.st.transpose();

@@ -12,12 +12,12 @@
 
 namespace smi::pool {
 
-void run_tasks(long n, int threads, const std::function<void(long)>& task) {
+void run_tasks(long n, int threads, const std::function<void(long)>& task, const cancel::Token& stop) {
   if (n <= 0) return;
   threads = static_cast<int>(std::max(1L, std::min<long>(machine::cap_threads(threads), n)));
   if (threads <= 1) {
     for (long i = 0; i < n; ++i) {
-      cancel::poll();
+      stop.poll();
       task(i);
     }
     return;
@@ -29,7 +29,7 @@ void run_tasks(long n, int threads, const std::function<void(long)>& task) {
   auto worker = [&] {
     try {
       for (long i = next++; i < n && !failed.load(std::memory_order_relaxed); i = next++) {
-        cancel::poll();
+        stop.poll();
         task(i);
       }
     } catch (...) {  // plain C++ only (no Lua here): carried to the caller and rethrown

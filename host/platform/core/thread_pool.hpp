@@ -3,7 +3,8 @@
 // The one thread pool of the kernels: parallel loops whose results never depend on the thread
 // count (each task writes only its own outputs, with the same arithmetic whatever the split).
 //   * the calling thread works too; threads are capped by the machine (machine::cap_threads)
-//   * cancel::poll() runs before every task, so --timeout and Ctrl-C stop a loop between tasks
+//   * the run's cancel token (an argument, by default the process's) is polled before every task,
+//     so --timeout and Ctrl-C stop a loop between tasks
 //   * the first exception of any task (smi::Interrupted, bad_alloc, a kernel error) stops the
 //     handing out of further tasks and is rethrown on the calling thread after every worker has
 //     joined: never std::terminate, never a task still running after the call returns.
@@ -13,18 +14,20 @@
 #include <algorithm>
 #include <functional>
 
+#include "platform/core/cancel.hpp"
 #include "platform/core/machine.hpp"
 
 namespace smi::pool {
 
 /// Runs task(i) for every i in [0, n), handed out in order as threads free up (for tasks of
 /// varying cost). With threads <= 1 (or n <= 1) it runs inline, polling between tasks.
-void run_tasks(long n, int threads, const std::function<void(long)>& task);
+void run_tasks(long n, int threads, const std::function<void(long)>& task,
+               const cancel::Token& stop = cancel::process_token());
 
 /// run_tasks for any callable.
 template <class F>
-void parallel_for(long n, int threads, F&& task) {
-  run_tasks(n, threads, std::function<void(long)>(std::ref(task)));
+void parallel_for(long n, int threads, F&& task, const cancel::Token& stop = cancel::process_token()) {
+  run_tasks(n, threads, std::function<void(long)>(std::ref(task)), stop);
 }
 
 /// Calls body(begin, end) on contiguous blocks covering [0, n): one block per thread, each cut
@@ -32,7 +35,8 @@ void parallel_for(long n, int threads, F&& task) {
 /// cancel poll between them, so a large sum stops within milliseconds. Small loops (work < 2e5)
 /// run inline on the calling thread.
 template <class F>
-void parallel_blocks(Eigen::Index n, int threads, double work, F&& body) {
+void parallel_blocks(Eigen::Index n, int threads, double work, F&& body,
+                     const cancel::Token& stop = cancel::process_token()) {
   if (n <= 0) return;
   threads = machine::cap_threads(threads);
   const double per_element = work / static_cast<double>(n);
@@ -47,7 +51,7 @@ void parallel_blocks(Eigen::Index n, int threads, double work, F&& body) {
     const Eigen::Index b = blk * per + s * sub;
     const Eigen::Index e = std::min({n, blk * per + per, b + sub});
     if (b < e) body(b, e);
-  });
+  }, stop);
 }
 
 }  // namespace smi::pool
