@@ -96,4 +96,17 @@ T.case("better_alternative: the largest evidence among the alternatives that bea
   T.eq(forms.same({ "a" }, { "a", "b" }), false)
 end)
 
+T.case("the report's opening states the conclusion in one short sentence; the reasons follow it", function()
+  local text = require "smi.improve.text"
+  local D = { names = { "f1", "f2", "d1" } }
+  local c = { verdict = "undetermined", chosen = 2, undetermined = { "d1" },
+              trials = { { applied = {}, responses = { f1 = "invalid" } },
+                         { applied = { "tip mass" }, responses = { f1 = "valid", f2 = "valid", d1 = "inconclusive" } } } }
+  T.eq(text.conclusion_short(D, c),
+    "Conclusion: the model is undetermined in {tip mass}: valid on f1 and f2; d1 not determined by these data.")
+  c.verdict, c.undetermined, c.trials[2].responses.d1 = "valid", {}, "valid"
+  T.eq(text.conclusion_short(D, c), "Conclusion: the model is valid in {tip mass} on f1, f2 and d1.")
+  c.verdict, c.chosen = "invalid", 1
+  T.eq(text.conclusion_short(D, c), "Conclusion: the model is invalid in the initial model: invalid on f1.")
+end)
 T.finish()

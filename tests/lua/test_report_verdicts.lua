@@ -131,4 +131,24 @@ T.case("the summary opens the page: conclusion, form, verdicts, parameters with 
   T.raises(function() r:summary{ form = "x" } end, "'conclusion' is missing")
 end)
 
+T.case("a point estimate apart from the interval's distribution: its own column, marked where it lies outside", function()
+  local r = require("smi.report").new{ title = "estimate" }
+  r:summary{ conclusion = "The model is undetermined.", detail = "mode 2 is not determined by these data",
+             parameters = { { name = "E", estimate = 199.5, mean = 207.25, std = 3.125, interval = { 201, 213.5 } },
+                            { name = "t", estimate = 3.81, mean = 3.8, std = 0.02, interval = { 3.76, 3.84 } },
+                            { name = "k", mean = 1.5, std = 0.1, interval = { 1.3, 1.7 } } } }
+  local root = X.parse(r:html())
+  local answer = by_class(root, "section", "answer")[1]
+  T.eq(X.text(by_class(answer, "p", "detail")[1]), "mode 2 is not determined by these data")
+  local t = X.find_all(answer, "table")[1]
+  local heads, cells = {}, {}
+  for _, th in ipairs(X.find_all(X.find_all(t, "thead")[1], "th")) do heads[#heads + 1] = X.text(th) end
+  for _, td in ipairs(X.find_all(X.find_all(t, "tbody")[1], "td")) do cells[#cells + 1] = X.text(td) end
+  T.eq(table.concat(heads, "|"), "Parameter|Estimate|Mean|Std|95 % interval")
+  -- 199.5 < 201: outside its interval, marked; 3.81 inside, not marked; k has no estimate
+  T.eq(table.concat(cells, "|"), "E|199.5 †|207.2|3.125|[201, 213.5]|t|3.81|3.8|0.02|[3.76, 3.84]|k||1.5|0.1|[1.3, 1.7]")
+  T.raises(function() r:summary{ conclusion = "x", parameters = { { name = "E", estimate = "high" } } } end,
+    "parameters[1] ('E'): estimate must be a number")
+end)
+
 T.finish()

@@ -161,6 +161,26 @@ function M.conclusion(D, c, R)
   return ("Conclusion: the model is %s %s."):format(c.verdict, (M.conclusion_detail(D, c, R):gsub("%.$", "")))
 end
 
+--- The conclusion as the report's opening states it, in one short sentence: the verdict, the form
+-- it names, the responses that are valid and those the data leave undetermined. The reasons
+-- (the other forms, the bounds, what would settle it) follow it in M.conclusion's words.
+function M.conclusion_short(D, c)
+  local k = c.chosen or #c.trials
+  local chosen = c.trials[k]
+  local by = { valid = {}, invalid = {} }
+  for _, m in ipairs(D.names) do
+    local v = chosen.responses[m]
+    if by[v] then by[v][#by[v] + 1] = m end
+  end
+  local s = ("Conclusion: the model is %s in %s"):format(c.verdict, form_name(chosen.applied))
+  if c.verdict == "valid" then return ("%s on %s."):format(s, listed(by.valid)) end
+  local parts = {}
+  if #by.valid > 0 then parts[#parts + 1] = "valid on " .. listed(by.valid) end
+  if #by.invalid > 0 then parts[#parts + 1] = "invalid on " .. listed(by.invalid) end
+  if #c.undetermined > 0 then parts[#parts + 1] = listed(c.undetermined) .. " not determined by these data" end
+  return s .. (#parts > 0 and (": " .. table.concat(parts, "; ")) or "") .. "."
+end
+
 --- A trial's label in the report and the log: "Trial k (candidate)".
 function M.trial_label(model, k)
   return ("Trial %d (%s)"):format(k, model.candidate == "initial" and "initial model" or model.candidate)

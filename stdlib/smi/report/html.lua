@@ -201,6 +201,7 @@ end
 local function answer_html(s, digits)
   if not s then return "" end
   local out = { '<section class="answer" id="summary"><h2>Summary</h2>', '<p class="conclusion">' .. tesc(s.conclusion) .. "</p>" }
+  if s.detail then out[#out + 1] = '<p class="detail">' .. tesc(s.detail) .. "</p>" end
   if s.form then out[#out + 1] = '<p class="form"><b>Chosen form:</b> ' .. tesc(s.form) .. "</p>" end
   if #s.verdicts > 0 then
     local li = {}
@@ -213,7 +214,7 @@ local function answer_html(s, digits)
   local t = summary.parameter_table(s, digits)
   if t then
     out[#out + 1] = table_html{ columns = t.columns, rows = t.rows, digits = digits, number = nil, id = "summary-parameters",
-                                caption = "Calibrated parameters: mean and standard deviation with their interval, and the prior where one was declared." }
+                                caption = "Calibrated parameters: mean and standard deviation with their interval (and the point estimate, where it is apart from them), and the prior where one was declared." }
   end
   if #s.open > 0 then
     local li = {}

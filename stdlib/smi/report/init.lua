@@ -448,10 +448,13 @@ The report's opening: the answer before the story. Rendered first, under the tit
 is given (a study gives it at its end); given again, it replaces the first.
 options:
   conclusion = (required) -- one sentence: what the study found
+  detail = nil            -- the conclusion's reasons, under it in plain type
   form = nil              -- the chosen form of the model (the final trial's unknowns, revisions)
   verdicts = nil          -- {{name =, status = | pass =, detail =}, ...}: each response in the final trial
-  parameters = nil        -- {{name =, unit =, mean =, std =, interval = {lo, hi}, level = 0.95, prior =}, ...}:
-                          -- the calibrated parameters (prior: text such as "normal(2.1e11, 1e10)")
+  parameters = nil        -- {{name =, unit =, mean =, std =, interval = {lo, hi}, level = 0.95, prior =,
+                          -- estimate =}, ...}: the calibrated parameters (prior: text such as
+                          -- "normal(2.1e11, 1e10)"; estimate: a point estimate apart from the mean,
+                          -- std and interval, shown in a column of its own and marked † outside the interval)
   open = nil              -- {{question =, settle =}, ...} (or strings): what is open and what would settle it
   notes = nil             -- a paragraph under the rest
 returns: the report

@@ -16,7 +16,8 @@ function M.check(s, level)
   if type(s) ~= "table" or type(s.conclusion) ~= "string" or s.conclusion == "" then
     bad(level, "expects {conclusion = \"one sentence\", form =, verdicts =, parameters =, open =}; 'conclusion' is missing")
   end
-  local out = { conclusion = s.conclusion, form = s.form and tostring(s.form) or nil, notes = s.notes and tostring(s.notes) or nil,
+  local out = { conclusion = s.conclusion, detail = s.detail and tostring(s.detail) or nil,
+                form = s.form and tostring(s.form) or nil, notes = s.notes and tostring(s.notes) or nil,
                 verdicts = {}, parameters = {}, open = {} }
   for i, v in ipairs(s.verdicts or {}) do
     local status = v.status or (v.pass == true and "pass") or (v.pass == false and "fail") or nil
@@ -31,8 +32,11 @@ function M.check(s, level)
     if iv ~= nil and (type(iv) ~= "table" or type(iv[1]) ~= "number" or type(iv[2]) ~= "number") then
       bad(level, ("parameters[%d] ('%s'): interval must be {lo, hi}"):format(i, p.name))
     end
-    out.parameters[i] = { name = p.name, unit = p.unit, mean = p.mean, std = p.std, interval = iv, level = p.level or 0.95,
-                          prior = p.prior }
+    if p.estimate ~= nil and type(p.estimate) ~= "number" then
+      bad(level, ("parameters[%d] ('%s'): estimate must be a number"):format(i, p.name))
+    end
+    out.parameters[i] = { name = p.name, unit = p.unit, estimate = p.estimate, mean = p.mean, std = p.std, interval = iv,
+                          level = p.level or 0.95, prior = p.prior }
   end
   for i, o in ipairs(s.open or {}) do
     if type(o) == "string" then o = { question = o } end
@@ -45,16 +49,29 @@ end
 --- The parameters as a report table {columns =, rows =} (nil when none).
 function M.parameter_table(s, digits)
   if #s.parameters == 0 then return nil end
-  local any_prior, level = false, s.parameters[1].level
-  for _, p in ipairs(s.parameters) do any_prior = any_prior or p.prior ~= nil end
-  local columns = { { title = "Parameter" }, { title = "Mean", digits = digits }, { title = "Std", digits = digits },
-                    { title = ("%g %% interval"):format(100 * level) } }
+  local any_prior, any_estimate, level = false, false, s.parameters[1].level
+  for _, p in ipairs(s.parameters) do
+    any_prior = any_prior or p.prior ~= nil
+    any_estimate = any_estimate or p.estimate ~= nil
+  end
+  -- an estimate apart from the interval's distribution (a point calibration beside a posterior)
+  -- gets a column of its own, marked † where it falls outside that interval
+  local columns = { { title = "Parameter" } }
+  if any_estimate then columns[#columns + 1] = { title = "Estimate" } end
+  for _, c in ipairs{ { title = "Mean", digits = digits }, { title = "Std", digits = digits },
+                      { title = ("%g %% interval"):format(100 * level) } } do columns[#columns + 1] = c end
   if any_prior then columns[#columns + 1] = { title = "Prior" } end
   local rows = {}
   for i, p in ipairs(s.parameters) do
     local iv = p.interval and ("[%s, %s]"):format(fmt.num(p.interval[1], digits), fmt.num(p.interval[2], digits)) or ""
-    rows[i] = { p.name .. (p.unit and p.unit ~= "" and (" (" .. p.unit .. ")") or ""), p.mean, p.std, iv }
-    if any_prior then rows[i][5] = p.prior or "not declared" end
+    local row = { p.name .. (p.unit and p.unit ~= "" and (" (" .. p.unit .. ")") or "") }
+    if any_estimate then
+      local outside = p.estimate and p.interval and (p.estimate < p.interval[1] or p.estimate > p.interval[2])
+      row[#row + 1] = p.estimate and (fmt.num(p.estimate, digits) .. (outside and " †" or "")) or ""
+    end
+    row[#row + 1], row[#row + 2], row[#row + 3] = p.mean, p.std, iv
+    if any_prior then row[#row + 1] = p.prior or "not declared" end
+    rows[i] = row
   end
   return { columns = columns, rows = rows }
 end

@@ -24,18 +24,46 @@ local function parameters(D, R, k, T)
     for _, part in ipairs{ "mean", "std" } do
       local param = p.input .. "." .. part
       local b = cal.bootstrap
-      local iv, level, sd
+      -- the bootstrap's interval is centred on the PR optimum (estimate ± 1.645 sd): one mean;
+      -- the posterior's has its own mean, so the optimum is shown beside it as the estimate
+      local iv, level, sd, mean, estimate = nil, nil, nil, p[part], nil
       if b and b.lower and b.lower[param] and b.upper[param] then
         iv, level, sd = { b.lower[param], b.upper[param] }, b.level, b.std and b.std[param]
       elseif ev.interval and ev.interval[param] then
         iv, level, sd = ev.interval[param], ev.interval_level or 0.9, ev.std and ev.std[param]
+        mean, estimate = ev.mean and ev.mean[param] or p[part], p[part]
       end
-      rows[#rows + 1] = { name = param, unit = unit ~= "" and unit or nil, mean = p[part],
+      rows[#rows + 1] = { name = param, unit = unit ~= "" and unit or nil, mean = mean, estimate = estimate,
                           std = sd, interval = iv, level = iv and level or nil,
                           prior = prior_text(ev.priors, param) }
     end
   end
   return rows
+end
+
+-- What the table's columns are, and the parameters whose estimate lies outside the posterior's
+-- interval: the data's optimum where the priors and the data together put little weight.
+local function parameters_note(k, rows)
+  local posterior, outside = false, {}
+  for _, p in ipairs(rows) do
+    if p.estimate ~= nil then
+      posterior = true
+      if p.interval and (p.estimate < p.interval[1] or p.estimate > p.interval[2]) then outside[#outside + 1] = p.name end
+    end
+  end
+  if not posterior then
+    return ("Parameters: the probability-residual optimum of trial %d (the paper's calibration); std and interval:"
+      .. " the bootstrap's over the data, when it ran."):format(k)
+  end
+  local note = ("Estimate: the probability-residual optimum of trial %d (the paper's calibration). Mean, std and"
+    .. " interval: the posterior's, under the declared priors and the data (no bootstrap ran: --quick or"
+    .. " --bootstrap 0)."):format(k)
+  if #outside > 0 then
+    note = note .. (" † %s: the optimum lies outside the posterior's interval, where the data alone pull (often a"
+      .. " range bound) and the priors and data together put little weight; read the posterior, and see what"
+      .. " would settle it below."):format(table.concat(outside, ", "))
+  end
+  return note
 end
 
 return function(run, r, out, R)
@@ -62,11 +90,12 @@ return function(run, r, out, R)
                         settle = text.separate(D, c, R) }
   end
   local form = ("trial %d, %s; unknowns %s"):format(k, text.form_name(T.applied), table.concat(T.unknowns, ", "))
-  r:summary{ conclusion = out.words or ("Conclusion: the model is " .. c.verdict),
-             form = form, verdicts = verdicts, parameters = parameters(D, R, k, T), open = open,
-             notes = ("Parameters: the probability-residual optimum of trial %d (the paper's calibration); std and"
-               .. " interval: the bootstrap's in a full run, else the posterior's under the declared priors."):format(k)
-               .. (val and val.skipped and (" " .. val.reason) or "") }
+  local rows = parameters(D, R, k, T)
+  -- the reasons under the short sentence, without repeating its opening words
+  local detail = text.conclusion_detail(D, c, R):gsub("^%l", string.upper):gsub("%.?$", ".")
+  r:summary{ conclusion = text.conclusion_short(D, c), detail = detail,
+             form = form, verdicts = verdicts, parameters = rows, open = open,
+             notes = parameters_note(k, rows) .. (val and val.skipped and (" " .. val.reason) or "") }
   -- the trials the conclusion does not rest on: in the page, not counted
   for _, it in ipairs(r.items or {}) do
     local n = it.kind == "section" and it.level == 1 and it.title and tonumber(it.title:match("^Trial (%d+) "))
