@@ -34,6 +34,14 @@ s:step("calibration", function(ctx)
   r:table{ caption = "Calibrated parameters (SI units) with the bootstrap's intervals.", rows = rows,
            columns = { "Parameter", "Family", "Calibrated mean", "Calibrated std", "Lower bound", "Upper bound",
                        "Bootstrap CI of the mean", "Bootstrap std", "Bootstrap CI of the std", { title = "Share", unit = "%" } } }
+  -- the steering column's decision matrix as its quick run printed it: ten columns of short
+  -- numbers that asked for 726 px of the printed page's 688 (fixed by equal column widths)
+  r:table{ caption = "Weighted decision matrix: magnitudes M, standardized S, overall rating.",
+           columns = { "Candidate", "M correctness", "M robustness", "M computational cost", "M implementation cost",
+                       "S correctness", "S robustness", "S computational cost", "S implementation cost", "Rating" },
+           rows = { { "material properties per part", 0.1302, 3.000, 0.01667, 240.0, 0.0000, 0.000, 0, 0.0000, 0.0000 },
+                    { "airbag location", 0.1276, 1.000, 0.01667, 30.00, 0.05130, 1.000, 0, 0.8750, 0.3953 },
+                    { "airbag modelling type", 0.07611, 2.000, 0.02500, 60.00, 1.0000, 0.5000, 1.000, 0.7500, 0.8500 } } }
   local c = svg.chart{ title = "Trial 2 calibration: the objective (probability residual of modes 1 and 4) over the optimizer's evaluations, every start",
                        xlabel = "evaluation", ylabel = "objective", width = 640, height = 360 }
   local xs, ys = {}, {}

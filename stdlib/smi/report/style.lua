@@ -106,7 +106,9 @@ footer { margin-top: 36px; padding-top: 10px; border-top: 1px solid var(--line);
   nav.toc { display: none; }
   .table-wrap { overflow: visible; }
   table.data { width: 100%; font-size: 8pt; }
-  table.data.wide { font-size: 7pt; }
+  /* columns of equal width: the steering column's decision matrix (10 columns) ran 38 px past
+     the page's 688 px with the widths its numbers asked for */
+  table.data.wide { font-size: 7pt; table-layout: fixed; }
   table.data th, table.data td { padding: 2px 3px; }
   /* the printed page cannot scroll: a header word may break too ("Calibrat-ed" beats a cut column) */
   table.data th { overflow-wrap: anywhere; }
