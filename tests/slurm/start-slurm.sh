@@ -64,6 +64,12 @@ if [ -e "$CONF" ] && ! grep -qF "$MARK" "$CONF"; then
   [ "${SMI_SLURM_FORCE:-0}" = 1 ] || die "$CONF exists and is not ours (SMI_SLURM_FORCE=1 replaces it, keeping a backup)"
   cp -a "$CONF" "$CONF.smi-backup.$(date +%s)"
 fi
+# Nor does a fresh cluster keep the job steps of an earlier one: a slurmstepd outlives its
+# slurmd when its job was killed, and left alive it reports "job N done" to the new controller,
+# whose job N it is not (a CI run on a machine that had run the tests before saw job 1_0 marked
+# COMPLETED without running: no output, no exit file). Past the check above, the only Slurm here
+# is this one.
+pkill -KILL -x slurmstepd 2>/dev/null || true
 hw=$(slurmd -C | head -1)
 get() { echo "$hw" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
 MEM=$(( $(get RealMemory) * 9 / 10 ))

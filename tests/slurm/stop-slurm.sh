@@ -21,6 +21,9 @@ if [ -s "$DIR/pids" ]; then
     kill -0 "$pid" 2>/dev/null && [ "$(awk '/^State:/{print $2}' /proc/$pid/status 2>/dev/null)" != Z ] && kill -KILL "$pid"
   done
   : > "$DIR/pids"
+  # the job steps of a killed job can outlive slurmd; left alive they would report to the next
+  # cluster's controller (start-slurm.sh says how that went wrong)
+  pkill -KILL -x slurmstepd 2>/dev/null || true
 fi
 if [ "${WIPE:-0}" = 1 ]; then
   rm -rf "$DIR"
