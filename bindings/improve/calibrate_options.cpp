@@ -68,7 +68,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "\"random\" draws or \"quantiles\" (stratified) common random numbers"),
       by_hand<S>("grid", "nil",
          "{output = {lower, upper}}: PR integration ranges"),
-      integer<S>("grid_nodes", [](auto& s) -> auto& { return s.stat.grid_nodes; }, any_value(),
+      integer<S>("grid_nodes", [](auto& s) -> auto& { return s.stat.grid_nodes; }, at_least(101),
          "nodes of the default PR grids"),
       string<S>("bandwidth", [](auto& s) -> auto& { return s.stat.bandwidth; }, {},
          "KDE rule for the predicted outputs"),
@@ -85,18 +85,18 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "objective form: function(theta) returning a number; theta[name]"),
       parsed<S>("method", [](auto& s) -> auto& { return s.optimizer.method; }, parse_method, method_name,
          "\"slsqp\", \"lbfgs\" (gradient-based too), \"cobyla\", \"bobyqa\" or \"neldermead\""),
-      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(),
+      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, at_least(1),
          "starts: the given one plus multistart - 1 seeded points"),
-      integer<S>("hops", [](auto& s) -> auto& { return s.optimizer.hops; }, any_value(),
+      integer<S>("hops", [](auto& s) -> auto& { return s.optimizer.hops; }, at_least(0),
          "basin hopping: each start jumps hops times from its optimum and keeps\n"
          "a lower optimum it finds (for multimodal fits; 0: no hops)"),
-      number<S>("hop_step", [](auto& s) -> auto& { return s.optimizer.hop_step; }, any_value(),
+      number<S>("hop_step", [](auto& s) -> auto& { return s.optimizer.hop_step; }, Range{0.0, 1.0, true, false},
          "the largest jump of a hop, as a share of each parameter's range"),
-      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, any_value(),
+      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, at_least(1),
          "objective evaluations per start (finite-difference probes included)"),
-      number<S>("xtol_rel", [](auto& s) -> auto& { return s.optimizer.xtol_rel; }, any_value(),
+      number<S>("xtol_rel", [](auto& s) -> auto& { return s.optimizer.xtol_rel; }, at_least(0),
          "relative tolerance on the scaled parameters"),
-      number<S>("ftol_abs", [](auto& s) -> auto& { return s.optimizer.ftol_abs; }, any_value(),
+      number<S>("ftol_abs", [](auto& s) -> auto& { return s.optimizer.ftol_abs; }, at_least(0),
          "absolute tolerance on the objective\n"
          "Why these fit a Monte Carlo objective: on common random numbers\n"
          "the objective is a fixed, smooth function of the parameters (PR's\n"
@@ -109,7 +109,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "report it. Objective differences (2k + 1 evaluations a gradient)\n"
          "may spend maxeval first: r.starts[i].criterion then says which\n"
          "tolerance was missed and by how much."),
-      number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, any_value(),
+      number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, Range{0.0, 0.1, true, false},
          "central-difference step in scaled units"),
       number<S>("initial_step", [](auto& s) -> auto& { return s.optimizer.initial_step; }, any_value(),
          "derivative-free methods' first step, scaled units"),
@@ -160,7 +160,7 @@ const Schema<CalibrateSpec>& identifiability_schema() {
 const Schema<IntervalsArgs>& intervals_schema() {
   using S = IntervalsArgs;
   static const Schema<S> schema("smi.calibrate intervals", std::vector<Option<S>>{
-      number<S>("level", &S::level, any_value(), "a likelihood-ratio interval's level", num(CalibrateSpec{}.interval_level)),
+      number<S>("level", &S::level, open(0.0, 1.0), "a likelihood-ratio interval's level", num(CalibrateSpec{}.interval_level)),
       number<S>("delta", &S::delta, above(0), "the objective increase instead (not with level)", "nil"),
       integer<S>("observations", &S::observations, at_least(1), "the data count: the small-sample delta (with level)", "nil"),
   });
@@ -182,12 +182,12 @@ const Schema<PriorArgs>& prior_schema() {
 const Schema<smi::improve::BootstrapOptions>& bootstrap_schema() {
   using S = smi::improve::BootstrapOptions;
   static const Schema<S> schema("smi.calibrate bootstrap", std::vector<Option<S>>{
-      integer<S>("replicates", &S::replicates, any_value(), "full calibrations on resampled data"),
-      number<S>("level", &S::level, any_value(), "the percentile intervals' level"),
+      integer<S>("replicates", &S::replicates, at_least(2), "full calibrations on resampled data"),
+      number<S>("level", &S::level, open(0.0, 1.0), "the percentile intervals' level"),
       integer<S>("seed", &S::seed, any_value(), "the resampling's seed", "the calibration's"),
-      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, any_value(), "evaluations per start",
+      integer<S>("maxeval", [](auto& s) -> auto& { return s.optimizer.maxeval; }, at_least(1), "evaluations per start",
                  "the calibration's"),
-      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, any_value(), "starts per replicate",
+      integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, at_least(1), "starts per replicate",
                  "the calibration's"),
       boolean<S>("warm", &S::warm_start, "one start per replicate, the optimum (else the optimum then the multistart points)"),
   });

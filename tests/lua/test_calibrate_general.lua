@@ -236,4 +236,24 @@ T.case("errors name the culprit", function()
            "either objective")
 end)
 
+T.case("the options' ranges are the schema's: a bad value is named, with the range and the value, before any model runs", function()
+  local calls = 0
+  local model = function(X) calls = calls + 1; return { y = X:col(1) } end
+  local function spec(extra)
+    local s = { model = model, order = { "x" }, inputs = { x = { mean = { 0.1, 0.9, 0.5 }, std = 0.1 } },
+                data = { y = smi.vec{ 0.4, 0.5, 0.6, 0.55 } }, n = 200 }
+    for k, v in pairs(extra) do s[k] = v end
+    return s
+  end
+  for _, c in ipairs{
+    { { fd_step = 0.5 }, "smi.calibrate: fd_step must be in (0, 0.1], got 0.5" },
+    { { xtol_rel = -1 }, "smi.calibrate: xtol_rel must be >= 0, got -1" },
+    { { hop_step = 0 }, "smi.calibrate: hop_step must be in (0, 1], got 0" },
+    { { bootstrap = { replicates = 1 } }, "smi.calibrate bootstrap: replicates must be >= 2, got 1" },
+    { { bootstrap = { level = 1.5 } }, "smi.calibrate bootstrap: level must be in (0, 1), got 1.5" },
+  } do
+    T.raises(function() smi.calibrate(spec(c[1])) end, c[2])
+  end
+  T.eq(calls, 0) -- refused while the options were read
+end)
 T.finish()
