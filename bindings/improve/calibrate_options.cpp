@@ -68,7 +68,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "\"random\" draws or \"quantiles\" (stratified) common random numbers"),
       by_hand<S>("grid", "nil",
          "{output = {lower, upper}}: PR integration ranges"),
-      integer<S>("grid_nodes", [](auto& s) -> auto& { return s.stat.grid_nodes; }, at_least(101),
+      integer<S>("grid_nodes", [](auto& s) -> auto& { return s.stat.grid_nodes; }, at_least(static_cast<double>(kMinGridNodes)),
          "nodes of the default PR grids"),
       string<S>("bandwidth", [](auto& s) -> auto& { return s.stat.bandwidth; }, {},
          "KDE rule for the predicted outputs"),
@@ -109,7 +109,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "report it. Objective differences (2k + 1 evaluations a gradient)\n"
          "may spend maxeval first: r.starts[i].criterion then says which\n"
          "tolerance was missed and by how much."),
-      number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, Range{0.0, 0.1, true, false},
+      number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, Range{0.0, smi::improve::kMaxFdStep, true, false},
          "central-difference step in scaled units"),
       number<S>("initial_step", [](auto& s) -> auto& { return s.optimizer.initial_step; }, any_value(),
          "derivative-free methods' first step, scaled units"),

@@ -358,8 +358,8 @@ namespace {
 void validate_options(const OptimizerOptions& opt) {
   if (opt.multistart < 1) throw InvalidArgument(fmt::format("multistart must be >= 1, got {}", opt.multistart));
   if (opt.maxeval < 1) throw InvalidArgument(fmt::format("maxeval must be >= 1, got {}", opt.maxeval));
-  if (!(opt.fd_step > 0.0 && opt.fd_step <= 0.1))
-    throw InvalidArgument(fmt::format("fd_step must be in (0, 0.1] (scaled units), got {}", opt.fd_step));
+  if (!(opt.fd_step > 0.0 && opt.fd_step <= kMaxFdStep))
+    throw InvalidArgument(fmt::format("fd_step must be in (0, {}] (scaled units), got {}", kMaxFdStep, opt.fd_step));
   if (!(opt.xtol_rel >= 0.0) || !(opt.ftol_abs >= 0.0)) throw InvalidArgument("xtol_rel and ftol_abs must be >= 0");
   if (opt.hops < 0) throw InvalidArgument(fmt::format("hops must be >= 0, got {}", opt.hops));
   if (!(opt.hop_step > 0.0 && opt.hop_step <= 1.0))

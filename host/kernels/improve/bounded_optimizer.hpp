@@ -61,13 +61,16 @@ struct PreparedStart {
 /// The objective's value and its gradient in the parameters' own units.
 using ObjectiveGradient = std::function<Evaluation(const Eigen::VectorXd& theta, Eigen::VectorXd& grad)>;
 
+/// The largest central-difference step, scaled units: a tenth of a range is no longer a derivative.
+inline constexpr double kMaxFdStep = 0.1;
+
 struct OptimizerOptions {
   Method method = Method::slsqp;
   double xtol_rel = 1e-6;
   double ftol_abs = 1e-8;
   /// Budget of objective evaluations per start, finite-difference probes included.
   int maxeval = 500;
-  /// Central-difference step in scaled [0, 1] units (spec §7: 1e-4 to 1e-3).
+  /// Central-difference step in scaled [0, 1] units (spec §7: 1e-4 to 1e-3), at most kMaxFdStep.
   double fd_step = 1e-4;
   /// Initial step of the derivative-free methods, scaled units (spec: about 10 % of the range).
   double initial_step = 0.1;

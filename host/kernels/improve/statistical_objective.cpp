@@ -63,7 +63,8 @@ StatisticalObjective::StatisticalObjective(std::vector<InputSpec> inputs, std::v
   if (inputs_.empty()) throw InvalidArgument("no inputs: give at least one input distribution");
   if (responses_.empty()) throw InvalidArgument("no data: give at least one response with experimental data");
   if (opt_.n < 10) throw InvalidArgument(fmt::format("n (CRN sample size) must be >= 10, got {}", opt_.n));
-  if (opt_.grid_nodes < 101) throw InvalidArgument(fmt::format("grid_nodes must be >= 101, got {}", opt_.grid_nodes));
+  if (opt_.grid_nodes < kMinGridNodes)
+    throw InvalidArgument(fmt::format("grid_nodes must be >= {}, got {}", kMinGridNodes, opt_.grid_nodes));
   if (opt_.metric == MetricKind::custom && !custom_) throw InvalidArgument("metric is custom but no metric function was given");
   const int k = static_cast<int>(params_.size());
   std::vector<int> used(static_cast<std::size_t>(k), 0);

@@ -18,7 +18,8 @@ void check_options(const BoundedKdeOptions& o) {
   if (o.step < 1) throw InvalidArgument(fmt::format("step must be >= 1, got {}", o.step));
   if (o.compare != "previous" && o.compare != "data")
     throw InvalidArgument(fmt::format("compare must be \"previous\" or \"data\", got \"{}\"", o.compare));
-  if (o.grid_nodes < 101) throw InvalidArgument(fmt::format("grid_nodes must be >= 101, got {}", o.grid_nodes));
+  if (o.grid_nodes < kMinGridNodes)
+    throw InvalidArgument(fmt::format("grid_nodes must be >= {}, got {}", kMinGridNodes, o.grid_nodes));
 }
 
 void check_data(const Eigen::VectorXd& x) {

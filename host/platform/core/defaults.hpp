@@ -17,6 +17,10 @@ inline constexpr int kDefaultThreads = 2;
 /// Nodes of the §0 integration grid (>= 2001 by the spec; 4001 recommended).
 inline constexpr Eigen::Index kDefaultGridNodes = 4001;
 
+/// The fewest nodes an integration grid may have: below this a PDF's shape is not resolved (the
+/// calibration's PR grids and the bounded KDE's grid check it; the bindings' schemas say it).
+inline constexpr Eigen::Index kMinGridNodes = 101;
+
 /// Points of a distribution's plot series (d:curve()) unless told.
 inline constexpr int kDefaultCurvePoints = 401;
 
