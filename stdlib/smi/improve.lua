@@ -32,11 +32,9 @@ local M = {}
 -- with every option at its default: only then does the usage line leave out --allow-exec. A
 -- factory that fails on the defaults (a solver not found, not allowed) keeps the flag in.
 local function in_process(D, s)
-  local opt = {}
-  for _, d in ipairs(s) do
-    local list = d.name and { d } or d
-    for _, e in ipairs(list) do if type(e) == "table" and e.name then opt[e.name:gsub("%-", "_")] = e.default end end
-  end
+  -- the defaults as smi.options fills them in; with --help it opens no input file
+  local opt = options.check({ "--help" }, s) or {}
+  opt.help = nil
   local ok, m = pcall(factory.model, D, opt, revise.initial(D, D.unknowns), { purpose = "help", name = "help" })
   return ok and m.kind == "lua"
 end

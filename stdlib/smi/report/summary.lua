@@ -46,6 +46,11 @@ function M.check(s, level)
   return out
 end
 
+--- Whether a parameter's point estimate lies outside its interval (the table's † mark).
+function M.estimate_outside(p)
+  return p.estimate ~= nil and p.interval ~= nil and (p.estimate < p.interval[1] or p.estimate > p.interval[2])
+end
+
 --- The parameters as a report table {columns =, rows =} (nil when none).
 function M.parameter_table(s, digits)
   if #s.parameters == 0 then return nil end
@@ -66,8 +71,7 @@ function M.parameter_table(s, digits)
     local iv = p.interval and ("[%s, %s]"):format(fmt.num(p.interval[1], digits), fmt.num(p.interval[2], digits)) or ""
     local row = { p.name .. (p.unit and p.unit ~= "" and (" (" .. p.unit .. ")") or "") }
     if any_estimate then
-      local outside = p.estimate and p.interval and (p.estimate < p.interval[1] or p.estimate > p.interval[2])
-      row[#row + 1] = p.estimate and (fmt.num(p.estimate, digits) .. (outside and " †" or "")) or ""
+      row[#row + 1] = p.estimate and (fmt.num(p.estimate, digits) .. (M.estimate_outside(p) and " †" or "")) or ""
     end
     row[#row + 1], row[#row + 2], row[#row + 3] = p.mean, p.std, iv
     if any_prior then row[#row + 1] = p.prior or "not declared" end

@@ -4,6 +4,7 @@
 -- result (its conclusion `c`); R: the steps' results.
 local text = require "smi.improve.text"
 local verdict = require "smi.improve.verdict"
+local summary = require "smi.report.summary"
 
 -- "normal(1000, 30)" for the declared or --prior entry on param, or nil.
 local function prior_text(priors, param)
@@ -48,7 +49,7 @@ local function parameters_note(k, rows)
   for _, p in ipairs(rows) do
     if p.estimate ~= nil then
       posterior = true
-      if p.interval and (p.estimate < p.interval[1] or p.estimate > p.interval[2]) then outside[#outside + 1] = p.name end
+      if summary.estimate_outside(p) then outside[#outside + 1] = p.name end
     end
   end
   if not posterior then
