@@ -5,10 +5,12 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <optional>
 
 #include "bindings/eval/lua_model_options.hpp"
 #include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
+#include "platform/core/errors.hpp"
 
 namespace smi::bind::eval {
 
@@ -33,45 +35,76 @@ int model_lua(lua_State* L) {
   return 1;
 }
 
-int evaluate_lua(lua_State* L, Model& m) {
-  const Eigen::MatrixXd X = design_of(L, 2, m);
+namespace {
+
+/// Calls the function of the smi.model.lua at idx (absolute) with X and returns its outputs,
+/// rows × m.outputs. An error in the function is the study's error: it propagates.
+Eigen::MatrixXd call_fn(lua_State* L, int idx, const Model& m, const Eigen::MatrixXd& X) {
   const Eigen::Index n = X.rows(), k = static_cast<Eigen::Index>(m.outputs.size());
-  lua_getiuservalue(L, 1, 1);
+  lua_getiuservalue(L, idx, 1);
   lua::push_mat(L, X);
-  lua_call(L, 1, 1);  // an error in the model function is the study's error: let it propagate
+  lua_call(L, 1, 1);
   if (!lua_istable(L, -1))
-    return luaL_error(L, "model '%s': fn must return a table {output = vec, ...}, got %s", m.name.c_str(), luaL_typename(L, -1));
+    luaL_error(L, "model '%s': fn must return a table {output = vec, ...}, got %s", m.name.c_str(), luaL_typename(L, -1));
   const int res = lua_gettop(L);
-  se::EvalResult r;
-  r.Y.resize(n, k);
+  Eigen::MatrixXd Y(n, k);
   for (Eigen::Index j = 0; j < k; ++j) {
     const std::string& name = m.outputs[static_cast<std::size_t>(j)];
     const int t = lua_getfield(L, res, name.c_str());
-    if (t == LUA_TNIL) return luaL_error(L, "model '%s': fn returned no output '%s'", m.name.c_str(), name.c_str());
+    if (t == LUA_TNIL) luaL_error(L, "model '%s': fn returned no output '%s'", m.name.c_str(), name.c_str());
     Eigen::VectorXd v = t == LUA_TNUMBER && n == 1 ? Eigen::VectorXd::Constant(1, lua_tonumber(L, -1))
                                                    : lua::to_vector(L, -1, name.c_str());
     if (v.size() != n)
-      return luaL_error(L, "model '%s': fn returned %d values for output '%s', X has %d rows", m.name.c_str(),
-                        static_cast<int>(v.size()), name.c_str(), static_cast<int>(n));
-    r.Y.col(j) = v;
+      luaL_error(L, "model '%s': fn returned %d values for output '%s', X has %d rows", m.name.c_str(),
+                 static_cast<int>(v.size()), name.c_str(), static_cast<int>(n));
+    Y.col(j) = v;
     lua_pop(L, 1);
   }
+  lua_pop(L, 1);
+  return Y;
+}
+
+/// The first output of row i that is not finite, or -1.
+Eigen::Index first_non_finite(const Eigen::MatrixXd& Y, Eigen::Index i) {
+  for (Eigen::Index j = 0; j < Y.cols(); ++j)
+    if (!std::isfinite(Y(i, j))) return j;
+  return -1;
+}
+
+}  // namespace
+
+int evaluate_lua(lua_State* L, Model& m) {
+  const Eigen::MatrixXd X = design_of(L, 2, m);
+  const Eigen::Index n = X.rows();
+  se::EvalResult r;
+  r.Y = call_fn(L, 1, m, X);
   r.status.assign(static_cast<std::size_t>(n), se::Status::Ok);
   r.reason.assign(static_cast<std::size_t>(n), "");
   r.reused.assign(static_cast<std::size_t>(n), false);
   r.duration = Eigen::VectorXd::Zero(n);
   // A non-finite output is a failed point, as it would be for a solver.
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < k; ++j)
-      if (!std::isfinite(r.Y(i, j)) && r.status[static_cast<std::size_t>(i)] == se::Status::Ok) {
-        r.status[static_cast<std::size_t>(i)] = se::Status::Failed;
-        r.reason[static_cast<std::size_t>(i)] = fmt::format("output '{}' is {}", m.outputs[static_cast<std::size_t>(j)], r.Y(i, j));
-        ++r.failed;
-      }
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (r.status[static_cast<std::size_t>(i)] != se::Status::Ok) r.Y.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index j = first_non_finite(r.Y, i);
+    if (j < 0) continue;
+    r.status[static_cast<std::size_t>(i)] = se::Status::Failed;
+    r.reason[static_cast<std::size_t>(i)] = fmt::format("output '{}' is {}", m.outputs[static_cast<std::size_t>(j)], r.Y(i, j));
+    ++r.failed;
+    r.Y.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
   push_results(L, m, r);
   return 2;
+}
+
+std::optional<Eigen::MatrixXd> lua_model_outputs(lua_State* L, int idx, const Eigen::MatrixXd& X, std::vector<std::string>& outputs) {
+  const Model* m = test_model(L, idx);
+  if (m == nullptr || m->kind != Model::LuaFn) return std::nullopt;
+  if (X.cols() != static_cast<Eigen::Index>(m->inputs.size()))
+    throw DimensionMismatch(fmt::format("X has {} columns but model '{}' has {} inputs", X.cols(), m->name, m->inputs.size()));
+  Eigen::MatrixXd Y = call_fn(L, lua_absindex(L, idx), *m, X);
+  for (Eigen::Index i = 0; i < Y.rows(); ++i)
+    if (first_non_finite(Y, i) >= 0) Y.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  outputs = m->outputs;
+  return Y;
 }
 
 }  // namespace smi::bind::eval

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 #include <lua.hpp>
@@ -48,6 +49,16 @@ void push_results(lua_State* L, const Model& m, const smi::eval::EvalResult& r);
 /// m:evaluate for each kind. Stack on entry: [model, X].
 int evaluate_solver(lua_State* L, Model& m);
 int evaluate_lua(lua_State* L, Model& m);
+
+/// The model at idx, or nullptr when it is not an smi.model.
+Model* test_model(lua_State* L, int idx);
+
+/// What m:evaluate(X) computes for the smi.model.lua at idx, without its status tables: the
+/// outputs (rows × `outputs`, set to the model's names), a row with a non-finite output all NaN.
+/// Nothing when idx is not an in-process Lua model. For C++ callers that evaluate it thousands
+/// of times (a calibration, the evidence's sampler); the status of 2000 rows as Lua strings
+/// cost more than the model.
+std::optional<Eigen::MatrixXd> lua_model_outputs(lua_State* L, int idx, const Eigen::MatrixXd& X, std::vector<std::string>& outputs);
 
 /// Constructors (smi.model.command, smi.model.batch, smi.model.lua).
 int model_command(lua_State* L);

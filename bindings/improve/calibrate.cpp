@@ -107,11 +107,13 @@ CalibrationProblem calibration_problem(lua_State* L, const CalibrateSpec& s) {
     p.inputs = s.inputs;
     p.responses = s.responses;
     p.stat = s.stat;
+    const LuaGate gate(L);  // the model's and its gradient's Lua calls take turns
     if (kriging_model(L, s, responses, 2))
       p.native_model = [L, &s, responses](int threads) { return kriging_model(L, s, responses, threads); };
     else
-      p.model = LuaModel(L, s.model_parts, s.input_names_slot, responses);
-    p.jacobian = model_jacobian(L, s, responses);
+      p.model = LuaModel(L, s.model_parts, s.input_names_slot, responses, gate);
+    p.model_thread_safe = true;
+    p.jacobian = model_jacobian(L, s, responses, gate);
     if (s.metric_slot) p.metric = LuaMetric(L, s.metric_slot, s.data_slot, responses);
   }
   if (s.penalty_slot) p.penalty = theta_function(L, s.penalty_slot, s, "penalty");

@@ -51,7 +51,7 @@ BatchLogLikelihood lua_loglik(lua_State* L, int slot) {
 /// The model as the population likelihood calls it: Krigings without Lua, else the Lua model.
 Model population_model(lua_State* L, const BayesSpec& s) {
   if (Model m = kriging_model(L, s.population_spec, s.responses, s.population.threads)) return m;
-  return LuaModel(L, s.population_spec.model_parts, s.population_spec.input_names_slot, s.responses);
+  return LuaModel(L, s.population_spec.model_parts, s.population_spec.input_names_slot, s.responses, LuaGate(L));
 }
 
 /// Type-7 quantile of a sorted vector.

@@ -190,6 +190,9 @@ const Schema<smi::improve::BootstrapOptions>& bootstrap_schema() {
       integer<S>("multistart", [](auto& s) -> auto& { return s.optimizer.multistart; }, at_least(1), "starts per replicate",
                  "the calibration's"),
       boolean<S>("warm", &S::warm_start, "one start per replicate, the optimum (else the optimum then the multistart points)"),
+      number<S>("xtol_rel", &S::xtol_rel, at_least(0),
+                "the replicates' relative tolerance on the scaled parameters\n"
+                "(the calibration's xtol_rel when that is coarser)"),
   });
   return schema;
 }

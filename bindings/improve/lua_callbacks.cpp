@@ -2,7 +2,11 @@
 #include "bindings/improve/lua_callbacks.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
+
+#include "bindings/eval/model.hpp"
 #include "bindings/improve/lua_values.hpp"
 #include "luax/luax.hpp"
 #include "platform/core/errors.hpp"
@@ -51,8 +55,8 @@ Evaluation LuaObjective::operator()(const Eigen::VectorXd& theta) {
   return read_evaluation(L_, who_, *parts_, learn, true);
 }
 
-LuaModel::LuaModel(lua_State* L, std::vector<ModelPart> parts, int names_slot, std::vector<std::string> responses)
-    : L_(L), parts_(std::move(parts)), names_(names_slot), responses_(std::move(responses)) {}
+LuaModel::LuaModel(lua_State* L, std::vector<ModelPart> parts, int names_slot, std::vector<std::string> responses, LuaGate gate)
+    : L_(L), parts_(std::move(parts)), names_(names_slot), responses_(std::move(responses)), gate_(std::move(gate)) {}
 
 void LuaModel::call_part(const ModelPart& p, const Eigen::MatrixXd& X) const {
   lua_pushvalue(L_, p.fn_slot);
@@ -97,8 +101,27 @@ Eigen::VectorXd LuaModel::read_output(const std::string& r, bool single, bool le
 }
 
 Eigen::MatrixXd LuaModel::operator()(const Eigen::MatrixXd& X) const {
+  Eigen::MatrixXd Y;
+  gate_.run([&] { Y = evaluate(X); });
+  return Y;
+}
+
+Eigen::MatrixXd LuaModel::evaluate(const Eigen::MatrixXd& X) const {
   StackGuard guard(L_);
   Eigen::MatrixXd Y(X.rows(), static_cast<Eigen::Index>(responses_.size()));
+  if (parts_.size() == 1 && parts_[0].output.empty() && parts_[0].self_slot) {
+    std::vector<std::string> outputs;
+    if (const auto all = eval::lua_model_outputs(L_, parts_[0].self_slot, X, outputs)) {  // an smi.model.lua, without its status tables
+      for (std::size_t j = 0; j < responses_.size(); ++j) {
+        const auto at = std::find(outputs.begin(), outputs.end(), responses_[j]);
+        if (at == outputs.end())
+          throw InvalidArgument(fmt::format("the model's outputs have no '{}' (it returned: {}); the data names the responses", responses_[j],
+                                            fmt::join(outputs, ", ")));
+        Y.col(static_cast<Eigen::Index>(j)) = all->col(at - outputs.begin());
+      }
+      return Y;
+    }
+  }
   if (parts_.size() == 1 && parts_[0].output.empty()) {
     call_part(parts_[0], X);
     for (std::size_t j = 0; j < responses_.size(); ++j) Y.col(static_cast<Eigen::Index>(j)) = read_output(responses_[j], responses_.size() == 1, false, X.rows());

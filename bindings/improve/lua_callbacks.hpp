@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bindings/improve/lua_gate.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 
@@ -45,10 +46,10 @@ struct ModelPart {
 
 /// The model: one part returning {output = vec} (extra outputs ignored; a bare vec for a single
 /// response), or one part per response, each returning its output by that name or as its only
-/// vector.
+/// vector. Calls go through `gate`, so the kernels may call it from several threads.
 class LuaModel {
  public:
-  LuaModel(lua_State* L, std::vector<ModelPart> parts, int names_slot, std::vector<std::string> responses);
+  LuaModel(lua_State* L, std::vector<ModelPart> parts, int names_slot, std::vector<std::string> responses, LuaGate gate);
   Eigen::MatrixXd operator()(const Eigen::MatrixXd& X) const;
 
  private:
@@ -59,10 +60,14 @@ class LuaModel {
   /// surrogate names its output its own way).
   Eigen::VectorXd read_output(const std::string& r, bool single, bool lenient, Eigen::Index rows) const;
 
+  /// The outputs for X; runs inside the gate.
+  Eigen::MatrixXd evaluate(const Eigen::MatrixXd& X) const;
+
   lua_State* L_;
   std::vector<ModelPart> parts_;
   int names_;
   std::vector<std::string> responses_;
+  LuaGate gate_;
 };
 
 /// metric(predicted, data) with predicted = {response = vec}, data = the spec's data table;

@@ -72,7 +72,7 @@ smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const st
 }
 
 smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, const CalibrateSpec& s,
-                                                                  const std::vector<std::string>& responses) {
+                                                                  const std::vector<std::string>& responses, const LuaGate& gate) {
   std::vector<Source> src;
   for (const ModelPart& p : s.model_parts) {
     Source x;
@@ -88,7 +88,7 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
   if (src.empty()) return {};
   // A single Kriging predicts one output: it can serve one response only.
   if (src.size() == 1 && src[0].output.empty() && src[0].kriging && responses.size() != 1) return {};
-  return [L, src, responses](const Eigen::MatrixXd& X) {
+  return [L, src, responses, gate](const Eigen::MatrixXd& X) {
     std::vector<Eigen::MatrixXd> J(responses.size());
     // A part of all responses is called once and read for each.
     if (src.size() == 1 && src[0].output.empty()) {
@@ -97,15 +97,17 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
         J[0] = smi::surrogate::kriging::predict_gradient(*part.kriging, X, 2);
         return J;
       }
-      StackGuard guard(L);
-      lua_pushvalue(L, part.grad_slot);
-      lua_pushvalue(L, part.self_slot);
-      lua::push_mat(L, X);
-      lua::call(L, 2, 1);
-      if (responses.size() > 1 && lua::test_mat(L, -1))
-        throw InvalidArgument(fmt::format("the model's gradient returned one matrix for {} responses: return {{response = mat, ...}}",
-                                          responses.size()));
-      for (std::size_t r = 0; r < responses.size(); ++r) J[r] = read_jacobian(L, responses[r], false, X.rows(), X.cols());
+      gate.run([&] {
+        StackGuard guard(L);
+        lua_pushvalue(L, part.grad_slot);
+        lua_pushvalue(L, part.self_slot);
+        lua::push_mat(L, X);
+        lua::call(L, 2, 1);
+        if (responses.size() > 1 && lua::test_mat(L, -1))
+          throw InvalidArgument(fmt::format("the model's gradient returned one matrix for {} responses: return {{response = mat, ...}}",
+                                            responses.size()));
+        for (std::size_t r = 0; r < responses.size(); ++r) J[r] = read_jacobian(L, responses[r], false, X.rows(), X.cols());
+      });
       return J;
     }
     for (std::size_t r = 0; r < responses.size(); ++r) {
@@ -117,12 +119,14 @@ smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, c
         J[r] = smi::surrogate::kriging::predict_gradient(*part->kriging, X, 2);
         continue;
       }
-      StackGuard guard(L);
-      lua_pushvalue(L, part->grad_slot);
-      lua_pushvalue(L, part->self_slot);
-      lua::push_mat(L, X);
-      lua::call(L, 2, 1);
-      J[r] = read_jacobian(L, responses[r], true, X.rows(), X.cols());
+      gate.run([&] {
+        StackGuard guard(L);
+        lua_pushvalue(L, part->grad_slot);
+        lua_pushvalue(L, part->self_slot);
+        lua::push_mat(L, X);
+        lua::call(L, 2, 1);
+        J[r] = read_jacobian(L, responses[r], true, X.rows(), X.cols());
+      });
     }
     return J;
   };

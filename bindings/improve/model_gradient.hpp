@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bindings/improve/calibrate_spec.hpp"
+#include "bindings/improve/lua_gate.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind::improve {
@@ -21,8 +22,9 @@ namespace smi::bind::improve {
 /// side by side).
 smi::improve::Model kriging_model(lua_State* L, const CalibrateSpec& s, const std::vector<std::string>& responses, int threads);
 
-/// Empty when some response's model has no gradient.
+/// Empty when some response's model has no gradient. A Lua gradient method is called through
+/// `gate` (the model's own), so the Jacobian may be asked from several threads.
 smi::improve::StatisticalObjective::ModelJacobian model_jacobian(lua_State* L, const CalibrateSpec& s,
-                                                                  const std::vector<std::string>& responses);
+                                                                  const std::vector<std::string>& responses, const LuaGate& gate);
 
 }  // namespace smi::bind::improve

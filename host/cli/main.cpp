@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <malloc.h>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -22,6 +23,8 @@
 namespace {
 
 constexpr int kUsageError = 2;
+constexpr int kHeapBlockBytes = 64 << 20;  ///< blocks up to this size come from the heap (glibc: 128 KiB to 32 MiB)
+constexpr int kKeepFreeBytes = 128 << 20;  ///< freed heap kept before trimming
 
 void print_version() {
   std::printf("smi-lua %s (%s), statistical model improvement in Lua\n", SMI_VERSION, LUA_RELEASE);
@@ -72,6 +75,13 @@ int run(smi::cli::Args& a, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A study's vectors are large (2000 to a million rows) and short-lived (every operation of a
+  // Lua model makes one). Above glibc's default threshold each is an mmap and its pages fault
+  // in afresh, and a free at the heap's top is trimmed back to the system: measured on an
+  // in-process study, a tenth of the run in page faults. Big blocks now come from the heap and
+  // up to kKeepFreeBytes of freed memory is kept for the next (peak memory: +10 % there).
+  mallopt(M_MMAP_THRESHOLD, kHeapBlockBytes);
+  mallopt(M_TRIM_THRESHOLD, kKeepFreeBytes);
   // Orphans of the solvers we start (a setsid daemon) are reparented to us, not to init, so a
   // stop can find and kill them (eval/process.hpp).
   smi::eval::become_subreaper();

@@ -72,4 +72,39 @@ T.case("bootstrap replicates are whole calibrations from their own starts, not w
   T.truthy(fw > 3 * ww and fw > 0.5, ("whole calibrations spread along the valley: %.3f vs warm %.3f"):format(fw, ww))
 end)
 
+T.case("a Lua model on two threads takes turns: the numbers of one thread; its error on a worker stays its own", function()
+  -- The replicates and the starts run side by side; only the model's calls take turns
+  -- (bindings/improve/lua_gate.hpp). A model that counts its calls is safe: they never overlap.
+  local g = smi.rng(5)
+  local a, b = g:normal(9, 1.5, 0.2), g:normal(9, 2.5, 0.3)
+  local calls, limit = 0, math.huge
+  local function model(M)
+    calls = calls + 1
+    if calls > limit then error("the model broke at call " .. calls) end
+    return {y = M:col(1) * 2 + M:col(2), z = M:col(1) - M:col(2)}
+  end
+  local function spec(threads, bootstrap)
+    return {model = model, inputs = {x1 = {mean = {0.5, 3, 1}, std = {0.05, 0.6, 0.3}}, x2 = {mean = {1, 4, 2}, std = 0.3}},
+            data = {y = a * 2 + b, z = a - b}, n = 400, grid_nodes = 1001, seed = 8, identifiability = false,
+            multistart = 2, maxeval = 80, threads = threads, bootstrap = bootstrap}
+  end
+  local boot = {replicates = 4, level = 0.9}
+  local one, two = smi.calibrate(spec(1, boot)), smi.calibrate(spec(2, boot))
+  for _, name in ipairs({"x1.mean", "x1.std", "x2.mean"}) do
+    T.eq(two.theta[name], one.theta[name], name .. ": the optimum of one thread")
+    T.eq(two.bootstrap.std[name], one.bootstrap.std[name], name .. ": the replicates' spread of one thread")
+  end
+  T.eq(two.bootstrap.evaluations, one.bootstrap.evaluations, "the replicates' evaluations")
+  -- The model breaks at its first call after the calibration itself: every replicate fails on a
+  -- worker thread or the caller's; the optimum stands and the warning names the model's error.
+  calls = 0
+  smi.calibrate(spec(2, nil))
+  limit, calls = calls, 0
+  local r = smi.calibrate(spec(2, boot))
+  T.eq(r.theta["x1.mean"], one.theta["x1.mean"], "the optimum stands")
+  local said = false
+  for _, w in ipairs(r.warnings) do said = said or tostring(w):find("the model broke at call", 1, true) ~= nil end
+  T.truthy(said, "a warning names the model's error: " .. table.concat(r.warnings, " | "))
+end)
+
 T.finish()

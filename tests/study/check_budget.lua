@@ -45,8 +45,15 @@ T.case("each trial's verdicts and the refinements the full path made are the eco
   for k, t in ipairs(F.trials) do
     T.eq(C.trials[k].candidate, t.candidate, ("trial %d candidate"):format(k))
     for _, m in ipairs(MODES) do T.eq(C.trials[k].modes[m], t.modes[m], ("trial %d %s"):format(k, m)) end
-    -- the trials' designs are the full path's (fixed, same seeds): the calibrated means agree
-    for name, mean in pairs(t.means) do T.rel(C.trials[k].calibration.means[name], mean, 1e-6, ("trial %d %s mean"):format(k, name)) end
+    -- the trials' designs are the full path's (fixed, same seeds): the calibrated means agree, to
+    -- 1e-6 where the data pin them; where they leave a mean open (its near-optimal interval in the
+    -- reference), to 1 % of that interval: there the optimum moves along the flat valley when the
+    -- objective changes in its last digits (a KDE summed another way), as the data allow
+    for name, mean in pairs(t.means) do
+      local got, iv = C.trials[k].calibration.means[name], t.mean_intervals and t.mean_intervals[name]
+      local open = iv and 0.01 * (iv[2] - iv[1]) or 0
+      if math.abs(got - mean) > open then T.rel(got, mean, 1e-6, ("trial %d %s mean"):format(k, name)) end
+    end
   end
   for i, name in ipairs(F.refinements) do T.eq(C.refinements[i], name, ("refinement %d"):format(i)) end
 end)

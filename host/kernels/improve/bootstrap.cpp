@@ -117,6 +117,7 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
       ro.gradient = rep.gradient;
       ro.prepare_start = rep.prepare_start;
       ro.start_threads = 1;                                   // the replicates are the parallel work
+      ro.xtol_rel = std::max(ro.xtol_rel, opt.xtol_rel);
       ro.seed = oo.seed + static_cast<std::uint64_t>(b) + 1;  // its own multistart points
       const OptimizationResult o = minimize(starts, rep.f, ro);
       evaluations += o.evaluations;
@@ -140,7 +141,12 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
       res.warnings.push_back(fmt::format("bootstrap replicate {} failed: {}", b + 1, failures[b]));
     }
   }
-  if (ok.size() < 2) throw Error(fmt::format("bootstrap: only {} of {} replicates succeeded", ok.size(), opt.replicates));
+  if (ok.size() < 2) {
+    const auto first = std::find_if(failures.begin(), failures.end(), [](const std::string& f) { return !f.empty(); });
+    throw Error(fmt::format("bootstrap: only {} of {} replicates succeeded{}", ok.size(), opt.replicates,
+                            first == failures.end() ? std::string()
+                                                    : fmt::format(" (replicate {}: {})", first - failures.begin() + 1, *first)));
+  }
   if (res.failed > 0) res.warnings.push_back(fmt::format("{} of {} bootstrap replicates failed and were left out", res.failed, opt.replicates));
   res.thetas.resize(static_cast<Eigen::Index>(ok.size()), k);
   for (std::size_t b = 0; b < ok.size(); ++b) res.thetas.row(static_cast<Eigen::Index>(b)) = ok[b].transpose();

@@ -114,12 +114,12 @@ Objective minimize_objective(const CalibrationProblem& p, const Extras& x, const
   return f;
 }
 
-/// Whether an evaluation calls no Lua (a native model, and no Lua metric, penalty, progress or
-/// prior), so that several may run at once on the thread pool.
-bool calls_no_lua(const CalibrationProblem& p) {
+/// Whether several evaluations may run at once on the thread pool: a native model or one that
+/// takes turns itself (model_thread_safe), and no Lua metric, penalty, progress or prior.
+bool thread_safe(const CalibrationProblem& p) {
   const bool callbacks_free = p.callbacks_thread_safe ||
                               (!p.metric && !p.penalty && !p.progress && std::none_of(p.priors.begin(), p.priors.end(), [](const PriorTerm& t) { return bool(t.fn); }));
-  return p.native_model && callbacks_free;
+  return (p.native_model || p.model_thread_safe) && callbacks_free;
 }
 
 /// The statistical form: builds the CRN objective in out.stat, chooses threads, gradient and
@@ -128,12 +128,12 @@ Objective minimize_statistical(const CalibrationProblem& p, const CalibrationOpt
                                CalibrationOutcome& out) {
   std::vector<std::string> responses;
   for (const auto& r : p.responses) responses.push_back(r.name);
-  // A native model runs without Lua; then, when nothing else in an evaluation calls Lua, the
-  // starts run side by side on `threads` threads (the same result as one after another), each
-  // evaluation on one.
+  // A native model (or a Lua model that takes turns); then, when nothing else in an evaluation
+  // calls Lua, the starts run side by side on `threads` threads (the same result as one after
+  // another), each evaluation on one.
   StatisticalOptions so = p.stat;
   const int start_threads = std::min(p.stat.threads, o.optimizer.multistart);
-  const bool side_by_side = calls_no_lua(p) && start_threads > 1;
+  const bool side_by_side = thread_safe(p) && start_threads > 1;
   const Model model = p.native_model ? p.native_model(side_by_side ? 1 : 2) : p.model;
   if (!model) throw InvalidArgument("the calibration has neither an objective nor a model");
   if (side_by_side) {
@@ -228,8 +228,11 @@ void add_bootstrap(const CalibrationProblem& p, const CalibrationOptions& o, con
                    CalibrationOutcome& out) {
   std::vector<Eigen::VectorXd> data;
   for (const auto& r : obj.responses()) data.push_back(r.data);
-  ReplicateFactory make = [&obj, &o, &p, x](const std::vector<Eigen::VectorXd>& d) {
+  BootstrapOptions bo = *o.bootstrap;
+  if (thread_safe(p)) bo.threads = p.stat.threads;  // replicates side by side, the same numbers
+  ReplicateFactory make = [&obj, &o, &p, x, side_by_side = bo.threads > 1](const std::vector<Eigen::VectorXd>& d) {
     auto rep_obj = std::make_shared<StatisticalObjective>(obj.with_data(d));
+    if (side_by_side) rep_obj->set_threads(1);
     Replicate rep;
     rep.f = with_extras(x, [rep_obj](const Eigen::VectorXd& t) { return (*rep_obj)(t); });
     if (rep_obj->has_gradient()) rep.gradient = gradient_with_extras(x, p.params, *rep_obj);
@@ -240,8 +243,6 @@ void add_bootstrap(const CalibrationProblem& p, const CalibrationOptions& o, con
     rep.keep = rep_obj;
     return rep;
   };
-  BootstrapOptions bo = *o.bootstrap;
-  if (calls_no_lua(p)) bo.threads = p.stat.threads;  // replicates side by side, the same numbers
   if (p.progress_line) {
     auto line = std::make_shared<ProgressTracker>(p.progress_line, "bootstrap", bo.replicates, 0);
     bo.progress = [line](int done, int, long evaluations) { line->unit_done(done, evaluations); };

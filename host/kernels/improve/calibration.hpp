@@ -105,6 +105,9 @@ struct CalibrationProblem {
   std::vector<ResponseSpec> responses;
   StatisticalOptions stat;
   Model model;  ///< the model (any), used when native_model is empty
+  /// model and jacobian may be called from several threads at once (a Lua model behind a gate,
+  /// bindings/improve/lua_gate.hpp: its calls take turns, the rest of an evaluation does not).
+  bool model_thread_safe = false;
   /// A model that calls no Lua, built for `threads` prediction threads: lets the starts run side
   /// by side when nothing else calls Lua. Empty for a Lua model.
   std::function<Model(int threads)> native_model;

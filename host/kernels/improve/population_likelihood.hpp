@@ -36,7 +36,7 @@ struct PopulationOptions {
   std::uint64_t seed = 0;          ///< of the common random numbers
   CrnKind crn = CrnKind::random;
   double bandwidth = 1.0;          ///< factor b on the normal-reference bandwidth (0: none)
-  int threads = 1;                 ///< kernel sums over θ in parallel
+  int threads = kDefaultThreads;   ///< kernel sums over θ in parallel (the same numbers on any count)
   Eigen::Index chunk_rows = Eigen::Index{1} << 20;  ///< model rows per call at most (at least one θ)
 };
 

@@ -10,6 +10,7 @@
 
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_coarse_grid.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "platform/core/descriptive.hpp"
 #include "platform/core/errors.hpp"
@@ -265,7 +266,7 @@ Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const 
     const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
     if (opt_.metric == MetricKind::pr) {
       const stats::Grid& g = *r.grid;
-      const Eigen::VectorXd fp = stats::kde_pdf_grid(y, h, g, opt_.threads);
+      const Eigen::VectorXd fp = stats::kde_pdf_resolved(y, h, g, opt_.threads);
       Eigen::VectorXd ends(2);
       ends << g.lo, g.hi;
       const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);

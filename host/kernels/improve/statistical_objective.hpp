@@ -65,7 +65,7 @@ struct StatisticalOptions {
   Eigen::Index grid_nodes = kDefaultGridNodes;  ///< nodes of the default PR grids
   std::string bandwidth = "silverman";  ///< bandwidth rule for the predicted KDEs
   double density_floor = 1e-300;    ///< loglik floor (spec §2.2)
-  int threads = 1;                  ///< KDE evaluation threads
+  int threads = kDefaultThreads;    ///< KDE evaluation threads (or starts, replicates side by side)
 };
 
 class StatisticalObjective {
@@ -134,6 +134,8 @@ class StatisticalObjective {
   const std::vector<Parameter>& parameters() const { return params_; }
   const Eigen::MatrixXd& crn() const { return z_; }
   const StatisticalOptions& options() const { return opt_; }
+  /// The KDE sums' threads (1 where evaluations themselves run side by side).
+  void set_threads(int threads) { opt_.threads = threads; }
   /// Model calls so far (at most one per objective evaluation: none where the outputs are cached).
   long model_runs() const { return runs_->load(); }
   /// Densities floored by the loglik metric so far.

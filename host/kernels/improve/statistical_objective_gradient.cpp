@@ -21,6 +21,8 @@
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_coarse_grid.hpp"
+#include "kernels/stats/kde_uniform_grid.hpp"
 #include "kernels/stats/metrics.hpp"
 #include "kernels/surrogate/fast_exp.hpp"
 #include "platform/core/descriptive.hpp"
@@ -140,12 +142,13 @@ void kernel_sums(const Eigen::VectorXd& y, double h, const Eigen::VectorXd& x, c
   for (double v : ghs) gh += norm * v;
 }
 
-/// kernel_sums on a uniform grid with step dx <= h/64 (the PR grids), exactly the same sums
+/// kernel_sums on a uniform grid with step dx <= h/4 (the PR grids), exactly the same sums
 /// (to rounding) at a fraction of the cost: inside a block of 64 nodes starting at z0 = (x_b − y)/h,
 ///   e_j = φ(z0 + jδ)√(2π) = e^{−z0²/2} · g^j · H_j,  g = e^{−z0 δ},  H_j = e^{−δ²j²/2},
 /// so Σ_j a_j e_j z_j = P (z0 S0 + δ S1) and Σ_j a_j e_j (z_j² − 1) = P ((z0² − 1) S0 + 2 z0 δ S1
 /// + δ² S2) with S_p = Σ_j g^j (H_j j^p a_j): the bracketed weights are per block, shared by all
-/// samples, and g^j = (g⁸)^{j/8} g^{j mod 8} takes 16 multiplications. Two exponentials and
+/// samples, and g^j = (g⁸)^{j/8} g^{j mod 8} takes 16 multiplications (in range up to δ = 1/4:
+/// kde_uniform_grid.hpp). Two exponentials and
 /// about 4 flops per node instead of an exponential per node; whole blocks within kCut·h of y
 /// (up to 64 nodes more than the plain window, only more exact). Samples are independent, so the
 /// result does not depend on the thread count.
@@ -234,7 +237,8 @@ void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const stats::
 /// y (set in gy) and in the bandwidth h (added to gh).
 double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const stats::Grid& g, const Eigen::VectorXd& fe, double exp_outside, int threads,
                             Eigen::VectorXd& gy, double& gh) {
-  const Eigen::VectorXd fp = stats::kde_pdf_grid(y, h, g, threads);
+  const auto coarse = stats::coarse_grid(g, h);  // an over-resolved grid: sums on a coarser one (kde_coarse_grid.hpp)
+  const Eigen::VectorXd fp = stats::kde_pdf_resolved(y, h, g, threads);
   Eigen::VectorXd ends(2);
   ends << g.lo, g.hi;
   const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
@@ -246,7 +250,9 @@ double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const stats::Gri
     const double d = fe[k] - fp[k];
     a[k] = -(d > 0.0 ? 1.0 : d < 0.0 ? -1.0 : 0.0) * g.step() * (k == 0 || k == g.n - 1 ? 0.5 : 1.0);
   }
-  if (g.step() <= h / 64.0)
+  if (coarse)  // the exact gradient of the interpolated values: the weights carried to the coarse nodes
+    kernel_sums_uniform(y, h, coarse->coarse.lo, coarse->coarse.step(), coarse->coarse.n, stats::interpolate_adjoint(*coarse, a), gy, gh, threads);
+  else if (g.step() <= h * stats::detail::kUniformPdfMaxStep)
     kernel_sums_uniform(y, h, g.lo, g.step(), g.n, a, gy, gh, threads);
   else
     kernel_sums(y, h, g.nodes(), a, true, gy, gh, threads);

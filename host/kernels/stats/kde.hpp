@@ -5,7 +5,7 @@
 // Exact sums over sorted data, skipping kernels beyond ±kCutoff·h (each skipped term is
 // below 1e-17 of a kernel's peak), vectorised with Eigen and split over 2 threads for large
 // jobs (deterministic: every output element is computed by one thread in a fixed order).
-// Uniformly spaced x finer than h/64 (pdf) or h/256 (cdf) take the near exp-free recurrences
+// Uniformly spaced x finer than h/4 (pdf) or h/256 (cdf) take the near exp-free recurrences
 // of kde_uniform_grid.hpp (same values to ~1e-13).
 // A binned fast path (linear binning + exact Gaussian weights on a uniform bin grid) is used
 // automatically when N·M is large; its absolute error is bounded by binned_error_bound().

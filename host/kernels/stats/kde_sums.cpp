@@ -103,7 +103,7 @@ Eigen::VectorXd kde_pdf(ConstVec data, double h, ConstVec x, int threads) {
   Eigen::VectorXd out(x.size());
   const auto dx = detail::uniform_spacing(x);
   with_sorted(data, [&](ConstVec t) {
-  if (dx && *dx <= h / 64.0) {
+  if (dx && *dx <= h * detail::kUniformPdfMaxStep) {
     detail::uniform_pdf_sums(t, h, x, *dx, out, threads);
     return;
   }

@@ -319,7 +319,9 @@ local function bootstrap(t, grids, r, params)
   local failures = {}
   for _, w in ipairs(rb.warnings or {}) do
     w = tostring(w)
-    if w:match("^bootstrap replicate %d+ failed") or w:match("^bootstrap: only") then failures[#failures + 1] = w end
+    -- a replicate's failure, or the whole bootstrap's (after_optimum's "bootstrap could not be
+    -- computed ...: bootstrap: only k of B replicates succeeded (replicate i: why)")
+    if w:match("^bootstrap replicate %d+ failed") or w:find("bootstrap: only", 1, true) then failures[#failures + 1] = w end
   end
   if not b then  -- fewer than two replicates succeeded: the kernel's message is among the warnings
     return { level = 0.9, kind = "none", replicates = 0, failed = t.bootstrap, failures = failures,

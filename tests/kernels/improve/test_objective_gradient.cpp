@@ -12,6 +12,7 @@
 #include "kernels/improve/overlap_start.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 #include "kernels/stats/bandwidth.hpp"
+#include "kernels/stats/kde_coarse_grid.hpp"
 #include "platform/core/rng.hpp"
 
 using namespace smi::improve;
@@ -92,19 +93,28 @@ TEST_CASE("PR and loglik gradients agree with central differences of the objecti
     }
 }
 
-TEST_CASE("PR gradient on a fine grid (the blocked kernel sums, step <= h/64) agrees with central differences") {
-  const StatisticalObjective f = make(MetricKind::pr, "silverman", 16001);
-  const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
-  // The fine-grid path is taken: every response's grid step is below its bandwidth / 64.
-  const Eigen::MatrixXd Y = f.predict(t);
-  for (Eigen::Index j = 0; j < 2; ++j)
-    REQUIRE(f.responses()[static_cast<std::size_t>(j)].grid->step() <= smi::stats::bandwidth_by_name(Y.col(j), "silverman") / 64.0);
-  Eigen::VectorXd g;
-  const Evaluation e = f.value_and_gradient(t, g);
-  CHECK(e.value == f(t).value);
-  const Eigen::VectorXd fd = central_gradient(f, t, 1e-6 * Eigen::VectorXd::Ones(6));
-  INFO("analytic " << g.transpose() << "\ndifferences " << fd.transpose());
-  CHECK((g - fd).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()));
+TEST_CASE("PR gradient on the blocked kernel sums (grid step <= h/4) and through a coarse grid agrees with central differences") {
+  // 64001 nodes: steps far below h/16, the KDE summed on a coarser grid and interpolated
+  // (kde_coarse_grid.hpp); 301 nodes: steps between h/16 and h/4, summed on the grid itself,
+  // where the blocked chain's factors are largest (kde_uniform_grid.hpp).
+  for (const auto& [nodes, coarse] : {std::pair<Eigen::Index, bool>{64001, true}, {301, false}}) {
+    const StatisticalObjective f = make(MetricKind::pr, "silverman", nodes);
+    const Eigen::VectorXd t = (Eigen::VectorXd(6) << 5.1, 0.25, 1.9, 0.15, 0.8, 0.3).finished();
+    const Eigen::MatrixXd Y = f.predict(t);
+    for (Eigen::Index j = 0; j < 2; ++j) {
+      const smi::stats::Grid& g = *f.responses()[static_cast<std::size_t>(j)].grid;
+      const double h = smi::stats::bandwidth_by_name(Y.col(j), "silverman");
+      INFO(nodes << " nodes, response " << j << ": step h/" << h / g.step());
+      REQUIRE(smi::stats::coarse_grid(g, h).has_value() == coarse);
+      REQUIRE((coarse || (g.step() <= h / 4.0 && g.step() > h / 16.0)));
+    }
+    Eigen::VectorXd g;
+    const Evaluation e = f.value_and_gradient(t, g);
+    CHECK(e.value == f(t).value);
+    const Eigen::VectorXd fd = central_gradient(f, t, 1e-6 * Eigen::VectorXd::Ones(6));
+    INFO(nodes << " nodes\nanalytic " << g.transpose() << "\ndifferences " << fd.transpose());
+    CHECK((g - fd).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()));
+  }
 }
 
 TEST_CASE("moment residuals: the chain-rule Jacobian agrees with forward differences; the moment start matches the data's moments") {

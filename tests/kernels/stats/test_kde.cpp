@@ -6,6 +6,7 @@
 
 #include "kernels/stats/bandwidth.hpp"
 #include "kernels/stats/kde.hpp"
+#include "kernels/stats/kde_coarse_grid.hpp"
 #include "platform/core/normal.hpp"
 #include "platform/core/rng.hpp"
 
@@ -138,4 +139,57 @@ TEST_CASE("uniform-grid recurrences agree with direct sums") {
     }
   }
   CHECK((smi::stats::kde_pdf(x9, h, y, 1).array() == smi::stats::kde_pdf(x9, h, y, 2).array()).all());
+}
+
+TEST_CASE("uniform-grid pdf recurrences hold up to a spacing of h/4, kernels at every offset from a block") {
+  // 400 kernels spread over the whole grid, so that some lie at each end of every 64-node block
+  // and at the window's edge (z0 near −(8.9 + 63 δ)), where the chain's factors are largest.
+  smi::Rng rng(7);
+  Eigen::VectorXd t(400);
+  for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.uniform(-3.0, 23.0);
+  const double h = 0.37;
+  for (double per_h : {4.0, 5.0, 16.0, 63.0, 1.5}) {  // 1.5: too coarse, the direct sums
+    const double dx = h / per_h;
+    const Eigen::Index m = static_cast<Eigen::Index>(20.0 / dx) + 1;
+    const Eigen::VectorXd g = Eigen::VectorXd::LinSpaced(m, 0.0, static_cast<double>(m - 1) * dx);
+    const Eigen::VectorXd p = smi::stats::kde_pdf(t, h, g, 1);
+    double err = 0.0, peak = 0.0;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      double s = 0.0;
+      for (Eigen::Index i = 0; i < t.size(); ++i) s += smi::normal_pdf((g[j] - t[i]) / h);
+      s /= static_cast<double>(t.size()) * h;
+      err = std::max(err, std::abs(p[j] - s));
+      peak = std::max(peak, s);
+    }
+    INFO("spacing h/" << per_h << ": largest error " << err << " against a peak of " << peak);
+    CHECK(err < 1e-13 * peak);
+    CHECK((smi::stats::kde_pdf(t, h, g, 2).array() == p.array()).all());
+  }
+}
+
+TEST_CASE("a KDE on an over-resolved grid: summed on a coarser one and interpolated, within 1e-9 of the peak") {
+  smi::Rng rng(19);
+  Eigen::VectorXd t(2000);
+  for (Eigen::Index i = 0; i < t.size(); ++i) t[i] = rng.normal() * (i % 3 == 0 ? 0.4 : 1.0) + (i % 5 == 0 ? 2.5 : 0.0);
+  const double h = smi::stats::bandwidth_normal_reference(t);
+  for (double per_h : {20.0, 130.0, 700.0, 5000.0}) {
+    const smi::stats::Grid g{-6.0, 9.0, static_cast<Eigen::Index>(15.0 * per_h / h) + 1};
+    const auto c = smi::stats::coarse_grid(g, h);
+    REQUIRE(c.has_value());
+    CHECK(c->coarse.step() <= h * smi::stats::kCoarseKdeStep * (1 + 1e-12));
+    CHECK(c->coarse.step() > h * smi::stats::kCoarseKdeStep / 2);
+    const Eigen::VectorXd exact = smi::stats::kde_pdf_grid(t, h, g, 1);
+    const Eigen::VectorXd fast = smi::stats::kde_pdf_resolved(t, h, g, 2);
+    INFO("spacing h/" << per_h << ", ratio " << c->ratio << ": largest error " << (fast - exact).cwiseAbs().maxCoeff()
+                      << " of a peak " << exact.maxCoeff());
+    CHECK((fast - exact).cwiseAbs().maxCoeff() < 1e-9 * exact.maxCoeff());
+    // Exact where a fine node is a coarse one.
+    CHECK(std::abs(fast[c->ratio] - exact[c->ratio]) < 1e-14 * exact.maxCoeff());
+    // The adjoint is the transpose: <a, I v> = <I' a, v>.
+    const Eigen::VectorXd a = rng.uniform(g.n, -1.0, 1.0), v = rng.uniform(c->coarse.n, -1.0, 1.0);
+    CHECK(a.dot(smi::stats::interpolate_to_fine(*c, v)) == Approx(smi::stats::interpolate_adjoint(*c, a).dot(v)).epsilon(1e-12));
+  }
+  // Not coarsened when the grid is not twice finer than h·kCoarseKdeStep (step 1e-3, h/8 < 2e-3).
+  CHECK_FALSE(smi::stats::coarse_grid(smi::stats::Grid{0.0, 1.0, 1001}, 0.0159).has_value());
+  CHECK(smi::stats::coarse_grid(smi::stats::Grid{0.0, 1.0, 1001}, 0.0161).has_value());
 }
