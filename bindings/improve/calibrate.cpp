@@ -16,7 +16,7 @@
 //                           `order`, or sorted names),
 //                 data = {response = vec | smi.dist}, metric = "pr" | "loglik" | function(pred, data),
 //                 n = 2000, crn = "random" | "quantiles", grid = {lo, hi, nodes} | {response = {...}},
-//                 grid_nodes = 4001, bandwidth = "silverman", threads = 1, design_bounds = {x = {lo, hi}},
+//                 grid_nodes = 4001, bandwidth = "silverman", threads = 2, design_bounds = {x = {lo, hi}},
 //                 bootstrap = replicates | {replicates =, level =, seed =, maxeval =},
 //                 penalty = function(theta) return number end (prior knowledge, added),
 //                 moment_start = false (true: every start first matched to the data's means and sds), ...}

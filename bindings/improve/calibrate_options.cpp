@@ -21,7 +21,9 @@ const Schema<CalibrateSpec>& calibrate_schema() {
   static const Schema<S> schema("smi.calibrate", std::vector<Option<S>>{
       by_hand<S>("model", "nil",
          "model form: an smi.model, an smi.kriging (or a table of them by\n"
-         "output), or a function(X) returning {output = vec}"),
+         "output), or a function(X) returning {output = vec}; a Lua model is\n"
+         "called one call at a time but in no fixed order when starts or\n"
+         "replicates run side by side: its outputs must depend on X alone"),
       by_hand<S>("inputs", "nil",
          "model form: {name = {dist = \"normal\", mean = m | {lo, hi, start},\n"
          "std = s | {lo, hi, start}} | {value = x}, ...} (or a list with name =);\n"
@@ -77,8 +79,9 @@ const Schema<CalibrateSpec>& calibrate_schema() {
       by_hand<S>("design_bounds", "nil",
          "{input = {lower, upper}}: the surrogate's design range; leaving it warns"),
       integer<S>("threads", [](auto& s) -> auto& { return s.stat.threads; }, any_value(),
-         "KDE evaluation threads; with Kriging models and no Lua metric, penalty,\n"
-         "prior function or progress, the starts run side by side on them instead"),
+         "KDE evaluation threads; with no Lua metric, penalty, prior function or\n"
+         "progress, the starts and bootstrap replicates run side by side on them\n"
+         "instead (a Lua model's own calls take turns)"),
       by_hand<S>("parameters", "nil",
          "objective form: {{name, lower, upper, start}, ...} (start: mid-range)"),
       by_hand<S>("objective", "nil",

@@ -42,7 +42,7 @@ struct BootstrapOptions {
   double xtol_rel = kBootstrapXtolRel;
   /// Replicates optimised side by side (pool::run_tasks); the result does not depend on it. Above
   /// 1 the factory and the replicates' objectives are called from several threads at once and
-  /// must be safe for that (C++ models: yes; anything that calls Lua: no).
+  /// must be safe for that (C++ models, a Lua model behind its gate: yes; other Lua callbacks: no).
   int threads = 1;
   /// Called after each replicate with (replicates done, replicates, evaluations so far), one call
   /// at a time even when replicates run side by side.

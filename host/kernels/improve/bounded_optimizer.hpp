@@ -78,7 +78,7 @@ struct OptimizerOptions {
   int multistart = 1;
   /// Starts optimised side by side (pool::parallel_for, one task per start); the result does not depend on it. Above 1
   /// the objective, gradient, prepare_start and observer are called from several threads at
-  /// once and must be safe for that (C++ models: yes; anything that calls Lua: no).
+  /// once and must be safe for that (C++ models, a Lua model behind its gate: yes; other Lua callbacks: no).
   int start_threads = 1;
   std::uint64_t seed = 0;
   /// Called after every recorded evaluation (progress display); may throw to abort.

@@ -120,7 +120,7 @@ struct CalibrationProblem {
   std::function<void(const HistoryEntry&)> progress;
   /// The terminal progress line of the optimisation, the bootstrap and the near-optimal analysis.
   ProgressLine progress_line;
-  /// The capabilities above may be called from several threads at once (C++ callers; never Lua).
+  /// The capabilities above may be called from several threads at once (C++ callers, or Lua behind a gate).
   bool callbacks_thread_safe = false;
 };
 

@@ -8,7 +8,8 @@
 //   * the first exception of any task (smi::Interrupted, bad_alloc, a kernel error) stops the
 //     handing out of further tasks and is rethrown on the calling thread after every worker has
 //     joined: never std::terminate, never a task still running after the call returns.
-// Plain C++ only: a task must not call Lua (bindings run the loop inside lua::protect).
+// Plain C++ only: a task calls Lua only through a gate that runs each call alone, protected on
+// its own thread (bindings/improve/lua_gate.hpp), so no Lua error crosses the pool.
 // Not used by eval's Scheduler: its solver slots are processes reaped on the calling thread.
 #include <Eigen/Core>
 #include <algorithm>

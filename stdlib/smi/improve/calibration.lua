@@ -300,7 +300,8 @@ end
 -- the one implementation. The data rows are resampled with replacement (paired across responses),
 -- plain KDEs of the resamples are the experimental PDFs, and each replicate restarts SLSQP at the
 -- optimum with a small budget (a warm start); replicates run side by side on the pool when the
--- model is C++ (the Krigings) and one at a time on an in-process Lua model. A replicate that fails
+-- model is C++ (the Krigings) and on an in-process Lua model too (its calls take turns,
+-- bindings/improve/lua_gate.hpp; the KDE sums, most of a replicate, do not). A replicate that fails
 -- is counted and its error is a warning, never dropped silently.
 -- The interval the study reports is the normal one, estimate ± 1.645 sd of the replicates
 -- (clipped to the bounds): the replicates show the local pull of the data, and their percentiles
