@@ -257,6 +257,14 @@ void push_bootstrap(lua_State* L, const std::vector<std::string>& names, const C
   lua::set_number(L, "level", s.bootstrap->level);
   lua::set_integer(L, "replicates", static_cast<lua_Integer>(b.thetas.rows()));
   lua::set_integer(L, "failed", b.failed);
+  lua_createtable(L, static_cast<int>(b.failures.size()), 0);
+  for (std::size_t i = 0; i < b.failures.size(); ++i) {
+    lua_createtable(L, 0, 2);
+    lua::set_integer(L, "replicate", b.failures[i].first);
+    lua::set_string(L, "message", b.failures[i].second);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "failures");
   lua::set_boolean(L, "paired", b.paired);
   lua::set_integer(L, "evaluations", b.evaluations);
   lua::push_mat(L, b.thetas);
@@ -413,6 +421,11 @@ void push_calibration_result(lua_State* L, const CalibrateSpec& s, const Calibra
   lua::set_string(L, "gradient", out.gradient);
   push_strings(L, out.warnings);
   lua_setfield(L, -2, "warnings");
+  if (!out.not_computed.empty()) {
+    lua_createtable(L, 0, static_cast<int>(out.not_computed.size()));
+    for (const auto& [what, why] : out.not_computed) lua::set_string(L, what.c_str(), why);
+    lua_setfield(L, -2, "not_computed");
+  }
   push_strings(L, r.at_bounds);
   lua_setfield(L, -2, "at_bounds");
   push_history(L, names, out.part_names, r.history);

@@ -52,7 +52,9 @@ returns: r with r.params {name = value}, r.theta (in parameter order), r.names, 
   curvature, profile}, ...}}, r.near_optimal {tolerance, points, objectives}, r.intervals,
   r.bootstrap {lower, upper, std, lower_mc_error, upper_mc_error (the endpoints' Monte Carlo
   errors), replicates_needed (for errors under 10 % of the half-width), level, replicates, failed,
-  samples}
+  failures = {{replicate, message}, ...}, samples}, r.not_computed {analysis = error} (an analysis
+  after the optimum that failed, "bootstrap" when fewer than two replicates succeeded; the
+  optimum stands)
 errors: both or neither form; a range with lower >= upper or a start outside it (named); a
   lognormal mean range reaching 0; data with fewer than 2 points; the model failing (its message);
   an unknown option (the closest name is suggested)

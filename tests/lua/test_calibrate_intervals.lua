@@ -105,6 +105,10 @@ T.case("a Lua model on two threads takes turns: the numbers of one thread; its e
   local said = false
   for _, w in ipairs(r.warnings) do said = said or tostring(w):find("the model broke at call", 1, true) ~= nil end
   T.truthy(said, "a warning names the model's error: " .. table.concat(r.warnings, " | "))
+  T.eq(r.bootstrap, nil, "no bootstrap result")
+  T.truthy(r.not_computed and r.not_computed.bootstrap:find("only 0 of 4 replicates succeeded (replicate 1: ", 1, true)
+           and r.not_computed.bootstrap:find("the model broke at call", 1, true),
+           "r.not_computed.bootstrap says why: " .. tostring(r.not_computed and r.not_computed.bootstrap))
 end)
 
 T.finish()

@@ -137,8 +137,9 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
   for (std::size_t b = 0; b < nrep; ++b) {
     if (rows[b]) {
       ok.push_back(*rows[b]);
-    } else if (++res.failed <= 3) {
-      res.warnings.push_back(fmt::format("bootstrap replicate {} failed: {}", b + 1, failures[b]));
+    } else {
+      res.failures.emplace_back(static_cast<int>(b) + 1, failures[b]);
+      if (++res.failed <= 3) res.warnings.push_back(fmt::format("bootstrap replicate {} failed: {}", b + 1, failures[b]));
     }
   }
   if (ok.size() < 2) {

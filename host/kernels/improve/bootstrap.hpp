@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kernels/improve/bounded_optimizer.hpp"
@@ -60,7 +61,9 @@ struct BootstrapResult {
   /// interval's half-width (and leave at least 5 replicates beyond each endpoint).
   int replicates_needed = 0;
   int evaluations = 0;
-  int failed = 0;           ///< replicates whose optimisation threw (their messages in warnings)
+  int failed = 0;           ///< replicates whose optimisation threw
+  /// Each failed replicate (1-based) with its error, in replicate order.
+  std::vector<std::pair<int, std::string>> failures;
   bool paired = false;
   std::vector<std::string> warnings;
 };

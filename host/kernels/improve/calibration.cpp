@@ -265,6 +265,7 @@ void after_optimum(CalibrationOutcome& out, const char* what, Analysis&& analysi
     throw;
   } catch (const std::exception& e) {
     out.warnings.push_back(fmt::format("{} could not be computed (the optimum above stands): {}", what, e.what()));
+    out.not_computed[what] = e.what();
   }
 }
 

@@ -11,6 +11,7 @@
 // enters as a std::function capability.
 #include <Eigen/Core>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -134,6 +135,9 @@ struct CalibrationOutcome {
   std::optional<StartAgreement> agreement;  ///< with multistart > 1
   std::optional<StatisticalObjective> stat;
   std::vector<std::string> warnings;  ///< everything worth telling, optimiser's included
+  /// The analyses after the optimum that failed ("bootstrap", "identifiability", ...) with their
+  /// errors; each is also among the warnings. The optimum stands.
+  std::map<std::string, std::string> not_computed;
   /// "analytic" (the model's Jacobian), "model_differences", "differences" (of the objective),
   /// "none" (a derivative-free method).
   std::string gradient = "none";

@@ -315,16 +315,14 @@ local function bootstrap(t, grids, r, params)
     bootstrap = { replicates = t.bootstrap, level = 0.9, seed = stream(t.seed, "bootstrap"),
                   maxeval = t.boot_maxeval, multistart = 1, warm = true } })
   local b = rb.bootstrap
-  -- the failed replicates' messages (the kernel's warnings; how many replicates the percentiles
-  -- need is in replicates_needed, worded by the report's caption with the study's option)
+  -- the failed replicates' messages, from smi.calibrate's fields (how many replicates the
+  -- percentiles need is in replicates_needed, worded by the report's caption with the study's option)
   local failures = {}
-  for _, w in ipairs(rb.warnings or {}) do
-    w = tostring(w)
-    -- a replicate's failure, or the whole bootstrap's (after_optimum's "bootstrap could not be
-    -- computed ...: bootstrap: only k of B replicates succeeded (replicate i: why)")
-    if w:match("^bootstrap replicate %d+ failed") or w:find("bootstrap: only", 1, true) then failures[#failures + 1] = w end
+  for _, f in ipairs(b and b.failures or {}) do
+    failures[#failures + 1] = ("bootstrap replicate %d failed: %s"):format(f.replicate, f.message)
   end
-  if not b then  -- fewer than two replicates succeeded: the kernel's message is among the warnings
+  if not b then  -- the bootstrap as a whole failed (fewer than two replicates succeeded): its error
+    failures[#failures + 1] = rb.not_computed and rb.not_computed.bootstrap or "the bootstrap was not computed"
     return { level = 0.9, kind = "none", replicates = 0, failed = t.bootstrap, failures = failures,
              maxeval = t.boot_maxeval, lower = {}, upper = {}, std = {} }
   end

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "kernels/improve/bootstrap.hpp"
+#include "platform/core/errors.hpp"
 #include "platform/core/json.hpp"
 
 using namespace smi::improve;
@@ -49,6 +50,7 @@ BootstrapResult mean_bootstrap(const Eigen::VectorXd& x, int replicates, std::ui
   o.threads = threads;
   o.warm_start = true;  // a convex objective: one start finds the replicate's mean
   o.optimizer.xtol_rel = 1e-12;
+  o.xtol_rel = 1e-12;  // the replicates' own tolerance too (its default, 1e-4, suits a study's spread)
   o.optimizer.ftol_abs = 1e-14;
   return bootstrap_calibration(p, Eigen::VectorXd::Constant(1, x.mean()), {x}, make, o);
 }
@@ -109,4 +111,30 @@ TEST_CASE("replicates side by side give the same numbers as one after another") 
   CHECK(one.lower[0] == two.lower[0]);
   CHECK(one.upper_mc_error[0] == two.upper_mc_error[0]);
   CHECK(one.evaluations == two.evaluations);
+}
+
+TEST_CASE("failed replicates are listed with their errors; a bootstrap with fewer than two left names the first") {
+  const Eigen::VectorXd x = data_of(reference());
+  std::vector<Parameter> p{{"m", 0.0, 5.0, 1.0}};
+  BootstrapOptions o;
+  o.replicates = 6;
+  o.seed = 3;
+  o.warm_start = true;
+  // Replicates 2, 4 and 6 fail while building their objective (a degenerate resample would).
+  int built = 0;
+  ReplicateFactory some_fail = [&built](const std::vector<Eigen::VectorXd>& d) {
+    if (++built % 2 == 0) throw smi::InvalidArgument("resample " + std::to_string(built) + " is degenerate");
+    const Eigen::VectorXd y = d[0];
+    return Replicate{[y](const Eigen::VectorXd& t) { return Evaluation{(y.array() - t[0]).square().mean(), {}}; }, {}, {}, {}};
+  };
+  const BootstrapResult r = bootstrap_calibration(p, Eigen::VectorXd::Constant(1, x.mean()), {x}, some_fail, o);
+  CHECK(r.thetas.rows() == 3);
+  CHECK(r.failed == 3);
+  REQUIRE(r.failures.size() == 3);
+  CHECK(r.failures[0].first == 2);
+  CHECK(r.failures[0].second == "resample 2 is degenerate");
+  CHECK(r.failures[2].first == 6);
+  ReplicateFactory all_fail = [](const std::vector<Eigen::VectorXd>&) -> Replicate { throw smi::InvalidArgument("no data left"); };
+  CHECK_THROWS_WITH(bootstrap_calibration(p, Eigen::VectorXd::Constant(1, x.mean()), {x}, all_fail, o),
+                    "bootstrap: only 0 of 6 replicates succeeded (replicate 1: no data left)");
 }
