@@ -10,7 +10,6 @@
 #include "bindings/eval/lua_model_options.hpp"
 #include "bindings/eval/model.hpp"
 #include "luax/luax.hpp"
-#include "platform/core/errors.hpp"
 
 namespace smi::bind::eval {
 
@@ -98,8 +97,7 @@ int evaluate_lua(lua_State* L, Model& m) {
 std::optional<Eigen::MatrixXd> lua_model_outputs(lua_State* L, int idx, const Eigen::MatrixXd& X, std::vector<std::string>& outputs) {
   const Model* m = test_model(L, idx);
   if (m == nullptr || m->kind != Model::LuaFn) return std::nullopt;
-  if (X.cols() != static_cast<Eigen::Index>(m->inputs.size()))
-    throw DimensionMismatch(fmt::format("X has {} columns but model '{}' has {} inputs", X.cols(), m->name, m->inputs.size()));
+  check_columns(L, X, *m);
   Eigen::MatrixXd Y = call_fn(L, lua_absindex(L, idx), *m, X);
   for (Eigen::Index i = 0; i < Y.rows(); ++i)
     if (first_non_finite(Y, i) >= 0) Y.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -158,10 +158,15 @@ Eigen::MatrixXd design_of(lua_State* L, int idx, const Model& m) {
   lua_pop(L, lua_type(L, idx) == LUA_TTABLE && !lua::test_vec(L, idx) && !lua::test_mat(L, idx) ? 1 : 0);
   Eigen::MatrixXd X = lua::to_matrix(L, idx, "X");
   if (X.size() == 0) X.resize(0, d);
+  check_columns(L, X, m);
+  return X;
+}
+
+void check_columns(lua_State* L, const Eigen::MatrixXd& X, const Model& m) {
+  const auto d = static_cast<Eigen::Index>(m.inputs.size());
   if (X.cols() != d)
     luaL_error(L, "X has %d columns but model '%s' has %d inputs (%s); rows are points, columns inputs in that order",
                static_cast<int>(X.cols()), m.name.c_str(), static_cast<int>(d), joined(m.inputs).c_str());
-  return X;
 }
 
 void push_results(lua_State* L, const Model& m, const se::EvalResult& r) {
@@ -173,31 +178,22 @@ void push_results(lua_State* L, const Model& m, const se::EvalResult& r) {
   lua_createtable(L, 0, 0);                    // failures
   Eigen::VectorXd ok(n), reused(n);
   int nfail = 0;
-  // The three status words and the empty reason are pushed once and copied into each row (an
-  // in-process model is evaluated thousands of times a calibration, 2000 rows each).
-  lua_pushliteral(L, "ok");
-  lua_pushliteral(L, "failed");
-  lua_pushliteral(L, "not run");
-  lua_pushliteral(L, "");
-  const int words = lua_gettop(L) - 3;  // "ok", "failed", "not run", then ""; the tables are below
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     const se::Status s = r.status[ui];
-    lua_pushvalue(L, words + (s == se::Status::Ok ? 0 : s == se::Status::Failed ? 1 : 2));
-    lua_rawseti(L, words - 3, i + 1);
-    if (r.reason[ui].empty()) lua_pushvalue(L, words + 3);
-    else lua_pushstring(L, r.reason[ui].c_str());
-    lua_rawseti(L, words - 2, i + 1);
+    lua_pushstring(L, s == se::Status::Ok ? "ok" : s == se::Status::Failed ? "failed" : "not run");
+    lua_rawseti(L, -4, i + 1);
+    lua_pushstring(L, r.reason[ui].c_str());
+    lua_rawseti(L, -3, i + 1);
     ok[i] = s == se::Status::Ok ? 1 : 0;
     reused[i] = r.reused[ui] ? 1 : 0;
     if (s == se::Status::Failed) {
       lua_createtable(L, 0, 2);
       lua::set_integer(L, "row", i + 1);
       lua::set_string(L, "reason", r.reason[ui]);
-      lua_rawseti(L, words - 1, ++nfail);
+      lua_rawseti(L, -2, ++nfail);
     }
   }
-  lua_pop(L, 4);  // the words
   lua_setfield(L, -4, "failures");
   lua_setfield(L, -3, "reason");
   lua_setfield(L, -2, "status");

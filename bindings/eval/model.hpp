@@ -50,6 +50,9 @@ void push_results(lua_State* L, const Model& m, const smi::eval::EvalResult& r);
 int evaluate_solver(lua_State* L, Model& m);
 int evaluate_lua(lua_State* L, Model& m);
 
+/// Raises naming the model's inputs when X has not one column per input.
+void check_columns(lua_State* L, const Eigen::MatrixXd& X, const Model& m);
+
 /// The model at idx, or nullptr when it is not an smi.model.
 Model* test_model(lua_State* L, int idx);
 

@@ -2,7 +2,6 @@
 #include "bindings/improve/lua_callbacks.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -34,6 +33,14 @@ Evaluation read_evaluation(lua_State* L, const char* who, std::vector<std::strin
     throw InvalidArgument(fmt::format("the {} returned parts before but not now (return the same table every time)", who));
   }
   return e;
+}
+
+/// The error for a model whose outputs (`have`, in name order) lack response r.
+InvalidArgument missing_output(const std::string& who, const std::string& r, const std::vector<std::string>& have) {
+  std::string list;
+  for (const auto& k : have) list += (list.empty() ? "" : ", ") + k;
+  return InvalidArgument(fmt::format("{}'s outputs have no '{}' (it returned: {}); the data names the responses", who, r,
+                                     list.empty() ? "nothing by name" : list));
 }
 
 }  // namespace
@@ -85,12 +92,7 @@ Eigen::VectorXd LuaModel::read_output(const std::string& r, bool single, bool le
     if (lua_isnil(L_, -1)) {
       lua_pop(L_, 1);
       const auto have = sorted_keys(L_, -1);
-      if (!(lenient && have.size() == 1)) {
-        std::string list;
-        for (const auto& k : have) list += (list.empty() ? "" : ", ") + k;
-        throw InvalidArgument(fmt::format("{}'s outputs have no '{}' (it returned: {}); the data names the responses", who, r,
-                                          list.empty() ? "nothing by name" : list));
-      }
+      if (!(lenient && have.size() == 1)) throw missing_output(who, r, have);
       raw_field(L_, -1, have[0].c_str());  // a one-output part predicts its response whatever it calls it
     }
     y = read_vector(L_, -1, fmt::format("model output '{}'", r));
@@ -114,9 +116,10 @@ Eigen::MatrixXd LuaModel::evaluate(const Eigen::MatrixXd& X) const {
     if (const auto all = eval::lua_model_outputs(L_, parts_[0].self_slot, X, outputs)) {  // an smi.model.lua, without its status tables
       for (std::size_t j = 0; j < responses_.size(); ++j) {
         const auto at = std::find(outputs.begin(), outputs.end(), responses_[j]);
-        if (at == outputs.end())
-          throw InvalidArgument(fmt::format("the model's outputs have no '{}' (it returned: {}); the data names the responses", responses_[j],
-                                            fmt::join(outputs, ", ")));
+        if (at == outputs.end()) {
+          std::sort(outputs.begin(), outputs.end());
+          throw missing_output("the model", responses_[j], outputs);
+        }
         Y.col(static_cast<Eigen::Index>(j)) = all->col(at - outputs.begin());
       }
       return Y;

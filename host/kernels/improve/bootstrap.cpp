@@ -142,12 +142,9 @@ BootstrapResult bootstrap_calibration(const std::vector<Parameter>& params, cons
       if (++res.failed <= 3) res.warnings.push_back(fmt::format("bootstrap replicate {} failed: {}", b + 1, failures[b]));
     }
   }
-  if (ok.size() < 2) {
-    const auto first = std::find_if(failures.begin(), failures.end(), [](const std::string& f) { return !f.empty(); });
-    throw Error(fmt::format("bootstrap: only {} of {} replicates succeeded{}", ok.size(), opt.replicates,
-                            first == failures.end() ? std::string()
-                                                    : fmt::format(" (replicate {}: {})", first - failures.begin() + 1, *first)));
-  }
+  if (ok.size() < 2)  // at least one of the two or more replicates failed: name the first
+    throw Error(fmt::format("bootstrap: only {} of {} replicates succeeded (replicate {}: {})", ok.size(), opt.replicates,
+                            res.failures.front().first, res.failures.front().second));
   if (res.failed > 0) res.warnings.push_back(fmt::format("{} of {} bootstrap replicates failed and were left out", res.failed, opt.replicates));
   res.thetas.resize(static_cast<Eigen::Index>(ok.size()), k);
   for (std::size_t b = 0; b < ok.size(); ++b) res.thetas.row(static_cast<Eigen::Index>(b)) = ok[b].transpose();

@@ -238,7 +238,7 @@ void add_outside_mass_gradient(const Eigen::VectorXd& y, double h, const stats::
 double pr_part_and_gradient(const Eigen::VectorXd& y, double h, const stats::Grid& g, const Eigen::VectorXd& fe, double exp_outside, int threads,
                             Eigen::VectorXd& gy, double& gh) {
   const auto coarse = stats::coarse_grid(g, h);  // an over-resolved grid: sums on a coarser one (kde_coarse_grid.hpp)
-  const Eigen::VectorXd fp = stats::kde_pdf_resolved(y, h, g, threads);
+  const Eigen::VectorXd fp = stats::kde_pdf_resolved(y, h, g, coarse, threads);
   Eigen::VectorXd ends(2);
   ends << g.lo, g.hi;
   const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);

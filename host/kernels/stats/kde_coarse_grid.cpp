@@ -76,10 +76,13 @@ Eigen::VectorXd interpolate_adjoint(const CoarseGrid& c, ConstVec fine_weights) 
   return out;
 }
 
-Eigen::VectorXd kde_pdf_resolved(ConstVec data, double h, const Grid& g, int threads) {
-  const auto c = coarse_grid(g, h);
+Eigen::VectorXd kde_pdf_resolved(ConstVec data, double h, const Grid& g, const std::optional<CoarseGrid>& c, int threads) {
   if (!c) return kde_pdf_grid(data, h, g, threads);
   return interpolate_to_fine(*c, kde_pdf_grid(data, h, c->coarse, threads));
+}
+
+Eigen::VectorXd kde_pdf_resolved(ConstVec data, double h, const Grid& g, int threads) {
+  return kde_pdf_resolved(data, h, g, coarse_grid(g, h), threads);
 }
 
 }  // namespace smi::stats

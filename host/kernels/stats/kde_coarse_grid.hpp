@@ -36,7 +36,10 @@ Eigen::VectorXd interpolate_to_fine(const CoarseGrid& c, ConstVec coarse_values)
 /// The adjoint of interpolate_to_fine: Σ_j a_j ∂fine_j/∂coarse_c for weights a on the fine nodes.
 Eigen::VectorXd interpolate_adjoint(const CoarseGrid& c, ConstVec fine_weights);
 
-/// kde_pdf on the nodes of g, through a coarse grid when g is over-resolved for h.
+/// kde_pdf on the nodes of g, through the coarse grid c when there is one (coarse_grid(g, h)):
+/// a caller that also needs the gradient passes the same c to interpolate_adjoint.
+Eigen::VectorXd kde_pdf_resolved(ConstVec data, double h, const Grid& g, const std::optional<CoarseGrid>& c, int threads);
+/// The same, deciding the coarse grid itself.
 Eigen::VectorXd kde_pdf_resolved(ConstVec data, double h, const Grid& g, int threads);
 
 }  // namespace smi::stats
