@@ -12,7 +12,6 @@
 --   smi-lua --lib scripts --allow-read STUDY --allow-read DATA_DIR --allow-read /proc/loadavg --out OUT \
 --     bench/calibrate_trial2.lua --study STUDY [--data FILE] [--results FILE] [--label NAME] [--repeats 3]
 local calibration = require "smi.improve.calibration"
-local trial = require "smi.improve.trial"
 local ALL = { "mode1", "mode2", "mode4" } -- the study's responses in declared order
 local options = require "smi.options"
 
@@ -204,9 +203,10 @@ out.load_after = loadavg()
 do
   local best = out.stage1_start.objective <= out.declared_start.objective and out.stage1_start or out.declared_start
   local w0 = smi.now()
-  local predicted = trial.predictor(kriging, T.unknowns, T.specs, t.n, t.seed)
-  local tol = calibration.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = best.params,
-                                     grids = grids, seed = t.seed + 11, calibrate = MODES }
+  -- smi.calibrate measures the tolerance at the point it ends on (from here: the best point)
+  local r0 = calibration.pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = best.params, maxeval = 1,
+    identifiability = false, overlap_start = false, threads = opt.threads })
+  local tol = { value = r0.tolerance, basis = r0.tolerance_basis }
   local r = calibration.pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = best.params, maxeval = 40,
     identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value }, threads = opt.threads })
   local dirs = {}

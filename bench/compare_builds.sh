@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Do two builds give the same outputs? For a change meant to leave behaviour alone (a refactoring):
-# runs, with each build, the quick steering-column study, `smi-lua doc --html` and the no-gradient
-# calibration bench, then compares them with what legitimately differs removed (timings, dates, pids,
-# the two source trees' paths, file hashes and sizes of the edited stdlib modules).
+# runs, with each build, the quick steering-column study, the quick bracket-plate study (when
+# CalculiX is installed), `smi-lua doc --html` and the no-gradient calibration bench, then
+# compares them with what legitimately differs removed (timings, dates, pids, the two source
+# trees' paths, file hashes and sizes of the edited stdlib modules).
 # usage: bench/compare_builds.sh OLD_SOURCE_TREE NEW_SOURCE_TREE OUT_DIR   (each tree built in build/)
 set -euo pipefail
 old=$1 new=$2 out=$3
@@ -14,6 +15,10 @@ for side in old new; do
   mkdir -p "$out/$side"
   ( cd "$src" && "$b/smi-lua" --quiet --allow-exec "$b/smi-column-fe" --out "$out/$side/study" scripts/steering_column.lua \
       --quick --solver "$b/smi-column-fe" > "$out/$side/study.log" 2>&1 )
+  if [ -x /usr/bin/ccx ]; then  # the second example study, on CalculiX
+    ( cd "$src" && "$b/smi-lua" --quiet --allow-exec /usr/bin/ccx --out "$out/$side/plate" scripts/bracket_plate.lua \
+        --quick --solver /usr/bin/ccx > "$out/$side/plate.log" 2>&1 ) || true
+  fi
   "$b/smi-lua" doc --html "$out/$side/html" > /dev/null 2>&1
   ( cd "$src" && "$b/smi-lua" --quiet --allow-read "$src/tests/lua" --out "$out/$side/hidden" bench/calibrate_hidden.lua \
       "$src/tests/lua/hidden_problem.lua" > "$out/$side/hidden.txt" 2>&1 )
@@ -22,8 +27,8 @@ done
 import json, os, re, sys
 old, new, out = sys.argv[1:]
 runtime = re.compile(r'(time|seconds|elapsed|wall|cpu|started|finished|date|host|version|build|_at$|duration|eta|pid|size)', re.I)
-def load(side, root):
-    text = open(f'{out}/{side}/study/results.json').read().replace(root, 'ROOT').replace(f'{out}/{side}', 'OUT')
+def load(side, root, study='study'):
+    text = open(f'{out}/{side}/{study}/results.json').read().replace(root, 'ROOT').replace(f'{out}/{side}', 'OUT')
     return json.loads(text)
 def clean(x):
     if isinstance(x, dict): return {k: clean(v) for k, v in x.items() if not runtime.search(k)}
@@ -41,9 +46,12 @@ def walk(a, b, path=''):
         if len(a) != len(b): diffs.append(f'{path}: {len(a)} vs {len(b)} entries'); return
         for i, (u, v) in enumerate(zip(a, b)): walk(u, v, f'{path}[{i}]')
     elif a != b: diffs.append(f'{path}: {str(a)[:80]} | {str(b)[:80]}')
-walk(clean(load('old', old)), clean(load('new', new)))
-print(f'results.json: {len(diffs)} difference(s)')
-for d in diffs: print('  ' + d)
+for study in ('study', 'plate'):
+    if not os.path.exists(f'{out}/old/{study}/results.json'): continue
+    diffs = []
+    walk(clean(load('old', old, study)), clean(load('new', new, study)))
+    print(f'{study}/results.json: {len(diffs)} difference(s)')
+    for d in diffs: print('  ' + d)
 def norm(text, root, side):
     text = text.replace(root, 'ROOT').replace(f'{out}/{side}', 'OUT')
     text = re.sub(r'pid \d+', 'pid P', text)

@@ -45,15 +45,15 @@ std::vector<Option<S>> solver_options(bool batch) {
                          "e.g. {\"--version\"}: run the program once with these arguments when\n"
                          "the model is made; the first line it prints is recorded in the\n"
                          "provenance (results.json, the report) as its version line"));
-  o.push_back(number<S>("timeout", [](auto& s) -> auto& { return s.config.timeout; }, any_value(),
+  o.push_back(number<S>("timeout", [](auto& s) -> auto& { return s.config.timeout; }, at_least(0),
                         "seconds per run, 0 = none; the process group is killed"));
-  o.push_back(integer<S>("retries", [](auto& s) -> auto& { return s.config.retries; }, any_value(),
+  o.push_back(integer<S>("retries", [](auto& s) -> auto& { return s.config.retries; }, at_least(0),
                          "extra attempts after a failure"));
   o.push_back(parsed<S>("on_failure", [](auto& s) -> auto& { return s.config.on_failure; }, se::parse_on_failure, on_failure_name,
                         "\"stop\" (raise after the batch), \"skip\" (NaN, reported in info),\nor \"retry\""));
-  o.push_back(integer<S>("concurrency", [](auto& s) -> auto& { return s.config.concurrency; }, any_value(), "processes at once"));
+  o.push_back(integer<S>("concurrency", [](auto& s) -> auto& { return s.config.concurrency; }, at_least(1), "processes at once"));
   if (batch)
-    o.push_back(integer<S>("batch_size", [](auto& s) -> auto& { return s.config.batch_size; }, any_value(),
+    o.push_back(integer<S>("batch_size", [](auto& s) -> auto& { return s.config.batch_size; }, at_least(0),
                            "points per run; 0 = all pending points in one run"));
   o.push_back(boolean<S>("reuse_failed", [](auto& s) -> auto& { return s.config.reuse_failed; },
                          "also reuse stored failures (default: run them again)"));

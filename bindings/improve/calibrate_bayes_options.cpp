@@ -39,7 +39,7 @@ const Schema<BayesSpec>& calibrate_bayes_schema() {
          "are uniform on their ranges"),
       by_hand<S>("order", "nil",
          "model form: the input column order for a function model (names)"),
-      integer<S>("samples", [](auto& s) -> auto& { return s.sampler.samples; }, any_value(),
+      integer<S>("samples", [](auto& s) -> auto& { return s.sampler.samples; }, at_least(smi::improve::kMinParticles),
          "particles of the sampler (and posterior samples returned)"),
       integer<S>("max_stages", [](auto& s) -> auto& { return s.sampler.max_stages; }, at_least(1),
          "tempering stages at most (not converged when beta has not reached 1)"),
@@ -65,7 +65,7 @@ const Schema<BayesSpec>& calibrate_bayes_schema() {
          "kernel (0: the noise kernel alone, unbiased but noisier)"),
       number<S>("noise_fraction", &S::noise_fraction, above(0),
          "model form: default noise sd as a fraction of each response's data sd"),
-      integer<S>("threads", [](auto& s) -> auto& { return s.population.threads; }, any_value(),
+      integer<S>("threads", [](auto& s) -> auto& { return s.population.threads; }, at_least(1),
          "model form: threads for the input mapping and the kernel sums"),
   });
   (void)bayes_prior_schema();
@@ -77,8 +77,8 @@ const Schema<BayesPriorArgs>& bayes_prior_schema() {
   static const Schema<S> schema("smi.calibrate_bayes prior", std::vector<Option<S>>{
       string<S>("param", &S::param, {}, "model form: the calibrated parameter", "nil"),
       string<S>("dist", &S::dist, {"normal", "lognormal"}, "the prior's family"),
-      number<S>("mean", &S::mean, any_value(), "the prior's mean (of the parameter itself)", "(required)"),
-      number<S>("std", &S::std, any_value(), "its standard deviation, > 0", "(required)"),
+      number<S>("mean", &S::mean, finite(), "the prior's mean (of the parameter itself)", "(required)"),
+      number<S>("std", &S::std, finite_above(0), "its standard deviation, > 0", "(required)"),
       number<S>("lower", &S::lower, any_value(), "objective form: truncated below (the model form's range)"),
       number<S>("upper", &S::upper, any_value(), "objective form: truncated above (the model form's range)"),
   });

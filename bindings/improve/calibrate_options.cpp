@@ -30,7 +30,9 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "dist: any of the nine families (truncnormal/beta with fixed lower/upper,\n"
          "gamma/weibull with a fixed loc, triangular with mode_at)"),
       by_hand<S>("data", "nil",
-         "model form: {output = vec of measurements | a dist (an experimental PDF)}"),
+         "model form: {output = vec of measurements | a dist (an experimental PDF)\n"
+         "| {points = vec, pdf = dist}}: with both, the PDF enters the objective and\n"
+         "the points are resampled (PR tolerance, bootstrap)"),
       by_hand<S>("metric", "\"pr\"",
          "\"pr\", \"loglik\", or function(predicted, data) returning a number"),
       by_hand<S>("penalty", "nil",
@@ -38,7 +40,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
       by_hand<S>("prior", "nil",
          "{{param = \"x.mean\", mean =, std =} | {name =, fn = function(theta), mean =,\n"
          "std =}, ...}: adds 0.5((v - mean)/std)^2 each, reported as metrics.prior"),
-      number<S>("prior_weight", &S::prior_weight, any_value(),
+      number<S>("prior_weight", &S::prior_weight, finite_at_least(0),
          "factor on the prior part"),
       string<S>("gradient", &S::gradient, {"auto", "analytic", "model", "differences"},
          "\"auto\": analytic where the model gives one (Kriging, m:gradient),\n"
@@ -54,7 +56,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "line-search trial it rejects (the same iterates, less work)"),
       string<S>("model_differences", &S::model_differences, {"forward", "central"},
          "or \"central\" (2k + 1 blocks, O(h^2))"),
-      number<S>("model_step", &S::model_step, any_value(),
+      number<S>("model_step", &S::model_step, open(0.0, smi::improve::kMaxModelStep),
          "relative step of model differences (input sd units); a solver whose\n"
          "printed outputs carry d digits needs about 10^(-d/2)"),
       boolean<S>("overlap_start", &S::overlap_start,
@@ -64,7 +66,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "true: every start is first moved to match the responses' means and\n"
          "sds (Levenberg-Marquardt, analytic Jacobian where the model has a\n"
          "gradient), kept when the objective is lower: fewer evaluations"),
-      integer<S>("n", [](auto& s) -> auto& { return s.stat.n; }, any_value(),
+      integer<S>("n", [](auto& s) -> auto& { return s.stat.n; }, at_least(static_cast<double>(smi::improve::kMinCrnSize)),
          "CRN sample size per evaluation"),
       choice<S>("crn", [](auto& s) -> auto& { return s.stat.crn; }, Names<CrnKind>{{"random", CrnKind::random}, {"quantiles", CrnKind::quantiles}},
          "\"random\" draws or \"quantiles\" (stratified) common random numbers"),
@@ -78,7 +80,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "the input column order for a function model (names)"),
       by_hand<S>("design_bounds", "nil",
          "{input = {lower, upper}}: the surrogate's design range; leaving it warns"),
-      integer<S>("threads", [](auto& s) -> auto& { return s.stat.threads; }, any_value(),
+      integer<S>("threads", [](auto& s) -> auto& { return s.stat.threads; }, at_least(1),
          "KDE evaluation threads; with no Lua metric, penalty, prior function or\n"
          "progress, the starts and bootstrap replicates run side by side on them\n"
          "instead (a Lua model's own calls take turns)"),
@@ -114,7 +116,7 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "tolerance was missed and by how much."),
       number<S>("fd_step", [](auto& s) -> auto& { return s.optimizer.fd_step; }, Range{0.0, smi::improve::kMaxFdStep, true, false},
          "central-difference step in scaled units"),
-      number<S>("initial_step", [](auto& s) -> auto& { return s.optimizer.initial_step; }, any_value(),
+      number<S>("initial_step", [](auto& s) -> auto& { return s.optimizer.initial_step; }, Range{0.0, 1.0, true, false},
          "derivative-free methods' first step, scaled units"),
       integer<S>("seed", [](auto& s) -> auto& { return s.optimizer.seed; }, any_value(),
          "CRN sample, multistart points and bootstrap", "smi.seed"),
@@ -150,11 +152,16 @@ const Schema<CalibrateSpec>& calibrate_schema() {
 const Schema<CalibrateSpec>& identifiability_schema() {
   using S = CalibrateSpec;
   static const Schema<S> schema("smi.calibrate identifiability", std::vector<Option<S>>{
-      integer<S>("points", [](auto& s) -> auto& { return s.ident.points; }, any_value(), "sweep points per parameter"),
-      number<S>("rel_tol", [](auto& s) -> auto& { return s.ident.rel_tol; }, any_value(), "relative objective change that counts"),
-      number<S>("abs_tol", [](auto& s) -> auto& { return s.ident.abs_tol; }, any_value(), "absolute objective change that counts"),
-      number<S>("tolerance", &S::directions_tolerance, above(0), "\"fits as well as the optimum\"", "by the metric"),
-      number<S>("step", [](auto& s) -> auto& { return s.directions.step; }, any_value(), "the directions' finite-difference step"),
+      integer<S>("points", [](auto& s) -> auto& { return s.ident.points; }, at_least(3), "sweep points per parameter"),
+      number<S>("rel_tol", [](auto& s) -> auto& { return s.ident.rel_tol; }, at_least(0), "relative objective change that counts"),
+      number<S>("abs_tol", [](auto& s) -> auto& { return s.ident.abs_tol; }, at_least(0), "absolute objective change that counts"),
+      number<S>("tolerance", &S::directions_tolerance, above(0), "\"fits as well as the optimum\"",
+                "by the metric: PR measured from the data points, loglik 1.920729"),
+      integer<S>("resamples", &S::tolerance_resamples, at_least(0),
+                 "bootstrap resamples of the data rows measuring PR's tolerance\n"
+                 "(its standard deviation at the optimum; 0: 0.01 per response)"),
+      number<S>("step", [](auto& s) -> auto& { return s.directions.step; }, Range{0.0, smi::improve::kMaxDirectionsStep, true, false},
+                "the directions' finite-difference step"),
       boolean<S>("directions", &S::identifiability_directions, "also the directions the data determine (and near_optimal)"),
   });
   return schema;
@@ -176,8 +183,8 @@ const Schema<PriorArgs>& prior_schema() {
       string<S>("param", &S::param, {}, "the calibrated parameter (or fn with name)", "nil"),
       string<S>("name", &S::name, {}, "the label of a prior on fn", "nil"),
       by_hand<S>("fn", "nil", "function(theta) returning the quantity with the prior"),
-      number<S>("mean", &S::mean, any_value(), "the normal prior's mean", "(required)"),
-      number<S>("std", &S::std, any_value(), "the normal prior's standard deviation, > 0", "(required)"),
+      number<S>("mean", &S::mean, finite(), "the normal prior's mean", "(required)"),
+      number<S>("std", &S::std, finite_above(0), "the normal prior's standard deviation, > 0", "(required)"),
   });
   return schema;
 }

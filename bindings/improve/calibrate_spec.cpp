@@ -213,11 +213,19 @@ void read_data(lua_State* L, int spec, CalibrateSpec& s) {
     ResponseSpec rs;
     rs.name = r;
     lua_getfield(L, s.data_slot, r.c_str());
-    if (auto d = test_distribution(L, -1))
+    const int at = lua_gettop(L);
+    if (auto d = test_distribution(L, at)) {
       rs.f_exp = d;  // an experimental PDF (KDE-ebd, ...) instead of raw data
-    else
-      rs.data = read_vector(L, -1, "data." + r);
-    lua_pop(L, 1);
+    } else if (lua_istable(L, at) && lua_getfield(L, at, "pdf") != LUA_TNIL) {
+      // {points = vec, pdf = dist}: the PDF is the objective's, the points what is resampled
+      rs.f_exp = test_distribution(L, -1);
+      if (!rs.f_exp) throw InvalidArgument(fmt::format("data.{}.pdf must be a distribution (smi.kde_ebd(...), smi.dist...)", r));
+      lua_getfield(L, at, "points");
+      rs.data = read_vector(L, -1, "data." + r + ".points");
+    } else {
+      rs.data = read_vector(L, at, "data." + r);
+    }
+    lua_settop(L, at - 1);
     s.responses.push_back(std::move(rs));
   }
 }
@@ -383,8 +391,6 @@ void read_priors(lua_State* L, int spec, CalibrateSpec& s) {
     if (!given("mean") || !given("std")) throw InvalidArgument(where + ": needs mean = and std = (a normal prior)");
     p.mean = a.mean;
     p.std = a.std;
-    if (!std::isfinite(p.mean)) throw InvalidArgument(fmt::format("{}.mean must be finite, got {}", where, p.mean));
-    if (!(p.std > 0.0) || !std::isfinite(p.std)) throw InvalidArgument(fmt::format("{}.std must be a finite number > 0, got {}", where, p.std));
     if (has_fn) {
       if (lua_getfield(L, e, "fn") != LUA_TFUNCTION) throw InvalidArgument(where + ".fn must be a function(theta) returning a number");
       lua_replace(L, e);  // the function takes the entry's slot and stays on the stack
@@ -559,11 +565,6 @@ CalibrateSpec read_calibrate_spec(lua_State* L, int idx) {
   else read_model_form(L, idx, o, s, seed);
 
   read_priors(L, idx, s);
-  if (!(s.model_step > 0.0 && s.model_step < 0.1))  // literal: the range model_step must lie in
-    throw InvalidArgument(fmt::format("model_step must be a relative step in (0, 0.1) (1e-6 for a smooth model; about the square root of the "
-                                      "outputs' relative resolution for a solver's printed results), got {}", s.model_step));
-  if (!(s.prior_weight >= 0.0) || !std::isfinite(s.prior_weight))
-    throw InvalidArgument(fmt::format("prior_weight must be a finite number >= 0, got {}", s.prior_weight));
 
   // Diagnostics.
   read_identifiability(L, idx, s);

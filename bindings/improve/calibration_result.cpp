@@ -239,16 +239,22 @@ void push_near_optimal(lua_State* L, const std::vector<std::string>& names, cons
   lua_setfield(L, -2, "near_optimal");
 }
 
-/// bootstrap: percentile bounds, standard deviations, the endpoints' Monte Carlo errors, the
+/// bootstrap: percentile bounds, the normal interval, standard deviations, the endpoints' Monte Carlo errors, the
 /// replicates they need and the replicates' optima.
 void push_bootstrap(lua_State* L, const std::vector<std::string>& names, const CalibrateSpec& s, const BootstrapResult& b) {
-  lua_createtable(L, 0, 11);
+  lua_createtable(L, 0, 12);
   push_named(L, names, b.lower);
   lua_setfield(L, -2, "lower");
   push_named(L, names, b.upper);
   lua_setfield(L, -2, "upper");
   push_named(L, names, b.stddev);
   lua_setfield(L, -2, "std");
+  lua_createtable(L, 0, 2);
+  push_named(L, names, b.normal_lower);
+  lua_setfield(L, -2, "lower");
+  push_named(L, names, b.normal_upper);
+  lua_setfield(L, -2, "upper");
+  lua_setfield(L, -2, "normal");
   push_named(L, names, b.lower_mc_error);
   lua_setfield(L, -2, "lower_mc_error");
   push_named(L, names, b.upper_mc_error);

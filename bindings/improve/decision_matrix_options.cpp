@@ -16,7 +16,7 @@ const Schema<DecisionOptions>& decision_matrix_schema() {
       by_hand<S>("criteria", "(required)",
                  "{{name =, weight =, magnitude = function(candidate, j) | {values} |\n"
                  "{name = value}}, ...}"),
-      number<S>("tie_tol", &S::tie_tol, any_value(), "overall ratings closer than this are ties"),
+      number<S>("tie_tol", &S::tie_tol, at_least(0), "overall ratings closer than this are ties"),
   });
   return schema;
 }

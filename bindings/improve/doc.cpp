@@ -28,8 +28,9 @@ options:
 ${calibrate}
 returns: r with r.params {name = value}, r.theta (in parameter order), r.names, r.objective,
   r.metrics (per output), r.tolerance (the objective rise that still fits as well as the optimum:
-  identifiability.tolerance, or PR 0.01 per response, loglik 1.920729 = chi2_1(0.95)/2, else 1e-6
-  of the optimum) and r.tolerance_basis (its reason in words), r.prior_value (the prior part at the
+  identifiability.tolerance; for PR the standard deviation of the summed PR at the optimum over
+  identifiability.resamples bootstrap resamples of the data rows, or 0.01 per response without
+  data points; loglik 1.920729 = chi2_1(0.95)/2; else 1e-6 of the optimum) and r.tolerance_basis (its reason in words), r.prior_value (the prior part at the
   optimum, 0 without prior) and r.prior_at(theta) (the same sum anywhere), r.inputs {input = {dist =, mean =, std =}} and r.distributions
   {input = dist} (model form), r.history (every evaluation), r.converged, r.status (NLopt's stop
   reason, or "no_overlap": some response's PR within 1e-3 of 2, or loglik with every datum outside
@@ -50,8 +51,8 @@ returns: r with r.params {name = value}, r.theta (in parameter order), r.names, 
   r.at_bounds, r.warnings (at a bound, outside the design range, not identifiable),
   r.identifiability {span, weak, profiles, evaluations, directions = {{determined, loadings,
   curvature, profile}, ...}}, r.near_optimal {tolerance, points, objectives}, r.intervals,
-  r.bootstrap {lower, upper, std, lower_mc_error, upper_mc_error (the endpoints' Monte Carlo
-  errors), replicates_needed (for errors under 10 % of the half-width), level, replicates, failed,
+  r.bootstrap {lower, upper (percentiles), normal = {lower, upper} (estimate ± z sd inside the
+  bounds), std, lower_mc_error, upper_mc_error (the endpoints' Monte Carlo errors), replicates_needed (for errors under 10 % of the half-width), level, replicates, failed,
   failures = {{replicate, message}, ...}, samples}, r.not_computed {analysis = error} (an analysis
   after the optimum that failed, "bootstrap" when fewer than two replicates succeeded; the
   optimum stands)

@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include "platform/core/defaults.hpp"
+
 namespace smi::bind::stats {
 
 using namespace smi::lua;
@@ -17,15 +19,15 @@ template <class S>
 std::vector<Option<S>> loop_options(bool as_bd) {
   auto d = [&](const char* own) { return as_bd ? own : "as smi.kde_bd"; };
   return {
-      number<S>("critical_area", &BoundedKdeOptions::critical_area, any_value(), d("stop when IA(previous, new) >= this")),
-      integer<S>("step", &BoundedKdeOptions::step, any_value(), d("points added per iteration")),
-      integer<S>("max_added", &BoundedKdeOptions::max_added, any_value(), d("the most points added; -1 means 10 n")),
+      number<S>("critical_area", &BoundedKdeOptions::critical_area, Range{0.0, 1.0, true, false}, d("stop when IA(previous, new) >= this")),
+      integer<S>("step", &BoundedKdeOptions::step, at_least(1), d("points added per iteration")),
+      integer<S>("max_added", &BoundedKdeOptions::max_added, at_least(-1), d("the most points added; -1 means 10 n")),
       string<S>("compare", &BoundedKdeOptions::compare, {}, d("\"previous\" (the last KDE) or \"data\" (the KDE of the data only)")),
       string<S>("bandwidth", &BoundedKdeOptions::bandwidth, {}, d("the rule applied to the pooled points every iteration")),
       boolean<S>("deterministic", &BoundedKdeOptions::deterministic,
                  d("place points at l + (u - l)(j - 1/2)/m instead of drawing them")),
       integer<S>("seed", &BoundedKdeOptions::seed, any_value(), d("the draws' seed"), "smi.seed"),
-      integer<S>("grid_nodes", &BoundedKdeOptions::grid_nodes, any_value(), d("quadrature nodes of the intersection area")),
+      integer<S>("grid_nodes", &BoundedKdeOptions::grid_nodes, at_least(static_cast<double>(smi::kMinGridNodes)), d("quadrature nodes of the intersection area")),
   };
 }
 
@@ -45,8 +47,8 @@ const Schema<KdeArgs>& kde_schema() {
 
 const Schema<KdeBdArgs>& kde_bd_schema() {
   static const Schema<KdeBdArgs> s("smi.kde_bd", [] {
-    std::vector<Option<KdeBdArgs>> o{number<KdeBdArgs>("lower", &KdeBdArgs::lower, any_value(), "the lower bound", "(required)"),
-                                     number<KdeBdArgs>("upper", &KdeBdArgs::upper, any_value(), "the upper bound", "(required)")};
+    std::vector<Option<KdeBdArgs>> o{number<KdeBdArgs>("lower", &KdeBdArgs::lower, finite(), "the lower bound", "(required)"),
+                                     number<KdeBdArgs>("upper", &KdeBdArgs::upper, finite(), "the upper bound", "(required)")};
     for (auto& e : loop_options<KdeBdArgs>(true)) o.push_back(std::move(e));
     return o;
   }());
@@ -56,7 +58,7 @@ const Schema<KdeBdArgs>& kde_bd_schema() {
 const Schema<KdeEbdArgs>& kde_ebd_schema() {
   static const Schema<KdeEbdArgs> s("smi.kde_ebd", [] {
     std::vector<Option<KdeEbdArgs>> o{
-        number<KdeEbdArgs>("alpha", &smi::stats::EbdBoundsOptions::alpha, any_value(), "the bounds' significance level"),
+        number<KdeEbdArgs>("alpha", &smi::stats::EbdBoundsOptions::alpha, open(0.0, 1.0), "the bounds' significance level"),
         boolean<KdeEbdArgs>("unbiased", &smi::stats::EbdBoundsOptions::unbiased, "use the unbiased bound estimators")};
     for (auto& e : loop_options<KdeEbdArgs>(false)) o.push_back(std::move(e));
     return o;

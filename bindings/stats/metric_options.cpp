@@ -16,7 +16,7 @@ namespace {
 /// replications and seed, shared by the u-pooling functions; `sets` words replications' doc.
 template <class S>
 std::vector<Option<S>> mc_options(const char* sets) {
-  return {integer<S>("replications", &UpoolMcSettings::replications, any_value(), sets),
+  return {integer<S>("replications", &UpoolMcSettings::replications, at_least(smi::stats::kMinUpoolReplications), sets),
           integer<S>("seed", &UpoolMcSettings::seed, any_value(), "the Monte Carlo seed")};
 }
 
@@ -24,7 +24,7 @@ std::vector<Option<S>> mc_options(const char* sets) {
 
 const Schema<LoglikArgs>& loglik_schema() {
   static const Schema<LoglikArgs> s("smi.metric.loglik", std::vector<Option<LoglikArgs>>{
-                                                              number<LoglikArgs>("floor", &LoglikArgs::floor, any_value(), "the smallest density used")});
+                                                              number<LoglikArgs>("floor", &LoglikArgs::floor, finite_above(0), "the smallest density used")});
   return s;
 }
 
@@ -32,9 +32,9 @@ const Schema<GridArgs>& grid_schema(bool pr) {
   using S = GridArgs;
   auto make = [](const char* fname) {
     return Schema<S>(fname, std::vector<Option<S>>{
-        number<S>("lower", &S::lower, any_value(), "the grid's lower end", "(required)"),
-        number<S>("upper", &S::upper, any_value(), "the grid's upper end", "(required)"),
-        integer<S>("nodes", &S::nodes, any_value(), "the number of grid nodes")});
+        number<S>("lower", &S::lower, finite(), "the grid's lower end", "(required)"),
+        number<S>("upper", &S::upper, finite(), "the grid's upper end", "(required)"),
+        integer<S>("nodes", &S::nodes, at_least(2), "the number of grid nodes")});
   };
   // named after the function and the table, as its messages say: "smi.metric.pr grid: ..."
   static const Schema<S> p = make("smi.metric.pr grid");
@@ -47,7 +47,7 @@ const Schema<OverlapArgs>& overlap_schema(bool pr) {
   (void)grid_schema(pr);  // built with it: every schema the reference lists is checked by the tests
   auto make = [](const char* fname, const char* grid_doc, const char* nodes_doc) {
     return Schema<S>(fname, std::vector<Option<S>>{by_hand<S>("grid", "nil", grid_doc),
-                                                   integer<S>("nodes", &S::nodes, any_value(), nodes_doc)});
+                                                   integer<S>("nodes", &S::nodes, at_least(2), nodes_doc)});
   };
   static const Schema<S> p = make("smi.metric.pr", "{lower =, upper =, nodes =}: the integration grid (default: both bulks)",
                                   "the number of grid nodes when grid is not given");

@@ -49,14 +49,14 @@ const Schema<KrigingFitArgs>& kriging_fit_schema() {
                   else s.nugget = schema_detail::to_number(L, v, "nugget");
                 },
                 [](const S& s) { return s.estimate_nugget ? std::string("true") : num(s.nugget); }, {}},
-      integer<S>("starts", &S::starts, any_value(), "local searches of the multistart; 0 = automatic by size"),
+      integer<S>("starts", &S::starts, at_least(0), "local searches of the multistart; 0 = automatic by size"),
       integer<S>("seed", &S::seed, any_value(), "the multistart's candidate points"),
       boolean<S>("normalize", &S::normalize, "DACE's normalisation of inputs and response"),
       Option<S>{"inputs", "input names (for smi.propagate, smi.screen and smi.calibrate)",
                 [](lua_State* L, int v, S& s) { s.inputs = lua::to_strings(L, v, "inputs"); },
                 [](const S&) { return std::string("nil"); }, {}},
       string<S>("output", &S::output, {}, "the response's name"),
-      integer<S>("threads", &S::threads, any_value(), "worker threads"),
+      integer<S>("threads", &S::threads, at_least(1), "worker threads"),
   });
   return s;
 }
@@ -65,7 +65,7 @@ const Schema<KrigingPredictArgs>& kriging_predict_schema() {
   using S = KrigingPredictArgs;
   static const Schema<S> s("predict", std::vector<Option<S>>{
       boolean<S>("mse", &S::mse, "also return the mean squared error (false: the mean only, faster)"),
-      integer<S>("threads", &S::threads, any_value(), "worker threads"),
+      integer<S>("threads", &S::threads, at_least(1), "worker threads"),
   });
   return s;
 }

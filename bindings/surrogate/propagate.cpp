@@ -27,7 +27,6 @@ int propagate_call(lua_State* L) {
   args.seed = lua::run_context(L).seed;
   propagate_schema().read(L, 1, args);
   const lua_Integer n = args.n;
-  if (n < 1 || n > (lua_Integer(1) << 28)) luaL_error(L, "%s: n must be in 1..2^28, got %d", fname, static_cast<int>(n));  // literal: the largest n
   const std::uint64_t seed = args.seed;
   return lua::protect(L, fname, [&] {
     // The sample (and its uniforms while drawn) and the outputs, before any of it exists.

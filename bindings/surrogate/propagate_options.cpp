@@ -15,7 +15,7 @@ const Schema<PropagateArgs>& propagate_schema() {
                  "an smi.kriging, a table of them by output name, a function(X) returning\n"
                  "{name = vec}, or an smi.model.* model"),
       by_hand<S>("inputs", "(required)", "{name = dist | number, ...} or {{name, dist | number}, ...} (ordered)"),
-      integer<S>("n", &S::n, any_value(), "sample size, 1..2^28"),  // checked by the binding (its message says 2^28)
+      integer<S>("n", &S::n, between(1, static_cast<double>(smi::surrogate::propagate::kMaxSampleSize)), "sample size"),
       integer<S>("seed", &S::seed, any_value(), "the sample's seed", "smi.seed"),
       by_hand<S>("order", "nil", "the input order for a function model (names)"),
   });

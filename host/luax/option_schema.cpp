@@ -32,6 +32,7 @@ bool Range::contains(double v) const {
 
 std::string Range::text(bool integer) const {
   const bool lo_inf = std::isinf(lo), hi_inf = std::isinf(hi);
+  if (lo_inf && hi_inf) return "a finite number";
   if (lo_inf && !hi_inf) return fmt::format("{} {}", hi_open ? "<" : "<=", num(hi));
   if (hi_inf && !lo_inf) return fmt::format("{} {}", lo_open ? ">" : ">=", num(lo));
   if (integer && !lo_open && !hi_open) return fmt::format("in {}..{}", num(lo), num(hi));

@@ -44,8 +44,9 @@ struct Range {
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
   bool contains(double v) const;
-  bool any() const { return std::isinf(lo) && std::isinf(hi) && lo < 0 && hi > 0; }
-  /// As an error message says it: "in (0, 0.1)", "in 1..64" (integers), ">= 1", "> 0".
+  /// Every number, NaN and the infinities included (a seed, a free coordinate).
+  bool any() const { return std::isinf(lo) && std::isinf(hi) && lo < 0 && hi > 0 && !lo_open && !hi_open; }
+  /// As an error message says it: "in (0, 0.1)", "in 1..64" (integers), ">= 1", "> 0", "finite".
   std::string text(bool integer) const;
 };
 inline Range any_value() { return {}; }
@@ -53,6 +54,12 @@ inline Range at_least(double lo) { return {lo, std::numeric_limits<double>::infi
 inline Range above(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, false}; }
 inline Range between(double lo, double hi) { return {lo, hi, false, false}; }
 inline Range open(double lo, double hi) { return {lo, hi, true, true}; }
+/// Any finite number (not NaN, not ±inf).
+inline Range finite() { return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), true, true}; }
+/// A finite number above lo (a standard deviation: > 0 and not inf).
+inline Range finite_above(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, true}; }
+/// A finite number at or above lo.
+inline Range finite_at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, true}; }
 
 /// One key of an options table. read is empty for a key the binding reads by hand.
 template <class S>

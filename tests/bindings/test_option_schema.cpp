@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -124,6 +126,25 @@ TEST_CASE("option schema: a value out of range or not among the choices names th
   CHECK(s.read("{step = 0}") == "test.fn: step must be > 0, got 0");
   CHECK(s.read("{rule = 'z'}") == "test.fn: rule must be \"x\" or \"y\", got \"z\"");
   CHECK(s.read("{mode = 'c'}") == "test.fn: mode must be \"a\" or \"b\", got \"c\"");
+}
+
+TEST_CASE("option schema: finite ranges refuse NaN and the infinities, any_value takes them") {
+  using smi::lua::Range;
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  CHECK(smi::lua::any_value().contains(nan));
+  CHECK(smi::lua::any_value().contains(-inf));
+  CHECK_FALSE(smi::lua::finite().contains(nan));
+  CHECK_FALSE(smi::lua::finite().contains(inf));
+  CHECK_FALSE(smi::lua::finite().contains(-inf));
+  CHECK(smi::lua::finite().contains(-1e300));
+  CHECK(smi::lua::finite().text(false) == "a finite number");
+  CHECK_FALSE(smi::lua::finite_above(0).contains(0.0));
+  CHECK_FALSE(smi::lua::finite_above(0).contains(inf));
+  CHECK(smi::lua::finite_above(0).contains(1e-300));
+  CHECK(smi::lua::finite_above(0).text(false) == "> 0");
+  CHECK(smi::lua::finite_at_least(0).contains(0.0));
+  CHECK_FALSE(smi::lua::finite_at_least(0).contains(inf));
+  CHECK_FALSE(smi::lua::at_least(0).contains(nan));
 }
 
 TEST_CASE("option schema: the reference lines show the struct's defaults") {

@@ -251,6 +251,17 @@ T.case("the options' ranges are the schema's: a bad value is named, with the ran
     { { hop_step = 0 }, "smi.calibrate: hop_step must be in (0, 1], got 0" },
     { { bootstrap = { replicates = 1 } }, "smi.calibrate bootstrap: replicates must be >= 2, got 1" },
     { { bootstrap = { level = 1.5 } }, "smi.calibrate bootstrap: level must be in (0, 1), got 1.5" },
+    -- the ranges the kernels check, read from their constants (kMaxModelStep, kMinCrnSize, ...)
+    { { model_step = 0.5 }, "smi.calibrate: model_step must be in (0, 0.1), got 0.5" },
+    { { prior_weight = -1 }, "smi.calibrate: prior_weight must be >= 0, got -1" },
+    { { prior_weight = math.huge }, "smi.calibrate: prior_weight must be >= 0, got inf" },
+    { { n = 5 }, "smi.calibrate: n must be >= 10, got 5" },
+    { { threads = 0 }, "smi.calibrate: threads must be >= 1, got 0" },
+    { { identifiability = { points = 2 } }, "smi.calibrate identifiability: points must be >= 3, got 2" },
+    { { identifiability = { step = 0.1 } }, "smi.calibrate identifiability: step must be in (0, 0.05], got 0.1" },
+    { { identifiability = { resamples = -1 } }, "smi.calibrate identifiability: resamples must be >= 0, got -1" },
+    { { prior = { { param = "x.mean", mean = 0 / 0, std = 1 } } }, "prior[1]: mean must be a finite number, got " },
+    { { prior = { { param = "x.mean", mean = 0.5, std = 0 } } }, "prior[1]: std must be > 0, got 0" },
   } do
     T.raises(function() smi.calibrate(spec(c[1])) end, c[2])
   end

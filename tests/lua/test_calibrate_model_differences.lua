@@ -63,8 +63,13 @@ end)
 
 T.case("the near-optimal tolerance and the prior are read from the result", function()
   local r = smi.calibrate(P.spec{ maxeval = 5, prior = { { param = "x1.mean", mean = 10, std = 0.5 } } })
-  T.near(r.tolerance, 0.03, 1e-15, "PR: 0.01 per response")
-  T.truthy(r.tolerance_basis:find("PR"), r.tolerance_basis)
+  T.truthy(r.tolerance_basis:find("summed PR of y1, y2, y3 at the optimum over 200 bootstrap resamples", 1, true),
+           r.tolerance_basis)
+  T.truthy(r.tolerance > 0 and r.tolerance < 2, r.tolerance)
+  -- resamples = 0 (or a PDF without its points): PR's unit-free default
+  local d = smi.calibrate(P.spec{ maxeval = 5, identifiability = { resamples = 0 } })
+  T.near(d.tolerance, 0.03, 1e-15, "PR: 0.01 per response")
+  T.truthy(d.tolerance_basis:find("0.01 for each of the 3 responses", 1, true), d.tolerance_basis)
   local z = (r.params["x1.mean"] - 10) / 0.5
   T.near(r.prior_value, 0.5 * z * z, 1e-12, "prior at the optimum")
   T.near(r.metrics.prior, r.prior_value, 1e-12)

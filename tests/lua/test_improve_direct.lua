@@ -101,7 +101,10 @@ T.case("the bootstrap: smi.calibrate's replicates, their sd on the scale of a me
     print(("  %s: bootstrap sd %.3f, standard error of a %d-specimen mean %.3f; 90 %% interval [%.2f, %.2f]"):format(
       name, b.std[name], N, se, b.lower[name], b.upper[name]))
     T.truthy(b.std[name] > 0.4 * se and b.std[name] < 2.5 * se, name .. "'s bootstrap sd on the scale of the standard error")
-    T.near(b.upper[name] - b.lower[name], 2 * 1.645 * b.std[name], 1e-9 * se, name .. ": the interval is estimate ± 1.645 sd")
+    -- z = Φ⁻¹(0.95) = 1.6448536269514722 (closed form; the bounds are far from the estimate here)
+    T.near(b.upper[name] - b.lower[name], 2 * 1.6448536269514722 * b.std[name], 1e-9 * se,
+           name .. ": the interval is estimate ± z sd")
+    T.near(0.5 * (b.upper[name] + b.lower[name]), p.mean, 1e-9 * se, name .. ": centred on the estimate")
     T.truthy(b.lower[name] < p.mean and p.mean < b.upper[name], name .. ": the interval holds the estimate")
     T.truthy(b.percentile.lower[name] < b.percentile.upper[name], name .. ": the kernel's percentiles kept")
   end

@@ -39,6 +39,11 @@ T.case("a Kriging model and an object with :evaluate", function()
   local o = smi.propagate{model = obj, inputs = {b = 0.5, a = 1}, n = 3}
   T.eq(o.s[1], 1.5)
   T.raises(function() smi.propagate{model = obj, inputs = {a = 1}, n = 3} end, "no entry 'b'")
+  -- the sample size's range is the schema's (kMaxSampleSize = 2^28): named before anything runs
+  T.raises(function() smi.propagate{model = obj, inputs = {a = 1, b = 1}, n = 0} end,
+           "smi.propagate: n must be in 1..268435456, got 0")
+  T.raises(function() smi.propagate{model = obj, inputs = {a = 1, b = 1}, n = 2 ^ 40 // 1} end,
+           "smi.propagate: n must be in 1..268435456, got 1099511627776")
 end)
 
 T.finish()

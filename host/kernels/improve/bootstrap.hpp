@@ -55,6 +55,10 @@ struct BootstrapResult {
   Eigen::VectorXd lower;    ///< percentile bounds, one per parameter
   Eigen::VectorXd upper;
   Eigen::VectorXd stddev;   ///< bootstrap standard error
+  /// The normal interval at the same level: optimum ± z sd (z the normal quantile of
+  /// ½ + level/2), clipped to the parameter's bounds.
+  Eigen::VectorXd normal_lower;
+  Eigen::VectorXd normal_upper;
   Eigen::VectorXd lower_mc_error;  ///< Monte Carlo standard error of each lower endpoint
   Eigen::VectorXd upper_mc_error;  ///< and of each upper endpoint
   /// Replicates that would bring every endpoint's Monte Carlo error under a tenth of its
@@ -67,6 +71,15 @@ struct BootstrapResult {
   bool paired = false;
   std::vector<std::string> warnings;
 };
+
+/// One resample with replacement of the data (one vector per response), drawn from the stream
+/// Rng::derive(seed, label): paired rows (one index per row for every response, which must then
+/// have the same size) or each response on its own. The bootstrap's replicate b is label
+/// "bootstrap/<b>", so replicates can be drawn in any order.
+std::vector<Eigen::VectorXd> resample_data(const std::vector<Eigen::VectorXd>& data, bool paired, std::uint64_t seed,
+                                          const std::string& label);
+/// Every response has as many data as the first: their rows are specimens, resampled paired.
+bool same_sizes(const std::vector<Eigen::VectorXd>& data);
 
 /// Builds the objective for one set of data (one vector per response).
 using ObjectiveFactory = std::function<Objective(const std::vector<Eigen::VectorXd>& data)>;

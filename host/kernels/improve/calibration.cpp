@@ -222,6 +222,19 @@ void add_design_bound_warnings(const CalibrationOptions& o, const StatisticalObj
   append(out.warnings, design_bound_warnings(names, obj.inputs_at(out.opt.theta), means, o.design));
 }
 
+/// PR with the data points at hand: the tolerance measured from them (pr_tolerance.hpp) replaces
+/// the unit-free default, which is ten times tighter than nine specimens can tell.
+void add_measured_tolerance(const CalibrationProblem& p, const CalibrationOptions& o, CalibrationOutcome& out) {
+  const StatisticalObjective& obj = *out.stat;
+  const PrTolerance t = measure_pr_tolerance(obj, out.opt.theta, o.tolerance_resamples, p.stat.seed, thread_safe(p) ? p.stat.threads : 1);
+  std::string names;
+  for (const ResponseSpec& r : obj.responses()) names += (names.empty() ? "" : ", ") + r.name;
+  out.tolerance = t.value;
+  out.tolerance_basis = fmt::format("standard deviation of the summed PR of {} at the optimum over {} bootstrap resamples of the {} data {}{}",
+                                    names, t.resamples, obj.responses().front().data.size(), t.paired ? "rows" : "points per response",
+                                    t.failed > 0 ? fmt::format(" ({} degenerate resamples left out)", t.failed) : "");
+}
+
 /// Bootstrap of the statistical calibration: each replicate recalibrates an objective on
 /// resampled data, built the same way as the original (gradient, start preparation, extras).
 void add_bootstrap(const CalibrationProblem& p, const CalibrationOptions& o, const Extras& x, const StatisticalObjective& obj,
@@ -318,6 +331,8 @@ CalibrationOutcome calibrate(const CalibrationProblem& p, const CalibrationOptio
   out.converged = out.opt.converged;
   out.status = out.opt.status;
   std::tie(out.tolerance, out.tolerance_basis) = near_optimal_tolerance(p, o, out.opt.value);
+  if (out.stat && o.directions_tolerance <= 0.0 && o.tolerance_resamples > 0 && can_measure_pr_tolerance(*out.stat))
+    after_optimum(out, "the PR tolerance", [&] { add_measured_tolerance(p, o, out); });
   if (!x.priors.empty()) {
     out.prior_value = x.prior(out.opt.theta);
     out.prior_at = [x](const Eigen::VectorXd& t) { return x.prior(t); };

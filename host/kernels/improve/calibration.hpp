@@ -22,6 +22,7 @@
 #include "kernels/improve/directions.hpp"
 #include "kernels/improve/identifiability.hpp"
 #include "kernels/improve/no_overlap.hpp"
+#include "kernels/improve/pr_tolerance.hpp"
 #include "kernels/improve/profile_intervals.hpp"
 #include "kernels/improve/start_agreement.hpp"
 #include "kernels/improve/statistical_objective.hpp"
@@ -83,8 +84,11 @@ struct CalibrationOptions {
   bool identifiability_directions = true;  ///< identifiability = {directions = false} skips them (and near_optimal)
   IdentifiabilityOptions ident;
   DirectionsOptions directions;
-  /// identifiability.tolerance as given, or 0: then chosen by the metric (near_optimal_tolerance).
+  /// identifiability.tolerance as given, or 0: then chosen by the metric (near_optimal_tolerance),
+  /// for PR with two or more data points per response measured from them (pr_tolerance.hpp).
   double directions_tolerance = 0.0;
+  /// Resamples of the data for the measured PR tolerance (0: PR's unit-free default instead).
+  int tolerance_resamples = kPrToleranceResamples;
   std::optional<BootstrapOptions> bootstrap;
   /// intervals = true | {level = 0.9, delta =}: per-parameter profile intervals.
   std::optional<ProfileOptions> intervals;
@@ -152,8 +156,9 @@ struct CalibrationOutcome {
   ThetaFunction prior_at;
 };
 
-/// The objective increase that fits "as well as the optimum" and its basis: the given
-/// tolerance; PR 0.01 per response (unit-free, [0, 2] each); loglik ½ χ²₁(0.95) = 1.920729;
+/// The objective increase that fits "as well as the optimum" and its basis, before any data are
+/// resampled: the given tolerance; PR 0.01 per response (unit-free, [0, 2] each; calibrate()
+/// replaces it by the one measured from the data points when every response has two or more); loglik ½ χ²₁(0.95) = 1.920729;
 /// otherwise 1e-6 max(1, |optimum|).
 std::pair<double, std::string> near_optimal_tolerance(const CalibrationProblem& p, const CalibrationOptions& o, double optimum);
 

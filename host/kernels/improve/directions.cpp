@@ -230,7 +230,8 @@ void check_directions_input(const std::vector<Parameter>& params, const Eigen::V
   if (!(opt.tolerance > 0.0) || !std::isfinite(opt.tolerance))
     throw InvalidArgument(fmt::format("identifiability tolerance must be a number > 0, got {}", opt.tolerance));
   if (opt.points < 3) throw InvalidArgument(fmt::format("identifiability needs >= 3 profile points, got {}", opt.points));
-  if (!(opt.step > 0.0 && opt.step <= 0.05)) throw InvalidArgument(fmt::format("identifiability step must be in (0, 0.05], got {}", opt.step));
+  if (!(opt.step > 0.0 && opt.step <= kMaxDirectionsStep))
+    throw InvalidArgument(fmt::format("identifiability step must be in (0, {}], got {}", kMaxDirectionsStep, opt.step));
 }
 
 /// The warning when some directions are not determined, naming the weakest by its loadings.

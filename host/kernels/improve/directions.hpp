@@ -24,6 +24,9 @@
 
 namespace smi::improve {
 
+/// The largest finite-difference step of the directions (scaled units).
+inline constexpr double kMaxDirectionsStep = 0.05;
+
 struct DirectionsOptions {
   /// Objective increase that still counts as fitting the data as well as the optimum.
   double tolerance = 1e-3;

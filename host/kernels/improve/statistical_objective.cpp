@@ -63,7 +63,7 @@ StatisticalObjective::StatisticalObjective(std::vector<InputSpec> inputs, std::v
   validate_parameters(params_);
   if (inputs_.empty()) throw InvalidArgument("no inputs: give at least one input distribution");
   if (responses_.empty()) throw InvalidArgument("no data: give at least one response with experimental data");
-  if (opt_.n < 10) throw InvalidArgument(fmt::format("n (CRN sample size) must be >= 10, got {}", opt_.n));
+  if (opt_.n < kMinCrnSize) throw InvalidArgument(fmt::format("n (CRN sample size) must be >= {}, got {}", kMinCrnSize, opt_.n));
   if (opt_.grid_nodes < kMinGridNodes)
     throw InvalidArgument(fmt::format("grid_nodes must be >= {}, got {}", kMinGridNodes, opt_.grid_nodes));
   if (opt_.metric == MetricKind::custom && !custom_) throw InvalidArgument("metric is custom but no metric function was given");
@@ -192,8 +192,8 @@ void StatisticalObjective::check_output(const Eigen::MatrixXd& Y, Eigen::Index r
 }
 
 void StatisticalObjective::set_model_differences(bool central, double rel_step) {
-  if (!(rel_step > 0.0 && rel_step < 0.1) || !std::isfinite(rel_step))
-    throw InvalidArgument(fmt::format("model_step must be a relative step in (0, 0.1), got {}", rel_step));
+  if (!(rel_step > 0.0 && rel_step < kMaxModelStep) || !std::isfinite(rel_step))
+    throw InvalidArgument(fmt::format("model_step must be a relative step in (0, {}), got {}", kMaxModelStep, rel_step));
   diff_central_ = central;
   diff_step_ = rel_step;
 }
@@ -287,8 +287,8 @@ Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const 
 }
 
 std::pair<double, double> ResponseSpec::moments() const {
+  if (f_exp && !f_exp_from_data) return {f_exp->mean(), f_exp->stddev()};  // the analyst's PDF speaks for the data
   if (data.size() >= 2) return {data.mean(), stddev(data)};
-  if (f_exp) return {f_exp->mean(), f_exp->stddev()};
   return {0.0, 0.0};
 }
 
@@ -320,10 +320,12 @@ StatisticalObjective StatisticalObjective::with_data(const std::vector<Eigen::Ve
   StatisticalObjective o = *this;
   for (std::size_t j = 0; j < data.size(); ++j) {
     ResponseSpec& r = o.responses_[j];
-    if (!r.f_exp_from_data) throw InvalidArgument(fmt::format("response '{}': its experimental PDF was given, not data, so it cannot be resampled", r.name));
+    if (r.data.size() < 2)
+      throw InvalidArgument(fmt::format("response '{}': its experimental PDF was given without its points, so it cannot be resampled (give "
+                                        "data = {{{} = {{points = vec, pdf = dist}}}})", r.name, r.name));
     require_finite(data[j], fmt::format("data of response '{}'", r.name));
     r.data = data[j];
-    r.f_exp.reset();
+    r.f_exp.reset();  // a resample's PDF is the plain KDE of its points
   }
   Eigen::VectorXd start(static_cast<Eigen::Index>(params_.size()));
   for (std::size_t i = 0; i < params_.size(); ++i) start[static_cast<Eigen::Index>(i)] = params_[i].start;

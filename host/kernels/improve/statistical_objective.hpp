@@ -38,13 +38,13 @@ struct InputSpec {
 /// One observed response.
 struct ResponseSpec {
   std::string name;
-  Eigen::VectorXd data;     ///< the experimental observations
+  Eigen::VectorXd data;     ///< the experimental observations (with a given f_exp: the points behind it)
   stats::DistributionPtr f_exp;    ///< experimental PDF; null = Gaussian KDE of data, normal-reference h
   std::optional<stats::Grid> grid; ///< PR grid; null = fixed at construction (see StatisticalObjective)
   bool f_exp_from_data = false;  ///< set when f_exp is built from data (then rebuilt by with_data)
 
-  /// The measured mean and standard deviation: of the data when there are two or more points,
-  /// else of the experimental PDF; {0, 0} when neither is given. Callers check sd > 0.
+  /// The measured mean and standard deviation: of the experimental PDF when it was given, else
+  /// of the data (two or more points); {0, 0} when neither is given. Callers check sd > 0.
   std::pair<double, double> moments() const;
 };
 
@@ -56,6 +56,11 @@ MetricKind parse_metric(std::string_view name);
 using Model = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& X)>;
 /// A caller-supplied metric of the predicted outputs Y (N×R).
 using CustomMetric = std::function<Evaluation(const Eigen::MatrixXd& Y)>;
+
+/// The smallest CRN sample a KDE of the predictions is built on.
+inline constexpr Eigen::Index kMinCrnSize = 10;
+/// model_step lies in (0, kMaxModelStep): a larger relative step leaves the local slope.
+inline constexpr double kMaxModelStep = 0.1;
 
 struct StatisticalOptions {
   Eigen::Index n = 2000;            ///< CRN sample size
@@ -126,7 +131,9 @@ class StatisticalObjective {
   /// Mean and std of every input at θ.
   std::vector<std::pair<double, double>> input_moments(const Eigen::VectorXd& theta) const;
 
-  /// The same objective (same CRN, model, grids) with other experimental data (bootstrap).
+  /// The same objective (same CRN, model, grids) with other experimental data (bootstrap, the
+  /// PR tolerance): their plain KDEs are the experimental PDFs, also where a PDF was given with
+  /// its points. Throws for a response given as a PDF alone.
   StatisticalObjective with_data(const std::vector<Eigen::VectorXd>& data) const;
 
   const std::vector<InputSpec>& inputs() const { return inputs_; }

@@ -217,7 +217,8 @@ void move(Cloud& c, const Eigen::VectorXd& p, double beta, const PriorSet& prior
 }
 
 void validate(const TmcmcOptions& o) {
-  if (o.samples < 10) throw InvalidArgument(fmt::format("samples must be at least 10 particles, got {}", o.samples));
+  if (o.samples < kMinParticles)
+    throw InvalidArgument(fmt::format("samples must be at least {} particles, got {}", kMinParticles, o.samples));
   if (o.max_stages < 1) throw InvalidArgument(fmt::format("max_stages must be at least 1, got {}", o.max_stages));
   if (!(o.target_cov > 0.0) || !std::isfinite(o.target_cov)) throw InvalidArgument(fmt::format("target_cov must be a number > 0, got {}", o.target_cov));
   if (o.min_sweeps < 1 || o.max_sweeps < o.min_sweeps)

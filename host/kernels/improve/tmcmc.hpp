@@ -34,6 +34,9 @@ namespace smi::improve {
 /// log L(θ) per row of Theta (rows = points). −∞ is a zero likelihood; NaN and +∞ are errors.
 using BatchLogLikelihood = std::function<Eigen::VectorXd(const Eigen::MatrixXd& Theta)>;
 
+/// The fewest particles a stage can be reweighted and resampled with.
+inline constexpr int kMinParticles = 10;
+
 struct TmcmcOptions {
   Eigen::Index samples = 1000;  ///< particles per stage (and posterior samples)
   int max_stages = 50;          ///< stop (not converged) when β has not reached 1 by then

@@ -141,8 +141,8 @@ double upool_statistic(ConstVec u) {
 
 std::shared_ptr<const std::vector<double>> upool_null_sample(int n, const UpoolMcSettings& s) {
   check_n(n);
-  if (s.replications < 1000)
-    throw InvalidArgument(fmt::format("replications must be >= 1000, got {}", s.replications));
+  if (s.replications < kMinUpoolReplications)
+    throw InvalidArgument(fmt::format("replications must be >= {}, got {}", kMinUpoolReplications, s.replications));
   const Key key{n, s.replications, s.seed};
   {
     std::lock_guard<std::mutex> lock(g_mu);

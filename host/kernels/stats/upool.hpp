@@ -22,6 +22,9 @@ namespace smi::stats {
 double upool_statistic(ConstVec u);
 
 /// Settings of the H0 Monte-Carlo (part of a result's reproducible state).
+/// The fewest Monte Carlo replications of the u-pooling threshold.
+inline constexpr int kMinUpoolReplications = 1000;
+
 struct UpoolMcSettings {
   std::int64_t replications = 1'000'000;
   std::uint64_t seed = 20200101;

@@ -16,6 +16,9 @@ namespace smi::surrogate::doe {
 /// Jin, Chen & Sudjianto (2005). phip: minimise phi_p = (sum_{i<j} d_ij^-p)^(1/p) (Morris &
 /// Mitchell 1995); maximin: the same with p = 50, which ranks designs by their smallest
 /// distance first; none: a plain random Latin hypercube.
+/// The range of the phi_p exponent (larger overflows the pair distances' powers).
+inline constexpr double kMinPhiP = 1.0, kMaxPhiP = 200.0;
+
 struct LhsOptions {
   std::string criterion = "maximin";  // "maximin" | "phip" | "none"
   double p = 50.0;                    // exponent for "phip"

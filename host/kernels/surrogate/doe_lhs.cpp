@@ -3,6 +3,8 @@
 // search (ESE) of Jin, Chen & Sudjianto (2005) on the phi_p criterion. Every move swaps two
 // entries of one column, so the Latin property holds throughout; only the two touched rows'
 // distances change, so a move costs O(n d) instead of O(n^2 d).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -106,7 +108,7 @@ Eigen::MatrixXd lhs(Eigen::Index n, Eigen::Index d, std::uint64_t seed, const Lh
     p = 50;
   else if (opt.criterion != "phip" && opt.criterion != "none")
     throw InvalidArgument("lhs: unknown criterion '" + opt.criterion + "' (use \"maximin\", \"phip\" or \"none\")");
-  if (!(p >= 1 && p <= 200)) throw InvalidArgument("lhs: p must be in [1, 200], got " + std::to_string(p));
+  if (!(p >= kMinPhiP && p <= kMaxPhiP)) throw InvalidArgument(fmt::format("lhs: p must be in [{}, {}], got {}", kMinPhiP, kMaxPhiP, p));
   Rng rng(seed, hash_label("smi.doe.lhs"));
   Eigen::MatrixXd X0 = random_lhs(n, d, rng, opt.centered);
   if (opt.criterion == "none" || n < 3) return X0;

@@ -16,6 +16,8 @@ namespace smi::surrogate::propagate {
 
 /// smi.propagate's sample size unless told.
 inline constexpr Eigen::Index kDefaultSampleSize = 10000;
+/// The largest sample smi.propagate draws (2^28 rows: 2 GB a column of doubles).
+inline constexpr Eigen::Index kMaxSampleSize = Eigen::Index{1} << 28;
 
 /// A named input: a distribution, or a constant when dist is null.
 struct Input {

@@ -105,7 +105,7 @@ void rank_rows(Result& res) {
 
 std::vector<Result> screen(const std::vector<propagate::Input>& inputs, const propagate::MatrixModel& model,
                            const std::vector<std::string>& outputs, const Options& opt) {
-  if (opt.n < 10) throw InvalidArgument("n must be at least 10, got " + std::to_string(opt.n));
+  if (opt.n < kMinScreenN) throw InvalidArgument("n must be at least " + std::to_string(kMinScreenN) + ", got " + std::to_string(opt.n));
   if (opt.fix != "mean" && opt.fix != "median")
     throw InvalidArgument("fix must be \"mean\" or \"median\", got '" + opt.fix + "'");
   const std::size_t k = inputs.size();

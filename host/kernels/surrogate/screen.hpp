@@ -15,6 +15,9 @@
 
 namespace smi::surrogate::screen {
 
+/// The smallest Monte Carlo sample of the screening.
+inline constexpr int kMinScreenN = 10;
+
 struct Options {
   Eigen::Index n = 10000;
   std::uint64_t seed = kDefaultSeed;

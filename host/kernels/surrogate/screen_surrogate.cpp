@@ -33,7 +33,8 @@ Eigen::MatrixXd surrogate_design(const std::vector<propagate::Input>& inputs, Ei
 SurrogateResult screen_surrogate(const std::vector<propagate::Input>& inputs, const propagate::MatrixModel& model,
                                  const std::vector<std::string>& outputs, const Options& opt,
                                  const SurrogateOptions& sopt) {
-  if (sopt.runs < 10) throw InvalidArgument("runs must be at least 10, got " + std::to_string(sopt.runs));
+  if (sopt.runs < kMinSurrogateRuns)
+    throw InvalidArgument("runs must be at least " + std::to_string(kMinSurrogateRuns) + ", got " + std::to_string(sopt.runs));
   if (!(sopt.q2_min <= 1.0)) throw InvalidArgument("q2_min must be at most 1, got " + std::to_string(sopt.q2_min));
   SurrogateResult res;
   res.design = surrogate_design(inputs, sopt.runs, opt.seed);

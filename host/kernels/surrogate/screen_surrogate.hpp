@@ -17,6 +17,9 @@
 
 namespace smi::surrogate::screen {
 
+/// The fewest model runs a screening surrogate is fitted on.
+inline constexpr int kMinSurrogateRuns = 10;
+
 struct SurrogateOptions {
   Eigen::Index runs = 300;   // model runs for the surrogate
   polyfit::Basis basis = polyfit::Basis::quadratic;

@@ -15,49 +15,6 @@ local stream = require "smi.improve.stream"
 
 local M = {}
 
--- The objective increase that still counts as fitting the data as well as the optimum, from the
--- data: for "pr" the standard deviation of the summed PR at the optimum over bootstrap
--- resamples of the data rows (two calibrations whose objectives differ by less than that are not
--- told apart by a few measurements; smi.calibrate's own r.tolerance, 0.01 per response, is a
--- default for callers without data to measure it on, ten times tighter than nine specimens can
--- tell); for "loglik" (minus the log-likelihood of the data, summed as smi.calibrate's model form
--- does) smi.calibrate's r.tolerance, the likelihood-ratio bound ½ χ²₁(0.95).
-local BOOT = 200 -- resamples for the PR tolerance
-
---- The tolerance and its basis: t {metric, calibrate, data = {response = vec}, predicted, theta,
--- grids, seed, result (the smi.calibrate result at the optimum)}.
--- The resamples are paired across responses (a row is one impact test); each resample's
--- experimental PDF is the plain KDE (the KDE-ebd's loop on every resample would cost more than
--- the calibration, and the spread is what is measured).
-function M.tolerance(t)
-  local names = t.calibrate
-  local n = #t.data[names[1]]
-  if t.metric ~= "pr" then
-    return { value = t.result.tolerance,
-             basis = ("likelihood-ratio bound ½ χ²₁(0.95) on minus the log-likelihood of the %d data rows")
-               :format(n) }
-  end
-  local Y = t.predicted(t.theta, names)
-  local pred = {}
-  for _, m in ipairs(names) do pred[m] = smi.kde(Y[m]) end
-  local rng = smi.rng(t.seed)
-  local sums = {}
-  for b = 1, BOOT do
-    local idx = rng:uniform(n, 0, n)
-    local sum = 0
-    for _, m in ipairs(names) do
-      local x = {}
-      for i = 1, n do x[i] = t.data[m][math.min(n, math.floor(idx[i]) + 1)] end
-      sum = sum + smi.metric.pr(smi.kde(smi.vec(x)), pred[m], { grid = t.grids[m] })
-    end
-    sums[b] = sum
-  end
-  local v = smi.vec(sums)
-  return { value = v:std(), resamples = BOOT, mean = v:mean(),
-           basis = ("standard deviation of the summed PR of %s at the optimum over %d bootstrap resamples of"
-             .. " the %d data rows"):format(table.concat(names, ", "), BOOT, n) }
-end
-
 --- The analyst's prior part at th: smi.calibrate's own r.prior_at (its sum and weight), so the
 -- near-optimal points are checked against the very objective the calibration minimized. 0
 -- without a prior.
@@ -108,11 +65,11 @@ local grids_of = M.grids_of
 --- The study's objective on its own CRN sample (smi.propagate through the Krigings): "pr" against
 -- the experimental PDFs f_exp, or minus the log-likelihood of the data points. Returns
 -- objective(th) -> sum, {response = part}.
-function M.objective(metric, predicted, grids, f_exp, data, MODES)
+function M.objective(metric, predicted, grids, f_exp, data, responses)
   return function(th)
-    local Y = predicted(th, MODES)
+    local Y = predicted(th, responses)
     local parts, sum = {}, 0
-    for _, m in ipairs(MODES) do
+    for _, m in ipairs(responses) do
       parts[m] = metric == "pr" and smi.metric.pr(f_exp[m], smi.kde(Y[m]), { grid = grids[m] })
         or -smi.metric.loglik(data[m], smi.kde(Y[m]))
       sum = sum + parts[m]
@@ -124,24 +81,24 @@ end
 --- Stage 2, the paper's metric, in smi.calibrate's model form: the Krigings of the calibrated responses as
 -- the model (or the model itself, t.direct, with its differences for the gradient), the unknowns'
 -- distributions as the inputs (every Kriging input is an unknown: the fixed inputs are in the deck the Krigings were fitted on), the experimental PDFs (KDE-ebd) for
--- "pr" or the data points for "loglik". The kernel then has the analytic gradient (Kriging
--- predictor, quantile chain rule, KDE, metric), the overlapping start when PR saturates, and the
+-- "pr" (with their data points, which smi.calibrate resamples for its tolerance and bootstrap) or
+-- the data points for "loglik". The kernel then has the analytic gradient (Kriging predictor,
+-- quantile chain rule, KDE, metric), the overlapping start when PR saturates, the tolerance of
+-- "fits as well" (for PR the spread of the summed PR over resamples of the data rows) and the
 -- identifiability directions of the objective itself. o: {f_exp, data, start, maxeval,
 -- identifiability, multistart, threads (nil: smi.calibrate's default), moment_start, overlap_start,
--- bootstrap (smi.calibrate's), raw_data (true: the data points are the experimental data even for
--- "pr", plain KDEs of them the PDFs, as the bootstrap needs to resample them)}. Exported for
--- bench/calibrate_trial2.lua, which times this very call.
+-- bootstrap (smi.calibrate's)}. Exported for bench/calibrate_trial2.lua, which times this very call.
 function M.pr_stage(t, grids, o)
-  local MODES = t.calibrate
+  local responses = t.calibrate
   local ins, dat, g = {}, {}, {}
-  local model = trial.responses_model(t.kriging, t.direct, MODES)
+  local model = trial.responses_model(t.kriging, t.direct, responses)
   for i, n in ipairs(t.unknowns) do
     local u = t.specs[n]
     ins[i] = { name = n, dist = u.dist, mean = { u.mean[1], u.mean[2], o.start[n .. ".mean"] },
                std = { u.std[1], u.std[2], o.start[n .. ".std"] } }
   end
-  for _, m in ipairs(MODES) do
-    dat[m] = (t.metric == "pr" and not o.raw_data) and o.f_exp[m] or o.data[m]
+  for _, m in ipairs(responses) do
+    dat[m] = t.metric == "pr" and { points = o.data[m], pdf = o.f_exp[m] } or o.data[m]
     g[m] = { grids[m].lower, grids[m].upper, grids[m].nodes }
   end
   return smi.calibrate(with_prior(t, {
@@ -182,17 +139,16 @@ local function moments_record(r0, params, direct)
            converged = ENDS_ON_CRITERION[p.status] == true }
 end
 
---- The optimum: stage 1 and stage 2 from the declared starts (one call), the tolerance at the
--- optimum, and a second call from the optimum (it stops at once) that computes the
--- identifiability directions and near-optimal points at that tolerance. Returns the merged
--- result, the tolerance and stage 1's record.
-local function optimum(t, predicted, grids, params)
+--- The optimum: stage 1 and stage 2 from the declared starts (one call, which also measures the
+-- tolerance at its optimum), and a second call from the optimum (it stops at once) that computes
+-- the identifiability directions and near-optimal points at that tolerance. Returns the merged
+-- result, the tolerance {value, basis} and stage 1's record.
+local function optimum(t, grids, params)
   local start = {}
   for _, q in ipairs(params) do start[q.name] = q.start end
   local r0 = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = start, maxeval = t.maxeval,
                                   identifiability = false, multistart = t.multistart, moment_start = true })
-  local tol = M.tolerance{ metric = t.metric, data = t.data, predicted = predicted, theta = r0.params, grids = grids,
-                           seed = stream(t.seed, "tolerance"), calibrate = t.calibrate, result = r0 }
+  local tol = { value = r0.tolerance, basis = r0.tolerance_basis }
   local r = pr_stage(t, grids, { f_exp = t.f_exp, data = t.data, start = r0.params, maxeval = 40,
                                  identifiability = { rel_tol = 1e-9, abs_tol = tol.value, tolerance = tol.value } })
   r.evaluations = r.evaluations + r0.evaluations
@@ -303,14 +259,15 @@ end
 -- model is C++ (the Krigings) and on an in-process Lua model too (its calls take turns,
 -- bindings/improve/lua_gate.hpp; the KDE sums, most of a replicate, do not). A replicate that fails
 -- is counted and its error is a warning, never dropped silently.
--- The interval the study reports is the normal one, estimate ± 1.645 sd of the replicates
--- (clipped to the bounds): the replicates show the local pull of the data, and their percentiles
--- can sit to one side of the estimate (seen: a thickness estimate of 4.385 with percentiles
--- [4.387, 4.429]), since a replicate's PDFs are plain KDEs and the estimate's the KDE-ebd. The
--- kernel's percentiles are kept, with their Monte Carlo errors and the replicates they need.
-local function bootstrap(t, grids, r, params)
+-- The interval the study reports is the kernel's normal one (r.bootstrap.normal), estimate ± z sd
+-- of the replicates, z = 1.645 at 90 %, clipped to the bounds: the replicates show the local pull
+-- of the data, and their percentiles can sit to one side of the estimate (seen: a thickness
+-- estimate of 4.385 with percentiles [4.387, 4.429]), since a replicate's PDFs are plain KDEs and
+-- the estimate's the KDE-ebd. The kernel's percentiles are kept, with their Monte Carlo errors
+-- and the replicates they need.
+local function bootstrap(t, grids, r)
   local rb = pr_stage(t, grids, {
-    data = t.data, raw_data = true, start = r.params, maxeval = 1, identifiability = false,
+    f_exp = t.f_exp, data = t.data, start = r.params, maxeval = 1, identifiability = false,
     moment_start = false, overlap_start = false,
     bootstrap = { replicates = t.bootstrap, level = 0.9, seed = stream(t.seed, "bootstrap"),
                   maxeval = t.boot_maxeval, multistart = 1, warm = true } })
@@ -326,15 +283,8 @@ local function bootstrap(t, grids, r, params)
     return { level = 0.9, kind = "none", replicates = 0, failed = t.bootstrap, failures = failures,
              maxeval = t.boot_maxeval, lower = {}, upper = {}, std = {} }
   end
-  local lower, upper, bounds = {}, {}, {}
-  for _, q in ipairs(params) do bounds[q.name] = { q.lower, q.upper } end
-  for name, est in pairs(b.replicates > 0 and r.params or {}) do
-    local sd = b.std[name] or 0
-    lower[name] = math.max(bounds[name][1], est - 1.645 * sd)
-    upper[name] = math.min(bounds[name][2], est + 1.645 * sd)
-  end
   return { level = 0.9, kind = "normal (estimate ± 1.645 sd)", replicates = b.replicates, failed = b.failed,
-           failures = failures, maxeval = t.boot_maxeval, lower = lower, upper = upper, std = b.std,
+           failures = failures, maxeval = t.boot_maxeval, lower = b.normal.lower, upper = b.normal.upper, std = b.std,
            replicates_needed = b.replicates_needed, evaluations = b.evaluations,
            percentile = { lower = b.lower, upper = b.upper, lower_mc_error = b.lower_mc_error,
                           upper_mc_error = b.upper_mc_error } }
@@ -365,7 +315,7 @@ function M.calibrate(t)
   local predicted = trial.predictor(t.kriging, t.unknowns, t.specs, t.n, t.seed, t.direct)
   local params1 = declared_params(t)
   local grids = grids_of(t.data, t.calibrate, t.grid_margins)
-  local r, tol, r1 = optimum(t, predicted, grids, params1)
+  local r, tol, r1 = optimum(t, grids, params1)
   local params = param_rows(t, r, r1)
   local out = { prior_part = r.metrics.prior, metrics = {}, evaluations = r.evaluations,
     converged = r.converged,
@@ -393,7 +343,7 @@ function M.calibrate(t)
   out.objective_study_sample = data_objective(r.params)
   out.near_optimal = near_optimal_set(t, r, tol, params1, predicted, data_objective)
   if (t.bootstrap or 0) > 0 then
-    out.bootstrap = bootstrap(t, grids, r, params1)
+    out.bootstrap = bootstrap(t, grids, r)
     if out.bootstrap.failed > 0 then
       out.warnings[#out.warnings + 1] = ("bootstrap: %d of %d replicates failed (first: %s)"):format(
         out.bootstrap.failed, t.bootstrap, out.bootstrap.failures[1] or "no message")

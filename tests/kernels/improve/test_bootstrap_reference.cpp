@@ -67,6 +67,21 @@ TEST_CASE("the percentile interval of a mean is SciPy's") {
   CHECK(r.upper[0] == Approx(at(ref, "reference", "upper")).margin(4 * r.upper_mc_error[0] + 1e-4));
   CHECK(r.lower_mc_error[0] < 0.004);
   CHECK(r.warnings.empty());
+  // the normal interval: the estimate ± Φ⁻¹(0.975) sd, Φ⁻¹(0.975) = 1.959963984540054 (closed form)
+  CHECK(r.normal_lower[0] == Approx(x.mean() - 1.959963984540054 * r.stddev[0]).epsilon(1e-12));
+  CHECK(r.normal_upper[0] == Approx(x.mean() + 1.959963984540054 * r.stddev[0]).epsilon(1e-12));
+  // the bootstrap sd of a mean is the plug-in standard error sd·sqrt((n−1)/n)/sqrt(n) to its MC error
+  const double n = static_cast<double>(x.size());
+  const double se = std::sqrt((x.array() - x.mean()).square().sum() / n) / std::sqrt(n);
+  CHECK(r.stddev[0] == Approx(se).epsilon(0.02));
+}
+
+TEST_CASE("the normal interval stays inside the parameter's bounds") {
+  const Eigen::VectorXd x = (Eigen::VectorXd(6) << 0.01, 0.02, 0.05, 0.1, 1.9, 2.8).finished();  // mean 0.813, bounds [0, 5]
+  const BootstrapResult r = mean_bootstrap(x, 400, 5);
+  REQUIRE(x.mean() - 1.96 * r.stddev[0] < 0.0);  // the unclipped lower end would leave [0, 5]
+  CHECK(r.normal_lower[0] == 0.0);
+  CHECK(r.normal_upper[0] == Approx(x.mean() + 1.959963984540054 * r.stddev[0]).epsilon(1e-12));
 }
 
 TEST_CASE("the endpoints' Monte Carlo error is the spread SciPy's endpoints have") {

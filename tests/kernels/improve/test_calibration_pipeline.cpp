@@ -53,7 +53,8 @@ TEST_CASE("calibrate: a model without a Jacobian is differentiated itself (k + 1
   CHECK(out.opt.theta[2] == Approx(2.0).margin(0.1));
   // Each gradient is one model call of 1 + 2 blocks (2 calibrated inputs).
   CHECK(out.stat->model_passes() <= 3 * out.stat->model_runs());
-  CHECK(out.tolerance == 0.02);  // PR: 0.01 per response
+  // PR with the data points at hand: measured from them (test_pr_tolerance.cpp checks the value)
+  CHECK(out.tolerance_basis.find("bootstrap resamples of the 40 data rows") != std::string::npos);
   CHECK(out.prior_value == 0.0);
 
   CalibrationOptions objective_differences = o;
