@@ -226,7 +226,7 @@ void add_design_bound_warnings(const CalibrationOptions& o, const StatisticalObj
 /// the unit-free default, which is ten times tighter than nine specimens can tell.
 void add_measured_tolerance(const CalibrationProblem& p, const CalibrationOptions& o, CalibrationOutcome& out) {
   const StatisticalObjective& obj = *out.stat;
-  const PrTolerance t = measure_pr_tolerance(obj, out.opt.theta, o.tolerance_resamples, p.stat.seed, thread_safe(p) ? p.stat.threads : 1);
+  const PrTolerance t = measure_pr_tolerance(obj, out.opt.theta, o.tolerance_resamples, p.stat.seed, p.stat.threads);
   std::string names;
   for (const ResponseSpec& r : obj.responses()) names += (names.empty() ? "" : ", ") + r.name;
   out.tolerance = t.value;

@@ -3,13 +3,12 @@
 
 #include <fmt/format.h>
 
-#include <optional>
+#include <cmath>
 #include <vector>
 
 #include "kernels/improve/bootstrap.hpp"
 #include "platform/core/descriptive.hpp"
 #include "platform/core/errors.hpp"
-#include "platform/core/thread_pool.hpp"
 
 namespace smi::improve {
 
@@ -29,20 +28,13 @@ PrTolerance measure_pr_tolerance(const StatisticalObjective& obj, const Eigen::V
   for (const ResponseSpec& r : obj.responses()) data.push_back(r.data);
   PrTolerance out;
   out.paired = same_sizes(data);
-  (void)obj.predict(theta);  // the one model run, here: the resamples below reuse its outputs
-  std::vector<std::optional<double>> sums(static_cast<std::size_t>(resamples));
-  pool::parallel_for(resamples, threads, [&](long b) {
-    try {
-      StatisticalObjective o = obj.with_data(resample_data(data, out.paired, seed, fmt::format("tolerance/{}", b)));
-      o.set_threads(threads > 1 ? 1 : obj.options().threads);
-      sums[static_cast<std::size_t>(b)] = o(theta).value;
-    } catch (const InvalidArgument&) {
-      // a degenerate resample (all its points equal: no bandwidth), counted below
-    }
-  });
+  std::vector<std::vector<Eigen::VectorXd>> sets;
+  sets.reserve(static_cast<std::size_t>(resamples));
+  for (int b = 0; b < resamples; ++b) sets.push_back(resample_data(data, out.paired, seed, fmt::format("tolerance/{}", b)));
+  const std::vector<double> sums = obj.pr_sums_against(theta, sets, threads);
   std::vector<double> ok;
-  for (const auto& s : sums)
-    if (s) ok.push_back(*s);
+  for (const double v : sums)
+    if (!std::isnan(v)) ok.push_back(v);  // NaN: a degenerate resample (all its points equal)
   out.resamples = static_cast<int>(ok.size());
   out.failed = resamples - out.resamples;
   if (out.resamples < 2)

@@ -28,10 +28,10 @@ struct PrTolerance {
 /// True when the objective can measure it: PR on every response, each with two or more points.
 bool can_measure_pr_tolerance(const StatisticalObjective& obj);
 
-/// The measured tolerance at θ: resample b is Rng::derive(seed, "tolerance/<b>"), so the value
-/// does not depend on `threads` (resamples side by side; 1 when the model is not thread safe:
-/// the one model run at θ happens first, on the calling thread). Throws when fewer than two
-/// resamples give a value.
+/// The measured tolerance at θ: resample b is Rng::derive(seed, "tolerance/<b>"), summed against
+/// the prediction's KDE at θ computed once (StatisticalObjective::pr_sums_against: at most one
+/// model run, on the calling thread), so the value does not depend on `threads`. Throws when
+/// fewer than two resamples give a value.
 PrTolerance measure_pr_tolerance(const StatisticalObjective& obj, const Eigen::VectorXd& theta, int resamples,
                                  std::uint64_t seed, int threads);
 

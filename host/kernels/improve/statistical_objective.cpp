@@ -14,6 +14,7 @@
 #include "kernels/stats/metrics.hpp"
 #include "platform/core/descriptive.hpp"
 #include "platform/core/errors.hpp"
+#include "platform/core/thread_pool.hpp"
 
 namespace smi::improve {
 
@@ -126,9 +127,54 @@ void StatisticalObjective::prepare_responses(const Eigen::VectorXd& start) {
       r.grid = stats::Grid{lo, hi, opt_.grid_nodes};
     }
     r.grid->validate();
-    f_exp_grid_.push_back(stats::pdf_grid(*r.f_exp, *r.grid));
-    exp_outside_.push_back(std::max(0.0, r.f_exp->cdf(r.grid->lo)) + std::max(0.0, 1.0 - r.f_exp->cdf(r.grid->hi)));
+    OnGrid e = on_grid(*r.f_exp, *r.grid);
+    f_exp_grid_.push_back(std::move(e.pdf));
+    exp_outside_.push_back(e.outside);
   }
+}
+
+StatisticalObjective::OnGrid StatisticalObjective::on_grid(const stats::Distribution& f, const stats::Grid& g) {
+  return {stats::pdf_grid(f, g), std::max(0.0, f.cdf(g.lo)) + std::max(0.0, 1.0 - f.cdf(g.hi))};
+}
+
+StatisticalObjective::OnGrid StatisticalObjective::predicted_on_grid(Eigen::Index j, const Eigen::VectorXd& y) const {
+  const ResponseSpec& r = responses_[static_cast<std::size_t>(j)];
+  const stats::Grid& g = *r.grid;
+  const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
+  Eigen::VectorXd ends(2);
+  ends << g.lo, g.hi;
+  const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
+  return {stats::kde_pdf_resolved(y, h, g, opt_.threads), std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1])};
+}
+
+double StatisticalObjective::pr_part(Eigen::Index j, const OnGrid& predicted, const Eigen::VectorXd& exp_pdf, double exp_outside) const {
+  return stats::l1_area_on_grid(exp_pdf, predicted.pdf, *responses_[static_cast<std::size_t>(j)].grid) + predicted.outside + exp_outside;
+}
+
+std::vector<double> StatisticalObjective::pr_sums_against(const Eigen::VectorXd& theta, const std::vector<std::vector<Eigen::VectorXd>>& data_sets,
+                                                          int threads) const {
+  if (opt_.metric != MetricKind::pr) throw InvalidArgument("pr_sums_against: the objective's metric is not PR");
+  const Eigen::MatrixXd Y = run_model(theta);
+  std::vector<OnGrid> predicted;
+  for (Eigen::Index j = 0; j < Y.cols(); ++j) predicted.push_back(predicted_on_grid(j, Y.col(j)));
+  std::vector<double> sums(data_sets.size(), std::nan(""));
+  pool::parallel_for(static_cast<long>(data_sets.size()), threads, [&](long b) {
+    const auto& d = data_sets[static_cast<std::size_t>(b)];
+    if (d.size() != responses_.size()) throw DimensionMismatch(fmt::format("{} data sets for {} responses", d.size(), responses_.size()));
+    double sum = 0.0;
+    try {
+      for (std::size_t j = 0; j < d.size(); ++j) {
+        require_finite(d[j], fmt::format("data of response '{}'", responses_[j].name));
+        const auto f = stats::make_kde(d[j], stats::bandwidth_normal_reference(d[j]));
+        const OnGrid e = on_grid(*f, *responses_[j].grid);
+        sum += pr_part(static_cast<Eigen::Index>(j), predicted[j], e.pdf, e.outside);
+      }
+    } catch (const InvalidArgument&) {
+      return;  // a degenerate set (all its points equal: no bandwidth) stays NaN
+    }
+    sums[static_cast<std::size_t>(b)] = sum;
+  });
+  return sums;
 }
 
 std::vector<std::pair<double, double>> StatisticalObjective::input_moments(const Eigen::VectorXd& theta) const {
@@ -263,16 +309,11 @@ Evaluation StatisticalObjective::operator()(const Eigen::VectorXd& theta) const 
   for (Eigen::Index j = 0; j < Y.cols(); ++j) {
     const ResponseSpec& r = responses_[static_cast<std::size_t>(j)];
     const Eigen::VectorXd y = Y.col(j);
-    const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
     if (opt_.metric == MetricKind::pr) {
-      const stats::Grid& g = *r.grid;
-      const Eigen::VectorXd fp = stats::kde_pdf_resolved(y, h, g, opt_.threads);
-      Eigen::VectorXd ends(2);
-      ends << g.lo, g.hi;
-      const Eigen::VectorXd F = stats::kde_cdf(y, h, ends, 1);
-      const double outside = std::max(0.0, F[0]) + std::max(0.0, 1.0 - F[1]);
-      e.parts[j] = stats::l1_area_on_grid(f_exp_grid_[static_cast<std::size_t>(j)], fp, g) + outside + exp_outside_[static_cast<std::size_t>(j)];
+      const auto k = static_cast<std::size_t>(j);
+      e.parts[j] = pr_part(j, predicted_on_grid(j, y), f_exp_grid_[k], exp_outside_[k]);
     } else {
+      const double h = predicted_bandwidth(y, opt_.bandwidth, r.name);
       const Eigen::VectorXd f = stats::kde_pdf(y, h, r.data, 1);
       double s = 0.0;
       for (Eigen::Index i = 0; i < f.size(); ++i) {

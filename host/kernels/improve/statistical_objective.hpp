@@ -131,6 +131,14 @@ class StatisticalObjective {
   /// Mean and std of every input at θ.
   std::vector<std::pair<double, double>> input_moments(const Eigen::VectorXd& theta) const;
 
+  /// The summed PR at θ against each of several sets of experimental data (one vector per
+  /// response; their plain KDEs, normal-reference bandwidth, are the experimental PDFs), the
+  /// prediction's KDE computed once: the PR tolerance's resamples (pr_tolerance.hpp). One model
+  /// run at most (none where θ's outputs are cached), on the calling thread; the sets are summed
+  /// on `threads`. A degenerate set (all its points equal) gives NaN.
+  std::vector<double> pr_sums_against(const Eigen::VectorXd& theta, const std::vector<std::vector<Eigen::VectorXd>>& data_sets,
+                                      int threads) const;
+
   /// The same objective (same CRN, model, grids) with other experimental data (bootstrap, the
   /// PR tolerance): their plain KDEs are the experimental PDFs, also where a PDF was given with
   /// its points. Throws for a response given as a PDF alone.
@@ -149,6 +157,17 @@ class StatisticalObjective {
   long floored() const { return floored_->load(); }
 
  private:
+  /// A PDF on a response's grid and its mass outside the grid.
+  struct OnGrid {
+    Eigen::VectorXd pdf;
+    double outside = 0.0;
+  };
+  static OnGrid on_grid(const stats::Distribution& f, const stats::Grid& g);
+  /// The KDE of predicted outputs y of response j (the objective's bandwidth rule) on its grid.
+  OnGrid predicted_on_grid(Eigen::Index j, const Eigen::VectorXd& y) const;
+  /// PR of response j, ∫|f_exp − f_pre| on its grid plus both PDFs' mass outside it (spec §0):
+  /// the one place the objective's PR is written.
+  double pr_part(Eigen::Index j, const OnGrid& predicted, const Eigen::VectorXd& exp_pdf, double exp_outside) const;
   Eigen::MatrixXd run_model(const Eigen::VectorXd& theta) const;
   /// Checks a model's output Y for the N×k inputs X (shape, finiteness), naming the response.
   void check_output(const Eigen::MatrixXd& Y, Eigen::Index rows, const Eigen::VectorXd& theta) const;

@@ -18,7 +18,7 @@ Eigen::VectorXd spec_data() {
 
 StatisticalObjective spec_objective(double mu0 = 30.0, double s0 = 0.5) {
   std::vector<Parameter> p{{"x.mean", 29.0, 31.0, mu0}, {"x.std", 0.05, 1.0, s0}};
-  InputSpec in{"x", InputFamily::normal, 0.0, 0.0, 0, 1};
+  InputSpec in{"x", InputFamily::normal, 0.0, 0.0, 0, 1, {}};
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
@@ -73,7 +73,7 @@ TEST_CASE("spec 8.2: SLSQP from (30.0, 0.5) reaches (30.21768, 0.42734), PR 0.07
 
 TEST_CASE("negative log-likelihood metric and mass outside the grid") {
   std::vector<Parameter> p{{"x.mean", 29.0, 31.0, 30.0}, {"x.std", 0.05, 1.0, 0.5}};
-  InputSpec in{"x", InputFamily::normal, 0.0, 0.0, 0, 1};
+  InputSpec in{"x", InputFamily::normal, 0.0, 0.0, 0, 1, {}};
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();
@@ -92,7 +92,7 @@ TEST_CASE("negative log-likelihood metric and mass outside the grid") {
 }
 
 TEST_CASE("lognormal mean range reaching 0 is refused before any model run") {
-  InputSpec in{"k", InputFamily::lognormal, 0.0, 0.1, 0, -1};
+  InputSpec in{"k", InputFamily::lognormal, 0.0, 0.1, 0, -1, {}};
   ResponseSpec r;
   r.name = "y";
   r.data = spec_data();

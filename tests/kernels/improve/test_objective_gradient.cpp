@@ -37,8 +37,8 @@ const std::vector<Parameter> kParams{{"a.mean", 3, 7, 4.6}, {"a.std", 0.05, 1, 0
 /// y1 = a + b², y2 = 3a − b·c with its Jacobian; inputs a normal, b lognormal, c uniform.
 StatisticalObjective make(MetricKind metric, const std::string& bandwidth = "silverman", Eigen::Index grid_nodes = 1001,
                           const std::vector<Parameter>& p = kParams) {
-  std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1}, {"b", InputFamily::lognormal, 0, 0, 2, 3},
-                            {"c", InputFamily::uniform, 0, 0, 4, 5}};
+  std::vector<InputSpec> in{{"a", InputFamily::normal, 0, 0, 0, 1, {}}, {"b", InputFamily::lognormal, 0, 0, 2, 3, {}},
+                            {"c", InputFamily::uniform, 0, 0, 4, 5, {}}};
   smi::Rng g(11);
   const Eigen::VectorXd a = g.normal_matrix(60, 1).col(0) * 0.3 + Eigen::VectorXd::Constant(60, 5.0);
   const Eigen::VectorXd b = g.normal_matrix(60, 1).col(0) * 0.2 + Eigen::VectorXd::Constant(60, 2.0);

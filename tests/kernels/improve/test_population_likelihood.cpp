@@ -36,7 +36,8 @@ struct Linear {
     data << 1.9, 1.0, 1.2, 1.8, 1.7, 1.5, 1.5, 1.2, 2.0, 1.9;
   }
   std::vector<InputSpec> inputs() const {
-    return {InputSpec{.name = "x1", .std = sd[0], .mean_param = 0}, InputSpec{.name = "x2", .std = sd[1], .mean_param = 1}};
+    return {InputSpec{.name = "x1", .std = sd[0], .mean_param = 0, .std_param = -1, .shape = {}},
+            InputSpec{.name = "x2", .std = sd[1], .mean_param = 1, .std_param = -1, .shape = {}}};
   }
   Model model() const {
     return [A = A](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(X * A.transpose()); };
