@@ -63,7 +63,7 @@ end)
 
 T.case("the near-optimal tolerance and the prior are read from the result", function()
   local r = smi.calibrate(P.spec{ maxeval = 5, prior = { { param = "x1.mean", mean = 10, std = 0.5 } } })
-  T.truthy(r.tolerance_basis:find("summed PR of y1, y2, y3 at the optimum over 200 bootstrap resamples", 1, true),
+  T.truthy(r.tolerance_basis:find("summed PR of y1, y2, y3 at the optimum over 1000 bootstrap resamples", 1, true),
            r.tolerance_basis)
   T.truthy(r.tolerance > 0 and r.tolerance < 2, r.tolerance)
   -- resamples = 0 (or a PDF without its points): PR's unit-free default

@@ -104,8 +104,8 @@ TEST_CASE("PR tolerance: calibrate() reports the measured one where data points 
   REQUIRE(measured.opt.theta.isApprox(theta(), 1e-9));
   const PrTolerance direct = measure_pr_tolerance(*measured.stat, theta(), kPrToleranceResamples, p.stat.seed, 1);
   CHECK(measured.tolerance == Approx(direct.value).epsilon(1e-12));
-  CHECK(measured.tolerance_basis.find("200 bootstrap resamples of the 9 data rows") != std::string::npos);
-  CHECK(measured.tolerance == Approx(number(ref, "std")).epsilon(0.25));
+  CHECK(measured.tolerance_basis.find("1000 bootstrap resamples of the 9 data rows") != std::string::npos);
+  CHECK(measured.tolerance == Approx(number(ref, "std")).epsilon(0.15));
 
   CalibrationOptions fixed = o;
   fixed.tolerance_resamples = 0;
