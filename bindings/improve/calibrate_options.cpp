@@ -122,8 +122,10 @@ const Schema<CalibrateSpec>& calibrate_schema() {
          "CRN sample, multistart points and bootstrap", "smi.seed"),
       by_hand<S>("identifiability", "true",
          "true, false, or {points = ${ident_points}, rel_tol = ${ident_rel_tol},\n"
-         "abs_tol = ${ident_abs_tol}, tolerance =, directions = true}: a sweep\n"
-         "of each parameter and the directions the data determine or not"),
+         "abs_tol = ${ident_abs_tol}, tolerance =, resamples = ${ident_resamples},\n"
+         "directions = true}: a sweep of each parameter and the directions the\n"
+         "data determine or not; resamples: of the data rows, measuring PR's\n"
+         "tolerance (0: 0.01 per response)"),
       by_hand<S>("intervals", "nil",
          "{level = 0.9} profile intervals (loglik / objective read as a negative\n"
          "log-likelihood) or {delta = rise}; observations = n (data count)\n"

@@ -9,6 +9,7 @@
 #include "kernels/improve/bootstrap.hpp"
 #include "kernels/improve/bounded_optimizer.hpp"
 #include "kernels/improve/identifiability.hpp"
+#include "kernels/improve/pr_tolerance.hpp"
 #include "kernels/improve/statistical_objective.hpp"
 
 namespace smi::bind {
@@ -143,6 +144,7 @@ DocText doc_improve() {
           fill(text, {{"ident_points", num(id.points)},
                        {"ident_rel_tol", num(id.rel_tol)},
                        {"ident_abs_tol", num(id.abs_tol)},
+                       {"ident_resamples", num(smi::improve::kPrToleranceResamples)},
                        {"boot_replicates", num(boot.replicates)},
                        {"boot_level", num(boot.level)}})};
 }
