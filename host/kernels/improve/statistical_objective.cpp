@@ -42,6 +42,10 @@ double predicted_bandwidth(ConstVec y, const std::string& rule, const std::strin
   return stats::bandwidth_by_name(y, rule);
 }
 
+/// The experimental PDF of measured points where none is given: the Gaussian KDE with the
+/// normal-reference bandwidth, for the data and for every resample of them alike.
+stats::DistributionPtr data_kde(const Eigen::VectorXd& x) { return stats::make_kde(x, stats::bandwidth_normal_reference(x)); }
+
 /// The same doubles bit for bit (0.0 and -0.0 differ; a NaN θ never reaches the model).
 bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   if (a.size() != b.size()) return false;
@@ -108,7 +112,7 @@ void StatisticalObjective::prepare_responses(const Eigen::VectorXd& start) {
   Eigen::MatrixXd y0;  // one model run at the start fixes the default grids
   for (ResponseSpec& r : responses_) {
     if (!r.f_exp) {
-      r.f_exp = stats::make_kde(r.data, stats::bandwidth_normal_reference(r.data));
+      r.f_exp = data_kde(r.data);
       r.f_exp_from_data = true;
     }
     if (!r.grid) {
@@ -165,8 +169,7 @@ std::vector<double> StatisticalObjective::pr_sums_against(const Eigen::VectorXd&
     try {
       for (std::size_t j = 0; j < d.size(); ++j) {
         require_finite(d[j], fmt::format("data of response '{}'", responses_[j].name));
-        const auto f = stats::make_kde(d[j], stats::bandwidth_normal_reference(d[j]));
-        const OnGrid e = on_grid(*f, *responses_[j].grid);
+        const OnGrid e = on_grid(*data_kde(d[j]), *responses_[j].grid);
         sum += pr_part(static_cast<Eigen::Index>(j), predicted[j], e.pdf, e.outside);
       }
     } catch (const InvalidArgument&) {
